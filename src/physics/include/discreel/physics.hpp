@@ -1,0 +1,106 @@
+#pragma once
+// 2-D rigid discs against static walls, stepped at a fixed rate. Plain definitions in, plain
+// state out: no YAML, GL or FFmpeg here. Usage:
+//     physics::World world(def);
+//     while (world.time() < t_end) world.step();
+//     for (const auto& d : world.discs()) ...
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "discreel/vec2.hpp"
+
+namespace discreel::physics {
+
+struct DiscDef {
+    Vec2 position;                 // metres
+    Vec2 velocity;                 // m/s
+    double angle = 0.0;            // radians
+    double angular_velocity = 0.0; // rad/s, counter-clockwise positive
+    double radius = 0.5;           // metres, > 0
+    double mass = 1.0;             // kg, > 0; ignored for static discs
+    double restitution = 0.8;      // coefficient of restitution, 0..1
+    double friction = 0.2;         // Coulomb coefficient, >= 0
+    bool is_static = false;        // a fixed peg: collides, never moves
+};
+
+struct WallDef {
+    enum class Shape {
+        box,      // closed container: a..b are the min and max corners, discs kept inside
+        segment,  // capsule from a to b
+    };
+    Shape shape = Shape::segment;
+    Vec2 a;                        // metres
+    Vec2 b;                        // metres
+    double thickness = 0.02;       // metres, full thickness
+    double restitution = 0.8;
+    double friction = 0.2;
+};
+
+// Mixing rule for a contact between two materials (documented in docs/physics.md).
+double mix_restitution(double a, double b);
+double mix_friction(double a, double b);
+
+struct Waypoint {
+    double t = 0.0;                // seconds
+    Vec2 position;                 // metres
+};
+
+struct ThrowDef {
+    std::size_t disc = 0;          // index into WorldDef::discs
+    double at = 0.0;               // seconds; flick time
+    std::optional<Vec2> velocity;  // m/s; a flick when set
+    std::vector<Waypoint> path;    // a grab when non-empty
+    std::optional<Vec2> release;   // m/s; release velocity of a grab (default: path's)
+};
+
+struct WorldDef {
+    Vec2 gravity{0.0, -9.81};      // m/s^2
+    int rate = 480;                // steps per second; one step() advances 1/rate s
+    std::vector<DiscDef> discs;
+    std::vector<WallDef> walls;
+    std::vector<ThrowDef> throws;
+};
+
+struct DiscState {
+    Vec2 position;                 // metres
+    Vec2 velocity;                 // m/s
+    double angle = 0.0;            // radians
+    double angular_velocity = 0.0; // rad/s
+};
+
+// A pair that was not touching one step before and touches now.
+struct ContactEvent {
+    double t = 0.0;                // seconds, time of the step that found it
+    std::size_t a = 0;             // disc index
+    enum class Other { disc, wall };
+    Other other_kind = Other::disc;
+    std::size_t other = 0;         // disc index or index into WorldDef::walls
+    double impulse = 0.0;          // N*s, normal impulse applied in that step
+};
+
+class World {
+public:
+    explicit World(const WorldDef& def);
+    ~World();
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
+
+    void step();                   // advance by exactly 1/rate seconds
+    std::int64_t step_count() const;
+    double time() const;           // step_count() / rate, seconds
+
+    std::span<const DiscState> discs() const;   // same order as WorldDef::discs
+
+    // Contacts that began during the steps since the last call, in a deterministic order.
+    std::vector<ContactEvent> take_events();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace discreel::physics

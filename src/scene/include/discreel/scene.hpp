@@ -1,0 +1,120 @@
+#pragma once
+// A scene file, loaded and validated into plain data. Everything here is resolved: defaults
+// are filled in, generators are expanded, boxes stay boxes (physics decides how to collide
+// with them), throws name discs by index. Nothing here knows about YAML once loading is done.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "discreel/vec2.hpp"
+
+namespace discreel::scene {
+
+struct Color {
+    std::uint8_t r = 0, g = 0, b = 0, a = 255;   // sRGB-encoded, straight alpha
+    friend bool operator==(const Color&, const Color&) = default;
+};
+
+struct Video {
+    int width = 1280;              // pixels, even, 16..7680
+    int height = 720;              // pixels, even, 16..4320
+    int fps = 60;                  // frames per second, 1..240
+    double duration = 8.0;         // seconds of simulated time, (0, 3600]
+    Color background{0x0f, 0x14, 0x19, 0xff};
+
+    // round(duration * fps): frame n shows the state at t = n / fps.
+    int frame_count() const;
+};
+
+struct Camera {
+    // Absent: the app frames the bounding box of all walls with a 5 % margin.
+    std::optional<Vec2> center;    // metres
+    std::optional<double> height;  // metres visible vertically
+};
+
+struct Physics {
+    Vec2 gravity{0.0, -9.81};      // m/s^2
+    int rate = 480;                // physics steps per second, independent of video fps
+    double restitution = 0.8;      // default coefficient of restitution, 0..1
+    double friction = 0.2;         // default Coulomb friction coefficient, >= 0
+    std::uint64_t seed = 1;        // for generated discs
+};
+
+struct Wall {
+    enum class Shape { box, segment };
+    Shape shape = Shape::segment;
+    Vec2 a;                        // metres: box corner (min) or segment start
+    Vec2 b;                        // metres: box corner (max) or segment end
+    double thickness = 0.02;       // metres, full thickness (a capsule of radius thickness/2)
+    double restitution = 0.8;      // resolved from physics.restitution when not given
+    double friction = 0.2;         // resolved from physics.friction when not given
+    Color color{0x88, 0x99, 0xaa, 0xff};
+};
+
+struct Disc {
+    std::string id;                // from the file, or the index / "<generator>.<k>"
+    Vec2 position;                 // metres
+    Vec2 velocity;                 // m/s
+    double angle = 0.0;            // radians
+    double angular_velocity = 0.0; // rad/s, counter-clockwise positive
+    double radius = 0.0;           // metres, > 0
+    double mass = 0.0;             // kg; from mass, or density (kg/m^2, default 1) * pi r^2
+    double restitution = 0.8;      // resolved from physics.restitution when not given
+    double friction = 0.2;         // resolved from physics.friction when not given
+    Color color;                   // resolved from a palette by index when not given
+    bool is_static = false;        // a fixed peg: collides, never moves
+};
+
+struct Waypoint {
+    double t = 0.0;                // seconds
+    Vec2 position;                 // metres
+};
+
+struct Throw {
+    std::size_t disc = 0;          // index into Scene::discs
+    // A flick: at time `at` the disc's velocity becomes `velocity`.
+    double at = 0.0;               // seconds
+    std::optional<Vec2> velocity;  // m/s; set for a flick
+    // A grab: held along `path` from its first to its last waypoint, then released with the
+    // path's velocity there, or with `release` when given.
+    std::vector<Waypoint> path;    // non-empty for a grab; times strictly increasing
+    std::optional<Vec2> release;   // m/s
+};
+
+struct Scene {
+    std::string name;              // file stem ("demo" for configs/demo.yaml)
+    int version = 1;
+    Video video;
+    Camera camera;
+    Physics physics;
+    std::vector<Wall> walls;
+    std::vector<Disc> discs;
+    std::vector<Throw> throws;
+    std::vector<int> golden_frames;  // default: first, middle, last
+};
+
+struct Diagnostic {
+    std::string file;
+    int line = 0;                  // 1-based
+    int column = 0;                // 1-based
+    std::string message;
+
+    std::string to_string() const; // "file:line:column: message"
+};
+
+struct LoadResult {
+    Scene scene;                   // meaningful only when ok()
+    std::vector<Diagnostic> diagnostics;  // every problem found, in file order
+
+    bool ok() const { return diagnostics.empty(); }
+};
+
+// `display_name` is what diagnostics print as the file (usually the path as the user typed it).
+LoadResult load_scene_text(std::string_view text, std::string_view display_name);
+LoadResult load_scene_file(const std::filesystem::path& path);
+
+}  // namespace discreel::scene
