@@ -28,8 +28,10 @@ public:
     virtual Status finish() = 0;                        // flush, close, rename into place
 };
 
-// Opens the sink that the extension of def.path names. Fails for unknown extensions, odd
-// sizes for video, unwritable directories and encoders that cannot be opened.
+// Opens the sink that the extension of def.path names (case-insensitive): .mp4 is H.264 in
+// MP4 (yuv420p, BT.709 limited range, index first); .png is a still that takes exactly one
+// frame. Fails for unknown extensions, odd sizes for video, missing or unwritable directories,
+// bad encoder settings and encoders that cannot be opened. Errors name the path.
 Expected<std::unique_ptr<Sink>> open_sink(const SinkDef& def);
 
 // PNG stills for goldens and single frames: decoded/encoded with libavcodec's PNG codec.

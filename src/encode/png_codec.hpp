@@ -1,0 +1,20 @@
+#pragma once
+// PNG bytes <-> RGBA8 images through libavcodec's png encoder and decoder, in memory. Errors
+// carry the reason only; callers prefix the path they were reading or writing.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "discreel/expected.hpp"
+#include "discreel/image.hpp"
+
+namespace discreel::encode {
+
+// An RGBA PNG (8 bits per channel) holding exactly the given pixels.
+Expected<std::vector<std::uint8_t>> encode_png(const ImageView& image);
+
+// Any PNG the decoder reads (grey, palette, RGB, 16-bit, with or without alpha), converted to
+// RGBA8, top row first.
+Expected<Image> decode_png(std::span<const std::uint8_t> png_bytes);
+
+}  // namespace discreel::encode
