@@ -1,1 +1,161 @@
-// placeholder: being written
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "discreel/render.hpp"
+#include "discreel_shaders.hpp"
+#include "gl_objects.hpp"
+#include "instance_stream.hpp"
+#include "instances.hpp"
+#include "offscreen_target.hpp"
+#include "osmesa_context.hpp"
+#include "shader_program.hpp"
+
+namespace discreel::render {
+namespace {
+
+std::string gl_string(GLenum name) {
+    const auto* s = reinterpret_cast<const char*>(glGetString(name));
+    return s != nullptr ? s : "";
+}
+
+Status check_gl(const char* during) {
+    if (GLenum e = glGetError(); e != GL_NO_ERROR) {
+        return Error{"GL error " + std::to_string(e) + " while " + during};
+    }
+    return {};
+}
+
+// Shader positions arrive in pixels from the image centre, y up. Negating y here makes GL's
+// row 0 the image's top row, so glReadPixels yields rows top first with no reordering.
+void set_pixels_to_ndc(const GlProgram& program, int width, int height) {
+    glUseProgram(program.id());
+    glUniform2f(glGetUniformLocation(program.id(), "u_pixels_to_ndc"),
+                2.0f / static_cast<float>(width), -2.0f / static_cast<float>(height));
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+    // Declared first so it is destroyed last: every GL object below is deleted while it exists.
+    OsmesaContext context;
+    int width = 0;
+    int height = 0;
+    std::string info;
+
+    std::optional<OffscreenTarget> target;
+    GlProgram disc_program;
+    GlProgram capsule_program;
+    std::optional<InstanceStream> disc_stream;
+    std::optional<InstanceStream> capsule_stream;
+
+    std::vector<DiscInstance> disc_instances;        // reused from frame to frame
+    std::vector<CapsuleInstance> capsule_instances;
+    std::vector<std::uint8_t> pixels;                // the last frame, top row first
+
+    explicit Impl(OsmesaContext c) : context(std::move(c)) {}
+    ~Impl() { (void)context.make_current(); }
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+
+    Status init(const RendererDef& def);
+    Expected<ImageView> draw(const FrameScene& frame);
+};
+
+Status Renderer::Impl::init(const RendererDef& def) {
+    const std::string size = std::to_string(def.width) + "x" + std::to_string(def.height);
+    if (def.width <= 0 || def.height <= 0) {
+        return Error{"renderer size must be positive, got " + size};
+    }
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+    if (def.width > max_size || def.height > max_size) {
+        return Error{"renderer size " + size + " exceeds the GL limit of " +
+                     std::to_string(max_size) + " pixels"};
+    }
+    width = def.width;
+    height = def.height;
+    info = gl_string(GL_RENDERER) + ", " + gl_string(GL_VERSION);
+
+    auto created_target = OffscreenTarget::create(width, height);
+    if (!created_target) return created_target.error();
+    target.emplace(std::move(created_target.value()));
+
+    auto discs = build_program(discreel_shaders::disc_vert, discreel_shaders::disc_frag);
+    if (!discs) return Error{"disc shaders: " + discs.error().message};
+    disc_program = std::move(discs.value());
+    auto capsules = build_program(discreel_shaders::capsule_vert, discreel_shaders::capsule_frag);
+    if (!capsules) return Error{"capsule shaders: " + capsules.error().message};
+    capsule_program = std::move(capsules.value());
+    set_pixels_to_ndc(disc_program, width, height);
+    set_pixels_to_ndc(capsule_program, width, height);
+
+    disc_stream = InstanceStream::create(
+        sizeof(DiscInstance), {{0, 2, GL_FLOAT, offsetof(DiscInstance, center)},
+                               {1, 1, GL_FLOAT, offsetof(DiscInstance, radius)},
+                               {2, 1, GL_FLOAT, offsetof(DiscInstance, angle)},
+                               {3, 4, GL_FLOAT, offsetof(DiscInstance, color)},
+                               {4, 1, GL_UNSIGNED_INT, offsetof(DiscInstance, flags)}});
+    capsule_stream = InstanceStream::create(
+        sizeof(CapsuleInstance), {{0, 2, GL_FLOAT, offsetof(CapsuleInstance, a)},
+                                  {1, 2, GL_FLOAT, offsetof(CapsuleInstance, b)},
+                                  {2, 1, GL_FLOAT, offsetof(CapsuleInstance, radius)},
+                                  {3, 4, GL_FLOAT, offsetof(CapsuleInstance, color)}});
+
+    // The context belongs to this renderer alone, so fixed state is set once.
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_DITHER);
+    glEnable(GL_BLEND);
+    // Alpha takes ONE, ONE_MINUS_SRC_ALPHA so it stays 1 over the opaque background and the
+    // frame has no translucent edges.
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+
+    pixels.resize(std::size_t{4} * static_cast<std::size_t>(width) *
+                  static_cast<std::size_t>(height));
+    return check_gl("setting up the renderer");
+}
+
+Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame) {
+    const double view_height = frame.camera.height;
+    if (!(view_height > 0.0) || !std::isfinite(view_height)) {
+        return Error{"camera height must be a positive number of metres"};
+    }
+    if (Status current = context.make_current(); !current) return current.error();
+
+    const double pixels_per_metre = static_cast<double>(height) / view_height;
+    make_capsule_instances(frame, pixels_per_metre, capsule_instances);
+    make_disc_instances(frame, pixels_per_metre, disc_instances);
+
+    glClearColor(frame.background.r, frame.background.g, frame.background.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glUseProgram(capsule_program.id());
+    capsule_stream->draw(capsule_instances.data(), capsule_instances.size());
+    glUseProgram(disc_program.id());
+    disc_stream->draw(disc_instances.data(), disc_instances.size());
+    target->read(pixels);
+    if (Status ok = check_gl("drawing a frame"); !ok) return ok.error();
+    return ImageView{width, height, pixels};
+}
+
+Expected<Renderer> Renderer::create(const RendererDef& def) {
+    auto context = OsmesaContext::create();
+    if (!context) return context.error();
+    auto impl = std::make_unique<Impl>(std::move(context.value()));
+    if (Status ok = impl->init(def); !ok) return ok.error();
+    return Renderer(std::move(impl));
+}
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+Expected<ImageView> Renderer::draw(const FrameScene& frame) { return impl_->draw(frame); }
+
+std::string Renderer::renderer_info() const { return impl_->info; }
+
+}  // namespace discreel::render

@@ -19,15 +19,15 @@ struct Rgba {
 
 struct DiscGeom {
     float x = 0, y = 0;             // centre, world metres
-    float radius = 0;               // metres
-    float angle = 0;                // radians (for the spin marker)
+    float radius = 0;               // metres; drawn at least one pixel across
+    float angle = 0;                // radians, counter-clockwise from +x (the spin marker points so)
     Rgba fill;
     bool is_static = false;         // pegs are drawn differently from moving discs
 };
 
 struct CapsuleGeom {                // walls: segment a..b swept by a circle of `radius`
     float ax = 0, ay = 0, bx = 0, by = 0;   // world metres
-    float radius = 0;               // metres
+    float radius = 0;               // metres; drawn at least one pixel wide
     Rgba color;
 };
 
@@ -37,7 +37,7 @@ struct Camera {
 };
 
 struct FrameScene {
-    Rgba background;
+    Rgba background;                      // its alpha is ignored: frames are opaque
     Camera camera;
     std::vector<CapsuleGeom> capsules;    // drawn first
     std::vector<DiscGeom> discs;          // drawn in order, later on top
@@ -55,7 +55,8 @@ public:
     Renderer(Renderer&&) noexcept;
     Renderer& operator=(Renderer&&) noexcept;
 
-    // The view stays valid until the next draw() or until the Renderer is destroyed.
+    // The view stays valid until the next draw() or until the Renderer is destroyed. Every
+    // pixel has alpha 255. Fails for a camera height that is not a positive number.
     Expected<ImageView> draw(const FrameScene& frame);
 
     std::string renderer_info() const;   // GL_RENDERER and GL_VERSION, for golden metadata

@@ -1,0 +1,34 @@
+#pragma once
+// Per-instance vertex data as the shaders read it, and the camera transform that produces it.
+// Positions are pixels relative to the image centre, y up: the camera is applied here in
+// double precision so far-from-origin scenes keep sub-pixel accuracy in float attributes.
+#include <cstdint>
+#include <vector>
+
+#include "discreel/render.hpp"
+
+namespace discreel::render {
+
+struct DiscInstance {
+    float center[2];   // pixels
+    float radius;      // pixels
+    float angle;       // radians
+    float color[4];
+    std::uint32_t flags;
+};
+inline constexpr std::uint32_t kDiscStatic = 1;   // matches kStatic in disc.frag
+
+struct CapsuleInstance {
+    float a[2];        // pixels
+    float b[2];        // pixels
+    float radius;      // pixels
+    float color[4];
+};
+
+// Replaces the contents of `out` (its capacity is reused from frame to frame).
+void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
+                         std::vector<DiscInstance>& out);
+void make_capsule_instances(const FrameScene& frame, double pixels_per_metre,
+                            std::vector<CapsuleInstance>& out);
+
+}  // namespace discreel::render
