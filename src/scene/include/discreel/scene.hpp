@@ -14,6 +14,14 @@
 
 namespace discreel::scene {
 
+// Protective limits: a scene beyond them is rejected with a message that states the limit.
+inline constexpr std::size_t max_discs = 100'000;
+inline constexpr std::size_t max_walls = 10'000;
+inline constexpr std::size_t max_throws = 10'000;
+inline constexpr std::size_t max_waypoints = 10'000;      // per grab path
+inline constexpr std::size_t max_golden_frames = 1'000;
+inline constexpr std::uintmax_t max_file_bytes = 64u << 20;
+
 struct Color {
     std::uint8_t r = 0, g = 0, b = 0, a = 255;   // sRGB-encoded, straight alpha
     friend bool operator==(const Color&, const Color&) = default;
@@ -77,7 +85,7 @@ struct Waypoint {
 struct Throw {
     std::size_t disc = 0;          // index into Scene::discs
     // A flick: at time `at` the disc's velocity becomes `velocity`.
-    double at = 0.0;               // seconds
+    double at = 0.0;               // seconds; for a grab, the time of its first waypoint
     std::optional<Vec2> velocity;  // m/s; set for a flick
     // A grab: held along `path` from its first to its last waypoint, then released with the
     // path's velocity there, or with `release` when given.

@@ -1,0 +1,62 @@
+#include "diagnostics.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <utility>
+
+namespace discreel::scene {
+
+std::string Diagnostic::to_string() const {
+    if (line <= 0) return file + ": " + message;  // about the file as a whole (unreadable)
+    return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message;
+}
+
+namespace detail {
+
+void Diagnostics::error(Location where, std::string message) {
+    if (full()) return;
+    entries_.push_back({where, std::move(message)});
+}
+
+std::vector<Diagnostic> Diagnostics::finish(std::string_view file) && {
+    std::stable_sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+        if (a.where.line != b.where.line) return a.where.line < b.where.line;
+        return a.where.column < b.where.column;
+    });
+    std::vector<Diagnostic> out;
+    const std::size_t n = std::min(entries_.size(), shown);
+    out.reserve(n + 1);
+    for (std::size_t i = 0; i < n; ++i) {
+        auto& e = entries_[i];
+        out.push_back({std::string(file), e.where.line, e.where.column, std::move(e.message)});
+    }
+    if (entries_.size() > shown) {
+        const Location next = entries_[shown].where;
+        const std::string more = entries_.size() >= stop_after
+                                     ? "at least " + std::to_string(entries_.size() - shown)
+                                     : std::to_string(entries_.size() - shown);
+        out.push_back({std::string(file), next.line, next.column,
+                       "too many problems; " + more + " more not shown"});
+    }
+    return out;
+}
+
+std::string format_number(double value) {
+    // Whole numbers as people write them: 100000, not the shorter 1e+05.
+    if (value == std::trunc(value) && std::fabs(value) < 1e15)
+        return std::to_string(static_cast<long long>(value));
+    char buffer[64];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
+}
+
+std::string format_short(double value) {
+    char buffer[64];
+    const auto result =
+        std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 4);
+    return std::string(buffer, result.ptr);
+}
+
+}  // namespace detail
+}  // namespace discreel::scene

@@ -1,0 +1,517 @@
+// `discs:` — single discs and the `grid` and `random` generators, and the checks on the
+// resulting list (unique ids, no overlaps at t = 0).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <span>
+#include <string_view>
+
+#include "color.hpp"
+#include "generators.hpp"
+#include "loader.hpp"
+#include "overlap.hpp"
+#include "random.hpp"
+
+namespace discreel::scene::detail {
+namespace {
+
+constexpr std::array<std::string_view, 14> entry_keys{
+    "id",       "position",    "velocity", "angle", "angular_velocity", "radius", "mass",
+    "density",  "restitution", "friction", "color", "static",           "grid",   "random"};
+// A generator's own keys, followed by the per-disc keys that belong beside it, not inside it:
+// those are recognised so that the message can say where they go.
+constexpr std::size_t grid_key_count = 6, random_key_count = 5;
+constexpr std::array<std::string_view, grid_key_count + 11> grid_keys{
+    "origin", "count",    "spacing",     "radius",   "jitter", "colors", "id",   "velocity",
+    "angle",  "angular_velocity", "mass", "density", "restitution", "friction", "color", "static",
+    "position"};
+constexpr std::array<std::string_view, random_key_count + 11> random_keys{
+    "count", "radius",  "region", "speed",   "colors",      "id",       "velocity", "angle",
+    "angular_velocity", "mass", "density", "restitution", "friction", "color", "static", "position"};
+
+// The per-disc keys of an entry: a single disc's own, or what a generator gives every disc.
+struct Properties {
+    Vec2 velocity;
+    double angle = 0;
+    double angular_velocity = 0;
+    std::optional<double> mass;       // kg
+    double density = 1;               // kg/m^2, used when mass is not given
+    double restitution = 0.8;
+    double friction = 0.2;
+    std::optional<Color> color;       // none: from the palette by disc index
+    bool is_static = false;
+};
+
+Properties read_properties(Loader& loader, const Fields& fields, const Value& item) {
+    auto& d = loader.diagnostics;
+    Properties p;
+    p.restitution = loader.scene.physics.restitution;
+    p.friction = loader.scene.physics.friction;
+    if (const auto v = fields.get("velocity"))
+        if (const auto velocity = read_vec2(*v, "[x, y]", d)) p.velocity = *velocity;
+    if (const auto v = fields.get("angle"))
+        if (const auto angle = read_number(*v, d)) p.angle = *angle;
+    if (const auto v = fields.get("angular_velocity"))
+        if (const auto omega = read_number(*v, d)) p.angular_velocity = *omega;
+    if (fields.has("mass") && fields.has("density")) {
+        d.error(fields.key_location(fields.later_of("mass", "density")),
+                item.path + ": give either 'mass' or 'density', not both");
+    } else if (const auto v = fields.get("mass")) {
+        p.mass = read_positive(*v, d);
+    } else if (const auto v = fields.get("density")) {
+        if (const auto density = read_positive(*v, d)) p.density = *density;
+    }
+    if (const auto v = fields.get("restitution"))
+        if (const auto e = read_between(*v, 0, 1, d)) p.restitution = *e;
+    if (const auto v = fields.get("friction"))
+        if (const auto mu = read_non_negative(*v, d)) p.friction = *mu;
+    if (const auto v = fields.get("color")) p.color = read_color(*v, d);
+    if (const auto v = fields.get("static"))
+        if (const auto s = read_bool(*v, d)) p.is_static = *s;
+    return p;
+}
+
+bool valid_id_character(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+           c == '_' || c == '-' || c == '.';
+}
+
+// Ids end up in CSV traces and in messages, so they are kept to a safe alphabet.
+std::optional<std::string> read_id(const Value& value, Diagnostics& d) {
+    if (!value.node.IsScalar()) {
+        d.error(value.where, value.path + ": expected a name, got " + describe(value.node));
+        return std::nullopt;
+    }
+    const std::string& id = value.node.Scalar();
+    if (id.empty() || !std::all_of(id.begin(), id.end(), valid_id_character)) {
+        d.error(value.where, value.path + ": " + describe(value.node) +
+                                 " is not a valid id; use letters, digits, '_', '-' and '.'");
+        return std::nullopt;
+    }
+    return id;
+}
+
+Disc make_disc(const Properties& p, std::string id, Vec2 position, double radius,
+               std::size_t index) {
+    Disc disc;
+    disc.id = std::move(id);
+    disc.position = position;
+    disc.velocity = p.velocity;
+    disc.angle = p.angle;
+    disc.angular_velocity = p.angular_velocity;
+    disc.radius = radius;
+    disc.mass = p.mass ? *p.mass : p.density * std::numbers::pi * radius * radius;
+    disc.restitution = p.restitution;
+    disc.friction = p.friction;
+    disc.color = p.color ? *p.color : palette_color(index);
+    disc.is_static = p.is_static;
+    return disc;
+}
+
+// A mass from density * pi r^2 can overflow or underflow for absurd radii; physics divides
+// by it, so it must come out positive and finite.
+bool check_mass(const Disc& disc, const Value& item, Diagnostics& d) {
+    if (std::isfinite(disc.mass) && disc.mass > 0) return true;
+    d.error(item.where, item.path + ": the mass works out to " + format_number(disc.mass) +
+                            " kg (density * pi * radius^2); choose a radius or density that "
+                            "gives a positive, finite mass");
+    return false;
+}
+
+// Whether `count` more discs still fit under the limit; reports the entry that breaks it.
+bool room_for(Loader& loader, const Value& item, std::size_t count) {
+    const std::size_t total = loader.scene.discs.size() + count;
+    if (total <= max_discs) return true;
+    loader.diagnostics.error(item.where, item.path + ": this entry brings the scene to " +
+                                             std::to_string(total) + " discs; the limit is " +
+                                             std::to_string(max_discs));
+    loader.discs_complete = false;
+    loader.disc_limit_reached = true;
+    return false;
+}
+
+void add_disc(Loader& loader, Disc disc, const Value& item, const std::optional<Value>& id_value,
+              bool usable) {
+    DiscSource source{item.where, item.path, item.where, item.path, usable};
+    if (id_value) {
+        source.id_where = id_value->where;
+        source.id_path = id_value->path;
+    }
+    loader.scene.discs.push_back(std::move(disc));
+    loader.sources.push_back(std::move(source));
+}
+
+void read_single_disc(Loader& loader, const Fields& fields, const Value& item) {
+    auto& d = loader.diagnostics;
+    const std::size_t index = loader.scene.discs.size();
+    const Properties p = read_properties(loader, fields, item);
+    std::string id = std::to_string(index);
+    const auto id_value = fields.get("id");
+    if (id_value)
+        if (const auto explicit_id = read_id(*id_value, d)) id = *explicit_id;
+    std::optional<Vec2> position;
+    std::optional<double> radius;
+    if (const auto v = fields.get("position"))
+        position = read_vec2(*v, "[x, y]", d);
+    else
+        d.error(item.where, item.path + ": missing required key 'position'");
+    if (const auto v = fields.get("radius"))
+        radius = read_positive(*v, d);
+    else
+        d.error(item.where, item.path + ": missing required key 'radius'");
+    if (!room_for(loader, item, 1)) return;
+    Disc disc = make_disc(p, std::move(id), position.value_or(Vec2{}), radius.value_or(0),
+                          index);
+    const bool usable = position && radius && check_mass(disc, item, d);
+    add_disc(loader, std::move(disc), item, id_value, usable);
+}
+
+// A number (min = max) or a range [min, max]; each end checked by `check`.
+struct Range {
+    double min = 0, max = 0;
+};
+template <class Check>
+std::optional<Range> read_range(const Value& value, Check check, Diagnostics& d) {
+    if (value.node.IsScalar()) {
+        const auto v = read_number(value, d);
+        if (!v || !check(value, *v, d)) return std::nullopt;
+        return Range{*v, *v};
+    }
+    if (!value.node.IsSequence() || value.node.size() != 2) {
+        d.error(value.where, value.path + ": expected a number or a range [min, max], got " +
+                                 describe(value.node));
+        return std::nullopt;
+    }
+    const auto items = read_list(value, d);
+    const auto lo = read_number((*items)[0], d);
+    const auto hi = read_number((*items)[1], d);
+    const bool lo_ok = lo && check((*items)[0], *lo, d);
+    const bool hi_ok = hi && check((*items)[1], *hi, d);
+    if (!lo_ok || !hi_ok) return std::nullopt;
+    if (*lo > *hi) {
+        d.error(value.where, value.path + ": the minimum " + format_number(*lo) +
+                                 " is larger than the maximum " + format_number(*hi));
+        return std::nullopt;
+    }
+    return Range{*lo, *hi};
+}
+
+std::optional<std::vector<Color>> read_colors(const Value& value, Diagnostics& d) {
+    const auto items = read_list(value, d);
+    if (!items) return std::nullopt;
+    if (items->empty()) {
+        d.error(value.where, value.path + ": list at least one colour");
+        return std::nullopt;
+    }
+    std::vector<Color> colors;
+    bool ok = true;
+    for (const Value& item : *items) {
+        const auto c = read_color(item, d);
+        ok = ok && c.has_value();
+        if (c) colors.push_back(*c);
+    }
+    if (!ok) return std::nullopt;
+    return colors;
+}
+
+std::optional<Value> required(const Fields& fields, std::string_view key, Diagnostics& d) {
+    auto value = fields.get(key);
+    if (!value)
+        d.error(fields.where(), fields.path() + ": missing required key '" + std::string(key) + "'");
+    return value;
+}
+
+std::string position_hint(std::string_view kind) {
+    return kind == "grid" ? "'position' does not apply to a grid; give the centre of its first "
+                            "disc as 'origin' inside 'grid:'"
+                          : "'position' does not apply to random discs; they are placed inside "
+                            "'region'";
+}
+
+// Per-disc keys written inside `grid:` or `random:` instead of beside it. True if any.
+bool report_misplaced(const Fields& fields, std::span<const std::string_view> disc_keys,
+                      std::string_view kind, Diagnostics& d) {
+    bool any = false;
+    for (const std::string_view key : disc_keys) {
+        if (!fields.has(key)) continue;
+        const std::string k(key);
+        const std::string generator(kind);
+        d.error(fields.key_location(key),
+                key == "position" ? fields.path() + ": " + position_hint(kind)
+                                  : fields.path() + ": '" + k + "' goes beside '" + generator +
+                                        ":', not inside it (it applies to every disc)");
+        any = true;
+    }
+    return any;
+}
+
+// What a generator entry produces before the shared properties are applied.
+struct Generated {
+    std::vector<Vec2> positions;
+    std::vector<Vec2> velocities;     // empty: every disc takes the entry's velocity
+    std::vector<double> radii;
+    std::optional<std::vector<Color>> colors;
+};
+
+std::optional<Generated> read_grid(Loader& loader, const Value& value, Rng& rng) {
+    auto& d = loader.diagnostics;
+    const auto fields = Fields::open(value, grid_keys, d);
+    if (!fields) return std::nullopt;
+    const auto count_value = required(*fields, "count", d);
+    const auto radius_value = required(*fields, "radius", d);
+    bool ok = count_value && radius_value &&
+              !report_misplaced(*fields, std::span(grid_keys).subspan(grid_key_count), "grid", d);
+
+    GridSpec spec;
+    if (const auto v = fields->get("origin")) {
+        const auto origin = read_vec2(*v, "[x, y]", d);
+        ok = ok && origin;
+        spec.origin = origin.value_or(Vec2{});
+    }
+    std::optional<double> radius;
+    if (radius_value) radius = read_positive(*radius_value, d);
+    if (const auto v = fields->get("jitter")) {
+        const auto jitter = read_non_negative(*v, d);
+        ok = ok && jitter;
+        spec.jitter = jitter.value_or(0);
+    }
+    if (const auto v = fields->get("spacing")) {
+        if (const auto items = read_tuple(*v, 2, "[x, y]", d)) {
+            const auto x = read_positive((*items)[0], d);
+            const auto y = read_positive((*items)[1], d);
+            ok = ok && x && y;
+            spec.spacing = {x.value_or(0), y.value_or(0)};
+        } else {
+            ok = false;
+        }
+    } else if (radius) {
+        // Default: neighbours just touch, even when both are jittered towards each other.
+        const double pitch = 2 * *radius + 2 * spec.jitter;
+        spec.spacing = {pitch, pitch};
+    }
+    if (count_value) {
+        if (const auto items = read_tuple(*count_value, 2, "[columns, rows]", d)) {
+            const auto columns = read_integer((*items)[0], d);
+            const auto rows = read_integer((*items)[1], d);
+            const bool columns_ok = columns && check_between((*items)[0], static_cast<double>(*columns), 1, max_discs, d);
+            const bool rows_ok = rows && check_between((*items)[1], static_cast<double>(*rows), 1, max_discs, d);
+            if (columns_ok && rows_ok && *columns * *rows > static_cast<long long>(max_discs)) {
+                d.error(count_value->where,
+                        count_value->path + ": " + std::to_string(*columns) + " x " +
+                            std::to_string(*rows) + " = " + std::to_string(*columns * *rows) +
+                            " discs is more than the limit of " + std::to_string(max_discs));
+                ok = false;
+            }
+            ok = ok && columns_ok && rows_ok;
+            if (ok) {
+                spec.columns = static_cast<int>(*columns);
+                spec.rows = static_cast<int>(*rows);
+            }
+        } else {
+            ok = false;
+        }
+    }
+    Generated g;
+    if (const auto v = fields->get("colors")) {
+        g.colors = read_colors(*v, d);
+        ok = ok && g.colors;
+    }
+    if (!ok || !radius) return std::nullopt;
+    g.positions = grid_positions(spec, rng);
+    g.radii.assign(g.positions.size(), *radius);
+    return g;
+}
+
+std::optional<Generated> read_random(Loader& loader, const Value& value, Rng& rng) {
+    auto& d = loader.diagnostics;
+    const auto fields = Fields::open(value, random_keys, d);
+    if (!fields) return std::nullopt;
+    const auto count_value = required(*fields, "count", d);
+    const auto region_value = required(*fields, "region", d);
+    const auto radius_value = required(*fields, "radius", d);
+    bool ok = count_value && region_value && radius_value &&
+              !report_misplaced(*fields, std::span(random_keys).subspan(random_key_count),
+                                "random", d);
+
+    RandomSpec spec;
+    if (count_value) {
+        const auto count = read_integer(*count_value, d);
+        const bool count_ok = count && check_between(*count_value, static_cast<double>(*count), 1, max_discs, d);
+        ok = ok && count_ok;
+        if (count_ok) spec.count = static_cast<std::size_t>(*count);
+    }
+    if (region_value) {
+        const auto c = read_corners(*region_value, "[[x0, y0], [x1, y1]]", d);
+        ok = ok && c;
+        if (c) {
+            spec.region_min = {std::min(c->a.x, c->b.x), std::min(c->a.y, c->b.y)};
+            spec.region_max = {std::max(c->a.x, c->b.x), std::max(c->a.y, c->b.y)};
+            if (spec.region_min.x == spec.region_max.x || spec.region_min.y == spec.region_max.y) {
+                d.error(region_value->where,
+                        region_value->path + ": the region has no area; its two corners must "
+                                             "differ in both x and y");
+                ok = false;
+            }
+        }
+    }
+    if (radius_value) {
+        const auto r = read_range(*radius_value, check_positive, d);
+        ok = ok && r;
+        if (r) spec.radius_min = r->min, spec.radius_max = r->max;
+    }
+    if (const auto v = fields->get("speed")) {
+        const auto s = read_range(*v, check_non_negative, d);
+        ok = ok && s;
+        if (s) spec.speed_min = s->min, spec.speed_max = s->max;
+    }
+    Generated g;
+    if (const auto v = fields->get("colors")) {
+        g.colors = read_colors(*v, d);
+        ok = ok && g.colors;
+    }
+    if (!ok) return std::nullopt;
+
+    std::vector<Circle> existing;
+    existing.reserve(loader.scene.discs.size());
+    for (std::size_t i = 0; i < loader.scene.discs.size(); ++i) {
+        const Disc& disc = loader.scene.discs[i];
+        if (loader.sources[i].usable) existing.push_back({disc.position, disc.radius, disc.is_static});
+    }
+    const auto placed = place_random(spec, existing, rng);
+    if (placed.size() < spec.count) {
+        d.error(value.where, value.path + ": could place only " + std::to_string(placed.size()) +
+                                 " of " + std::to_string(spec.count) +
+                                 " discs without overlap; make the region larger, the discs "
+                                 "smaller or the count lower");
+        return std::nullopt;
+    }
+    for (const PlacedDisc& p : placed) {
+        g.positions.push_back(p.position);
+        g.velocities.push_back(p.velocity);
+        g.radii.push_back(p.radius);
+    }
+    return g;
+}
+
+void read_generator(Loader& loader, const Fields& fields, const Value& item,
+                    std::size_t entry_index) {
+    auto& d = loader.diagnostics;
+    const bool is_grid = fields.has("grid");
+    const std::string kind = is_grid ? "grid" : "random";
+    bool ok = true;
+    if (fields.has("grid") && fields.has("random")) {
+        d.error(fields.key_location(fields.later_of("grid", "random")),
+                item.path + ": an entry can have 'grid' or 'random', not both");
+        loader.discs_complete = false;
+        return;
+    }
+    if (fields.has("position")) {
+        d.error(fields.key_location("position"), item.path + ": " + position_hint(kind));
+        ok = false;
+    }
+    if (fields.has("radius")) {
+        d.error(fields.key_location("radius"),
+                item.path + ": 'radius' belongs inside '" + kind + ":'");
+        ok = false;
+    }
+    if (!is_grid && fields.has("velocity")) {
+        d.error(fields.key_location("velocity"),
+                item.path + ": 'velocity' cannot be used with 'random'; give 'speed: [min, max]' "
+                            "inside 'random:' instead");
+        ok = false;
+    }
+    const Properties p = read_properties(loader, fields, item);
+    std::string prefix = std::to_string(entry_index);
+    const auto id_value = fields.get("id");
+    if (id_value)
+        if (const auto id = read_id(*id_value, d)) prefix = *id;
+
+    const Value spec = *fields.get(kind);
+    Rng rng(loader.scene.physics.seed, entry_index);
+    const auto generated = is_grid ? read_grid(loader, spec, rng) : read_random(loader, spec, rng);
+    if (generated && generated->colors && fields.has("color")) {
+        d.error(fields.key_location("color"),
+                item.path + ": 'color' and '" + kind + ".colors' both set the colour; give only one");
+        ok = false;
+    }
+    if (!generated || !ok || !room_for(loader, item, generated->positions.size())) {
+        loader.discs_complete = false;
+        return;
+    }
+    bool mass_ok = true;
+    for (std::size_t k = 0; k < generated->positions.size(); ++k) {
+        Properties each = p;
+        if (!generated->velocities.empty()) each.velocity = generated->velocities[k];
+        if (generated->colors) each.color = (*generated->colors)[k % generated->colors->size()];
+        Disc disc = make_disc(each, prefix + "." + std::to_string(k), generated->positions[k],
+                              generated->radii[k], loader.scene.discs.size());
+        // One report per entry is enough: every disc of it shares the cause.
+        const bool usable = mass_ok && check_mass(disc, item, d);
+        mass_ok = mass_ok && usable;
+        add_disc(loader, std::move(disc), item, id_value, usable);
+    }
+}
+
+}  // namespace
+
+void read_discs(Loader& loader, const Value& value) {
+    auto& d = loader.diagnostics;
+    const auto items = read_list(value, d);
+    if (!items) {
+        loader.discs_complete = false;
+        return;
+    }
+    for (std::size_t i = 0; i < items->size() && !d.full(); ++i) {
+        const Value& item = (*items)[i];
+        const auto fields = Fields::open(item, entry_keys, d);
+        if (!fields) {
+            loader.discs_complete = false;
+            continue;
+        }
+        if (fields->has("grid") || fields->has("random"))
+            read_generator(loader, *fields, item, i);
+        else
+            read_single_disc(loader, *fields, item);
+        if (loader.disc_limit_reached) break;
+    }
+}
+
+void check_discs(Loader& loader) {
+    auto& d = loader.diagnostics;
+    const auto& discs = loader.scene.discs;
+    const auto& sources = loader.sources;
+
+    std::map<std::string, std::size_t> first_with_id;
+    for (std::size_t i = 0; i < discs.size() && !d.full(); ++i) {
+        const auto [it, inserted] = first_with_id.emplace(discs[i].id, i);
+        if (!inserted)
+            d.error(sources[i].id_where,
+                    sources[i].id_path + ": id '" + discs[i].id +
+                        "' is already used by the disc on line " +
+                        std::to_string(sources[it->second].id_where.line));
+    }
+
+    std::vector<Circle> circles;
+    std::vector<bool> include;
+    circles.reserve(discs.size());
+    include.reserve(discs.size());
+    for (std::size_t i = 0; i < discs.size(); ++i) {
+        circles.push_back({discs[i].position, discs[i].radius, discs[i].is_static});
+        include.push_back(sources[i].usable);
+    }
+    for (const auto& [later, earlier] : find_overlaps(circles, include)) {
+        if (d.full()) break;
+        const Disc& a = discs[later];
+        const Disc& b = discs[earlier];
+        const double dx = a.position.x - b.position.x, dy = a.position.y - b.position.y;
+        const double depth = a.radius + b.radius - std::sqrt(dx * dx + dy * dy);
+        d.error(sources[later].entry,
+                sources[later].where + ": disc '" + a.id + "' overlaps disc '" + b.id +
+                    "' (line " + std::to_string(sources[earlier].entry.line) + ") by " +
+                    format_short(depth) + " m at t = 0");
+    }
+}
+
+}  // namespace discreel::scene::detail

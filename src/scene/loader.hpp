@@ -1,0 +1,41 @@
+#pragma once
+// State shared by the section readers while one scene file is loaded. Each section reads its
+// part of the YAML into Scene and reports problems; load.cpp calls them in dependency order
+// (physics before discs: discs take their defaults from it; discs before throws).
+#include <string>
+#include <vector>
+
+#include "diagnostics.hpp"
+#include "discreel/scene.hpp"
+#include "yaml_values.hpp"
+
+namespace discreel::scene::detail {
+
+// Where a disc came from, so that later checks (ids, overlaps, throws) can point at it.
+struct DiscSource {
+    Location entry;          // its item in `discs:` (the generator's item for generated discs)
+    std::string where;       // "discs[4]"
+    Location id_where;       // its `id:` value, or `entry` when the id was not written
+    std::string id_path;     // "discs[4].id", or `where` when the id was not written
+    bool usable = true;      // position and radius read fine: takes part in overlap checks
+};
+
+struct Loader {
+    Diagnostics& diagnostics;
+    Scene& scene;
+    std::vector<DiscSource> sources;  // parallel to scene.discs
+    bool discs_complete = true;       // every entry expanded, so indices and ids are final
+    bool disc_limit_reached = false;  // max_discs reported: later entries are not read
+    bool frames_known = true;         // fps and duration read fine, so frame_count() is right
+};
+
+void read_video(Loader& loader, const Value& value);
+void read_camera(Loader& loader, const Value& value);
+void read_physics(Loader& loader, const Value& value);
+void read_walls(Loader& loader, const Value& value);
+void read_discs(Loader& loader, const Value& value);
+void check_discs(Loader& loader);   // ids, overlaps at t = 0
+void read_throws(Loader& loader, const Value& value);
+void read_golden(Loader& loader, const std::optional<Value>& value);
+
+}  // namespace discreel::scene::detail

@@ -1,0 +1,50 @@
+#pragma once
+// Which discs overlap: a uniform grid of cells at least one largest-diameter wide, so that a
+// disc can only overlap discs in its own and the eight neighbouring cells. Used to check the
+// scene at t = 0 and to place random discs, and fast enough for 100 000 discs.
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "discreel/vec2.hpp"
+
+namespace discreel::scene::detail {
+
+struct Circle {
+    Vec2 centre;          // metres
+    double radius = 0;    // metres
+    bool is_static = false;
+};
+
+// Closer than this is overlapping; exactly touching is not. The slack absorbs rounding in
+// positions computed as origin + k * spacing, where a grid of touching discs is meant.
+inline constexpr double overlap_tolerance = 1e-9;  // metres
+
+bool overlapping(const Circle& a, const Circle& b);
+
+class CircleGrid {
+public:
+    // `cell_size` must be at least the largest sum of two radii that will be compared.
+    explicit CircleGrid(double cell_size);
+
+    void insert(std::size_t index, const Circle& circle);
+
+    // The lowest index among the inserted circles that overlap `circle`. Two static circles
+    // never count: fixed pegs may be merged into one obstacle on purpose.
+    std::optional<std::size_t> first_overlap(const Circle& circle) const;
+
+private:
+    using Cell = std::pair<long long, long long>;
+    Cell cell_of(Vec2 p) const;
+
+    double cell_size_;
+    std::map<Cell, std::vector<std::pair<std::size_t, Circle>>> cells_;  // index order per cell
+};
+
+// For every circle that overlaps an earlier one: (its index, the earliest such other index).
+std::vector<std::pair<std::size_t, std::size_t>> find_overlaps(const std::vector<Circle>& circles,
+                                                               const std::vector<bool>& include);
+
+}  // namespace discreel::scene::detail

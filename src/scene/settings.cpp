@@ -1,0 +1,171 @@
+// The scalar sections: video, camera, physics and golden.
+#include <array>
+#include <cmath>
+#include <string_view>
+
+#include "loader.hpp"
+
+namespace discreel::scene {
+
+int Video::frame_count() const { return static_cast<int>(std::lround(duration * fps)); }
+
+namespace detail {
+namespace {
+
+constexpr int min_side = 16, max_width = 7680, max_height = 4320;
+constexpr int max_fps = 240;
+constexpr double max_duration = 3600;  // seconds
+constexpr int max_rate = 100'000;      // physics steps per second
+
+// One side of video.size; `name` is "width" or "height".
+std::optional<int> read_side(const Value& value, std::string_view name, int max,
+                             Diagnostics& diagnostics) {
+    const auto side = read_integer(value, diagnostics);
+    if (!side) return std::nullopt;
+    const std::string n(name);
+    if (*side < min_side || *side > max) {
+        diagnostics.error(value.where, "video.size: " + n + " must be between " +
+                                           std::to_string(min_side) + " and " +
+                                           std::to_string(max) + ", got " + std::to_string(*side));
+        return std::nullopt;
+    }
+    if (*side % 2 != 0) {
+        diagnostics.error(value.where,
+                          "video.size: " + n + " " + std::to_string(*side) +
+                              " is odd; H.264 video (yuv420p) stores colour at half resolution, "
+                              "so width and height must both be even");
+        return std::nullopt;
+    }
+    return static_cast<int>(*side);
+}
+
+}  // namespace
+
+void read_video(Loader& loader, const Value& value) {
+    static constexpr std::array<std::string_view, 4> known{"size", "fps", "duration", "background"};
+    auto& d = loader.diagnostics;
+    Video& video = loader.scene.video;
+    const auto fields = Fields::open(value, known, d);
+    if (!fields) {
+        loader.frames_known = false;
+        return;
+    }
+    if (const auto size = fields->get("size")) {
+        if (const auto items = read_tuple(*size, 2, "[width, height]", d)) {
+            if (const auto w = read_side((*items)[0], "width", max_width, d)) video.width = *w;
+            if (const auto h = read_side((*items)[1], "height", max_height, d)) video.height = *h;
+        }
+    }
+    if (const auto fps = fields->get("fps")) {
+        const auto v = read_integer(*fps, d);
+        if (v && check_between(*fps, static_cast<double>(*v), 1, max_fps, d))
+            video.fps = static_cast<int>(*v);
+        else
+            loader.frames_known = false;
+    }
+    if (const auto duration = fields->get("duration")) {
+        const auto v = read_number(*duration, d);
+        if (v && (*v <= 0 || *v > max_duration)) {
+            d.error(duration->where, duration->path + ": must be greater than 0 and at most " +
+                                         format_number(max_duration) + " seconds, got " +
+                                         format_number(*v));
+            loader.frames_known = false;
+        } else if (v) {
+            video.duration = *v;
+        } else {
+            loader.frames_known = false;
+        }
+        if (loader.frames_known && video.frame_count() < 1)
+            d.error(duration->where, duration->path + ": " + format_number(video.duration) +
+                                         " seconds at " + std::to_string(video.fps) +
+                                         " fps is less than one frame; a clip needs at least one");
+    }
+    if (loader.frames_known && video.frame_count() < 1) loader.frames_known = false;
+    if (const auto background = fields->get("background"))
+        if (const auto c = read_color(*background, d)) video.background = *c;
+}
+
+void read_camera(Loader& loader, const Value& value) {
+    static constexpr std::array<std::string_view, 2> known{"center", "height"};
+    auto& d = loader.diagnostics;
+    const auto fields = Fields::open(value, known, d);
+    if (!fields) return;
+    if (const auto center = fields->get("center"))
+        loader.scene.camera.center = read_vec2(*center, "[x, y]", d);
+    if (const auto height = fields->get("height"))
+        loader.scene.camera.height = read_positive(*height, d);
+}
+
+void read_physics(Loader& loader, const Value& value) {
+    static constexpr std::array<std::string_view, 5> known{"gravity", "rate", "restitution",
+                                                           "friction", "seed"};
+    auto& d = loader.diagnostics;
+    Physics& physics = loader.scene.physics;
+    const auto fields = Fields::open(value, known, d);
+    if (!fields) return;
+    if (const auto gravity = fields->get("gravity"))
+        if (const auto g = read_vec2(*gravity, "[x, y]", d)) physics.gravity = *g;
+    if (const auto rate = fields->get("rate")) {
+        const auto v = read_integer(*rate, d);
+        if (v && check_between(*rate, static_cast<double>(*v), 1, max_rate, d))
+            physics.rate = static_cast<int>(*v);
+    }
+    if (const auto restitution = fields->get("restitution"))
+        if (const auto v = read_between(*restitution, 0, 1, d)) physics.restitution = *v;
+    if (const auto friction = fields->get("friction"))
+        if (const auto v = read_non_negative(*friction, d)) physics.friction = *v;
+    if (const auto seed = fields->get("seed"))
+        if (const auto v = read_unsigned(*seed, d)) physics.seed = *v;
+}
+
+void read_golden(Loader& loader, const std::optional<Value>& value) {
+    static constexpr std::array<std::string_view, 1> known{"frames"};
+    auto& d = loader.diagnostics;
+    const int frame_count = loader.scene.video.frame_count();
+    auto& frames = loader.scene.golden_frames;
+    std::optional<Value> listed;
+    if (value) {
+        const auto fields = Fields::open(*value, known, d);
+        if (!fields) return;
+        listed = fields->get("frames");
+    }
+    if (!listed) {
+        if (!loader.frames_known) return;
+        for (const int frame : {0, frame_count / 2, frame_count - 1})
+            if (frames.empty() || frames.back() != frame) frames.push_back(frame);
+        return;
+    }
+    const auto items = read_list(*listed, d);
+    if (!items) return;
+    if (items->empty()) {
+        d.error(listed->where, listed->path +
+                                   ": list at least one frame, or leave out 'frames' for the "
+                                   "default (first, middle and last)");
+        return;
+    }
+    if (items->size() > max_golden_frames) {
+        d.error(listed->where, listed->path + ": too many frames (" +
+                                   std::to_string(items->size()) + "); the limit is " +
+                                   std::to_string(max_golden_frames));
+        return;
+    }
+    for (const Value& item : *items) {
+        const auto frame = read_integer(item, d);
+        if (!frame) continue;
+        if (!loader.frames_known) {
+            if (check_non_negative(item, static_cast<double>(*frame), d))
+                frames.push_back(static_cast<int>(*frame));
+            continue;
+        }
+        if (*frame < 0 || *frame >= frame_count) {
+            d.error(item.where, item.path + ": frame " + std::to_string(*frame) +
+                                    " is outside the clip; it has " + std::to_string(frame_count) +
+                                    " frames, numbered 0 to " + std::to_string(frame_count - 1));
+            continue;
+        }
+        frames.push_back(static_cast<int>(*frame));
+    }
+}
+
+}  // namespace detail
+}  // namespace discreel::scene

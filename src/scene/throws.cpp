@@ -1,0 +1,177 @@
+// `throws:` — flicks and grabs, and which disc each one moves.
+#include <array>
+#include <map>
+#include <string_view>
+
+#include "did_you_mean.hpp"
+#include "loader.hpp"
+
+namespace discreel::scene::detail {
+namespace {
+
+constexpr std::array<std::string_view, 5> throw_keys{"disc", "at", "velocity", "path", "release"};
+
+// A plain whole number names a disc by index; anything else (including a quoted "3") by id.
+std::optional<std::size_t> resolve_disc(Loader& loader, const Value& value,
+                                        const std::map<std::string, std::size_t>& by_id,
+                                        const std::vector<std::string>& ids) {
+    auto& d = loader.diagnostics;
+    const std::size_t count = loader.scene.discs.size();
+    if (!value.node.IsScalar()) {
+        d.error(value.where, value.path + ": expected a disc id or index, got " +
+                                 describe(value.node));
+        return std::nullopt;
+    }
+    const std::string& text = value.node.Scalar();
+    const bool plain = value.node.Tag() != "!";
+    const bool looks_whole = !text.empty() && text.find_first_not_of("0123456789", text[0] == '-' ? 1 : 0) == std::string::npos &&
+                             text != "-";
+    if (plain && looks_whole) {
+        Diagnostics quiet;
+        const auto index = read_integer(value, quiet);
+        if (index && *index >= 0 && static_cast<unsigned long long>(*index) < count)
+            return static_cast<std::size_t>(*index);
+        if (!loader.discs_complete) return std::nullopt;  // the real cause is reported already
+        const std::string numbered =
+            count == 0   ? "the scene has no discs"
+            : count == 1 ? "the scene has 1 disc, numbered 0"
+                         : "the scene has " + std::to_string(count) + " discs, numbered 0 to " +
+                               std::to_string(count - 1);
+        d.error(value.where, value.path + ": there is no disc " + text + "; " + numbered);
+        return std::nullopt;
+    }
+    if (const auto it = by_id.find(text); it != by_id.end()) return it->second;
+    if (!loader.discs_complete) return std::nullopt;
+    std::string message = value.path + ": no disc has id '" + text + "'";
+    if (const auto suggestion = closest_match(text, ids))
+        message += "; did you mean '" + *suggestion + "'?";
+    d.error(value.where, std::move(message));
+    return std::nullopt;
+}
+
+bool read_path(Loader& loader, const Value& value, Throw& t) {
+    auto& d = loader.diagnostics;
+    const auto items = read_list(value, d);
+    if (!items) return false;
+    if (items->size() < 2) {
+        d.error(value.where, value.path + ": a grab needs at least 2 waypoints [t, x, y], got " +
+                                 std::to_string(items->size()));
+        return false;
+    }
+    if (items->size() > max_waypoints) {
+        d.error(value.where, value.path + ": too many waypoints (" +
+                                 std::to_string(items->size()) + "); the limit is " +
+                                 std::to_string(max_waypoints));
+        return false;
+    }
+    bool ok = true;
+    // Strictly increasing times are checked between neighbours that both read fine.
+    double previous_t = 0;
+    bool has_previous = false;
+    for (const Value& item : *items) {
+        const auto numbers = read_tuple(item, 3, "[t, x, y]", d);
+        if (!numbers) {
+            ok = false;
+            has_previous = false;
+            continue;
+        }
+        const auto time = read_number((*numbers)[0], d);
+        const auto x = read_number((*numbers)[1], d);
+        const auto y = read_number((*numbers)[2], d);
+        bool point_ok = time && x && y;
+        if (time && !has_previous)
+            point_ok = check_non_negative((*numbers)[0], *time, d) && point_ok;
+        if (time && has_previous && *time <= previous_t) {
+            d.error((*numbers)[0].where,
+                    item.path + ": waypoint times must increase strictly, but " +
+                        format_number(*time) + " comes after " + format_number(previous_t));
+            point_ok = false;
+        }
+        has_previous = time.has_value();
+        previous_t = time.value_or(0);
+        ok = ok && point_ok;
+        if (point_ok) t.path.push_back({*time, {*x, *y}});
+    }
+    if (ok) t.at = t.path.front().t;
+    return ok;
+}
+
+}  // namespace
+
+void read_throws(Loader& loader, const Value& value) {
+    auto& d = loader.diagnostics;
+    const auto items = read_list(value, d);
+    if (!items) return;
+    if (items->size() > max_throws) {
+        d.error(value.where, value.path + ": too many throws (" + std::to_string(items->size()) +
+                                 "); the limit is " + std::to_string(max_throws));
+        return;
+    }
+    std::map<std::string, std::size_t> by_id;
+    std::vector<std::string> ids;
+    ids.reserve(loader.scene.discs.size());
+    for (std::size_t i = 0; i < loader.scene.discs.size(); ++i) {
+        by_id.emplace(loader.scene.discs[i].id, i);
+        ids.push_back(loader.scene.discs[i].id);
+    }
+
+    for (const Value& item : *items) {
+        if (d.full()) break;
+        const auto fields = Fields::open(item, throw_keys, d);
+        if (!fields) continue;
+        Throw t;
+        bool ok = true;
+        if (const auto disc = fields->get("disc")) {
+            const auto index = resolve_disc(loader, *disc, by_id, ids);
+            if (index && loader.scene.discs[*index].is_static) {
+                d.error(disc->where, disc->path + ": disc '" + loader.scene.discs[*index].id +
+                                         "' is static and cannot be thrown");
+                ok = false;
+            }
+            ok = ok && index;
+            t.disc = index.value_or(0);
+        } else {
+            d.error(item.where, item.path + ": missing required key 'disc'");
+            ok = false;
+        }
+        const bool is_grab = fields->has("path");
+        if (is_grab && fields->has("velocity")) {
+            d.error(fields->key_location(fields->later_of("velocity", "path")),
+                    item.path + ": a throw is either a flick ('velocity') or a grab ('path'), "
+                                "not both");
+            ok = false;
+        } else if (!is_grab && !fields->has("velocity")) {
+            d.error(item.where, item.path + ": a throw needs 'velocity' (a flick) or 'path' "
+                                            "(a grab)");
+            ok = false;
+        }
+        if (is_grab && fields->has("at")) {
+            d.error(fields->key_location("at"),
+                    item.path + ": 'at' is for flicks; a grab starts at the time of its first "
+                                "waypoint");
+            ok = false;
+        }
+        if (!is_grab && fields->has("release")) {
+            d.error(fields->key_location("release"),
+                    item.path + ": 'release' is for grabs; it needs a 'path'");
+            ok = false;
+        }
+        if (const auto at = fields->get("at")) {
+            const auto v = read_non_negative(*at, d);
+            ok = ok && v;
+            t.at = v.value_or(0);
+        }
+        if (const auto velocity = fields->get("velocity")) {
+            t.velocity = read_vec2(*velocity, "[x, y]", d);
+            ok = ok && t.velocity;
+        }
+        if (const auto path = fields->get("path")) ok = read_path(loader, *path, t) && ok;
+        if (const auto release = fields->get("release")) {
+            t.release = read_vec2(*release, "[x, y]", d);
+            ok = ok && t.release;
+        }
+        if (ok) loader.scene.throws.push_back(std::move(t));
+    }
+}
+
+}  // namespace discreel::scene::detail

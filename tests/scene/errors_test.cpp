@@ -1,0 +1,175 @@
+// Each kind of problem, with the exact text a user sees. The messages are a user interface:
+// a change to one of them should be a deliberate change to this file.
+#include <gtest/gtest.h>
+
+#include "scene_test_support.hpp"
+
+namespace discreel::scene {
+namespace {
+
+using testing::problems;
+using Lines = std::vector<std::string>;
+
+TEST(Errors, YamlSyntaxErrorsPointAtTheParserPosition) {
+    EXPECT_EQ(problems("version: 1\nvideo: {fps: 30\n"),
+              Lines{"s.yaml:3:1: invalid YAML: end of map flow not found"});
+}
+
+TEST(Errors, UnknownKeysSuggestTheClosestKnownKey) {
+    EXPECT_EQ(problems("version: 1\nvideo:\n  sise: [640, 480]\n"),
+              Lines{"s.yaml:3:3: video: unknown key 'sise'; did you mean 'size'?"});
+    EXPECT_EQ(problems("version: 1\ndisks: []\n"),
+              Lines{"s.yaml:2:1: unknown top-level key 'disks'; did you mean 'discs'?"});
+}
+
+TEST(Errors, UnknownKeysWithNothingCloseListTheKnownOnes) {
+    EXPECT_EQ(problems("version: 1\ncamera:\n  zoom: 2\n"),
+              Lines{"s.yaml:3:3: camera: unknown key 'zoom'; expected one of: center, height"});
+}
+
+TEST(Errors, WrongTypesSayWhatWasExpectedAndWhatWasFound) {
+    EXPECT_EQ(problems("version: 1\nvideo:\n  fps: fast\n  size: 640\n"),
+              (Lines{"s.yaml:3:8: video.fps: expected a whole number, got 'fast'",
+                     "s.yaml:4:9: video.size: expected a list of two numbers [width, height], "
+                     "got '640'"}));
+    EXPECT_EQ(problems("version: 1\ndiscs:\n  - {position: [1, 2, 3], radius: 0.5}\n"),
+              Lines{"s.yaml:3:16: discs[0].position: expected a list of two numbers [x, y], "
+                    "got a list of 3 items"});
+    EXPECT_EQ(problems("version: 1\nphysics:\n  rate:\n"),
+              Lines{"s.yaml:3:3: physics.rate: expected a whole number, got nothing"});
+}
+
+TEST(Errors, ColoursMustBeHexAndAnUnquotedHashIsExplained) {
+    EXPECT_EQ(problems("version: 1\nvideo:\n  background: navy\n"),
+              Lines{"s.yaml:3:15: video.background: expected a colour like \"#rrggbb\" or "
+                    "\"#rrggbbaa\", got 'navy'"});
+    EXPECT_EQ(problems("version: 1\nvideo:\n  background: #000000\n"),
+              Lines{"s.yaml:3:3: video.background: expected a colour like \"#rrggbb\" or "
+                    "\"#rrggbbaa\", got nothing (put the colour in quotes: YAML reads an "
+                    "unquoted '#' as the start of a comment)"});
+}
+
+TEST(Errors, ValuesOutOfRangeStateTheRange) {
+    EXPECT_EQ(problems("version: 1\nvideo: {fps: 0, duration: 4000}\n"
+                       "physics: {rate: 200000, restitution: -0.5, friction: -1}\n"),
+              (Lines{"s.yaml:2:14: video.fps: must be between 1 and 240, got 0",
+                     "s.yaml:2:27: video.duration: must be greater than 0 and at most 3600 "
+                     "seconds, got 4000",
+                     "s.yaml:3:17: physics.rate: must be between 1 and 100000, got 200000",
+                     "s.yaml:3:38: physics.restitution: must be between 0 and 1, got -0.5",
+                     "s.yaml:3:54: physics.friction: must be at least 0, got -1"}));
+    EXPECT_EQ(problems("version: 1\ndiscs:\n  - {position: [0, 0], radius: -1, density: 0}\n"),
+              (Lines{"s.yaml:3:32: discs[0].radius: must be greater than 0, got -1",
+                     "s.yaml:3:45: discs[0].density: must be greater than 0, got 0"}));
+}
+
+TEST(Errors, OddFrameSizesExplainWhy) {
+    EXPECT_EQ(problems("version: 1\nvideo:\n  size: [640, 481]\n"),
+              Lines{"s.yaml:3:15: video.size: height 481 is odd; H.264 video (yuv420p) stores "
+                    "colour at half resolution, so width and height must both be even"});
+}
+
+TEST(Errors, SizesOutsideTheLimits) {
+    EXPECT_EQ(problems("version: 1\nvideo:\n  size: [10, 5000]\n"),
+              (Lines{"s.yaml:3:10: video.size: width must be between 16 and 7680, got 10",
+                     "s.yaml:3:14: video.size: height must be between 16 and 4320, got 5000"}));
+}
+
+TEST(Errors, MissingRequiredKeys) {
+    EXPECT_EQ(problems("video: {fps: 30}\n"),
+              Lines{"s.yaml:1:1: missing required key 'version'; start the file with "
+                    "'version: 1'"});
+    EXPECT_EQ(problems("version: 1\ndiscs:\n  - velocity: [1, 0]\n"),
+              (Lines{"s.yaml:3:5: discs[0]: missing required key 'position'",
+                     "s.yaml:3:5: discs[0]: missing required key 'radius'"}));
+}
+
+TEST(Errors, ALaterFormatVersionIsTheOnlyProblemReported) {
+    EXPECT_EQ(problems("version: 3\nfancy: yes\n"),
+              Lines{"s.yaml:1:10: version: this file is format version 3, but this build of "
+                    "discreel reads only version 1"});
+}
+
+TEST(Errors, MassTogetherWithDensity) {
+    EXPECT_EQ(problems("version: 1\ndiscs:\n  - {position: [0, 0], radius: 1, density: 2, "
+                       "mass: 3}\n"),
+              Lines{"s.yaml:3:47: discs[0]: give either 'mass' or 'density', not both"});
+}
+
+TEST(Errors, DuplicateIdsPointAtTheSecondAndNameTheFirstLine) {
+    EXPECT_EQ(problems("version: 1\ndiscs:\n  - {id: a, position: [0, 0], radius: 0.5}\n"
+                       "  - {id: a, position: [2, 0], radius: 0.5}\n"),
+              Lines{"s.yaml:4:10: discs[1].id: id 'a' is already used by the disc on line 3"});
+}
+
+TEST(Errors, ThrowsNamingMissingDiscs) {
+    const std::string discs = "version: 1\ndiscs:\n  - {id: striker, position: [0, 0], radius: "
+                              "0.5}\nthrows:\n";
+    EXPECT_EQ(problems(discs + "  - {disc: stiker, velocity: [1, 0]}\n"),
+              Lines{"s.yaml:5:12: throws[0].disc: no disc has id 'stiker'; did you mean "
+                    "'striker'?"});
+    EXPECT_EQ(problems(discs + "  - {disc: 1, velocity: [1, 0]}\n"),
+              Lines{"s.yaml:5:12: throws[0].disc: there is no disc 1; the scene has 1 disc, "
+                    "numbered 0"});
+}
+
+TEST(Errors, DiscsOverlappingAtTheStartNameBoth) {
+    EXPECT_EQ(problems("version: 1\ndiscs:\n  - {id: a, position: [0, 0], radius: 0.5}\n"
+                       "  - {id: b, position: [0.75, 0], radius: 0.5}\n"),
+              Lines{"s.yaml:4:5: discs[1]: disc 'b' overlaps disc 'a' (line 3) by 0.25 m at "
+                    "t = 0"});
+}
+
+TEST(Errors, GoldenFramesOutsideTheClip) {
+    EXPECT_EQ(problems("version: 1\nvideo: {fps: 10, duration: 1}\ngolden: {frames: [9, 10]}\n"),
+              Lines{"s.yaml:3:22: golden.frames[1]: frame 10 is outside the clip; it has 10 "
+                    "frames, numbered 0 to 9"});
+}
+
+TEST(Errors, NonFiniteNumbers) {
+    EXPECT_EQ(problems("version: 1\ncamera: {height: .inf}\n"),
+              Lines{"s.yaml:2:18: camera.height: must be a finite number, got '.inf'"});
+}
+
+TEST(Errors, ProtectiveLimitsStateTheLimit) {
+    EXPECT_EQ(problems("version: 1\ndiscs:\n  - random: {count: 100001, region: [[0, 0], [1, 1]], "
+                       "radius: 0.1}\n"),
+              Lines{"s.yaml:3:21: discs[0].random.count: must be between 1 and 100000, got "
+                    "100001"});
+}
+
+TEST(Errors, RandomDiscsThatDoNotFit) {
+    EXPECT_EQ(problems("version: 1\ndiscs:\n  - random: {count: 3, region: [[0, 0], [1, 1]], "
+                       "radius: 0.4}\n"),
+              Lines{"s.yaml:3:13: discs[0].random: could place only 1 of 3 discs without "
+                    "overlap; make the region larger, the discs smaller or the count lower"});
+}
+
+TEST(Errors, EveryProblemIsReportedInFileOrder) {
+    // Sections are read in dependency order (physics before discs), yet the report follows
+    // the file.
+    EXPECT_EQ(problems(R"(version: 1
+discs:
+  - {position: [0, 0], radius: 0, colour: "#ffffff"}
+video:
+  fps: 1000
+physics:
+  restitution: 2
+)"),
+              (Lines{"s.yaml:3:32: discs[0].radius: must be greater than 0, got 0",
+                     "s.yaml:3:35: discs[0]: unknown key 'colour'; did you mean 'color'?",
+                     "s.yaml:5:8: video.fps: must be between 1 and 240, got 1000",
+                     "s.yaml:7:16: physics.restitution: must be between 0 and 1, got 2"}));
+}
+
+TEST(Errors, AFloodOfProblemsIsCutShortWithACount) {
+    std::string yaml = "version: 1\ndiscs:\n";
+    for (int i = 0; i < 150; ++i) yaml += "  - {position: [0, 0], radius: -1}\n";
+    const auto lines = problems(yaml);
+    ASSERT_EQ(lines.size(), 101u);
+    EXPECT_EQ(lines[0], "s.yaml:3:32: discs[0].radius: must be greater than 0, got -1");
+    EXPECT_EQ(lines[100], "s.yaml:103:32: too many problems; 50 more not shown");
+}
+
+}  // namespace
+}  // namespace discreel::scene
