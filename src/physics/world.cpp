@@ -1,1 +1,220 @@
-// placeholder: being written
+// The fixed-rate world: each step runs the broad phase once, then `substeps` substeps of
+// impacts (impacts.cpp), resting contact (contact_solver.cpp) and position projection.
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "broad_phase.hpp"
+#include "contact.hpp"
+#include "discreel/physics.hpp"
+#include "geometry.hpp"
+#include "substep.hpp"
+#include "throws.hpp"
+
+namespace discreel::physics {
+
+using detail::Body;
+using detail::Contact;
+using detail::Motion;
+using detail::V2;
+
+namespace {
+
+// Substeps are sized so that one lasts at most this long (documented in docs/physics.md).
+constexpr double longest_substep = 1.0 / 480.0;  // s
+constexpr int contact_iterations = 4;
+constexpr int projection_iterations = 2;
+
+V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
+
+Body make_disc(const DiscDef& d) {
+    Body b;
+    b.x = to_v2(d.position);
+    b.angle = d.angle;
+    b.radius = d.radius;
+    b.restitution = d.restitution;
+    b.friction = d.friction;
+    if (d.is_static) {
+        b.motion = Motion::fixed;
+        return b;
+    }
+    b.motion = Motion::dynamic;
+    b.v = to_v2(d.velocity);
+    b.omega = d.angular_velocity;
+    b.mass = d.mass;
+    b.inertia = 0.5 * d.mass * d.radius * d.radius;
+    b.inv_mass = 1.0 / b.mass;
+    b.inv_inertia = 1.0 / b.inertia;
+    return b;
+}
+
+}  // namespace
+
+struct World::Impl {
+    explicit Impl(const WorldDef& def)
+        : rate(def.rate),
+          gravity(to_v2(def.gravity)),
+          disc_count(def.discs.size()),
+          features(detail::features_of(def.walls)),
+          throws(def.throws) {
+        substeps = def.substeps > 0
+                       ? def.substeps
+                       : std::max(1, static_cast<int>(std::ceil(1.0 / (longest_substep * rate))));
+        for (const DiscDef& d : def.discs) bodies.push_back(make_disc(d));
+        for (const detail::Feature& f : features) {
+            Body b;
+            b.restitution = def.walls[f.wall].restitution;
+            b.friction = def.walls[f.wall].friction;
+            bodies.push_back(b);
+        }
+        states.resize(disc_count);
+        publish();
+    }
+
+    void step();
+    void substep(double h);
+    void collect_events(double t);
+    void publish();
+
+    int rate;
+    int substeps = 1;
+    V2 gravity;
+    std::size_t disc_count;
+    std::vector<detail::Feature> features;
+    std::vector<Body> bodies;
+    std::vector<Contact> contacts;
+    std::vector<std::uint32_t> active;
+    detail::BroadPhase broad_phase;
+    detail::Throws throws;
+    std::vector<DiscState> states;
+    std::vector<ContactEvent> events;
+    std::int64_t steps = 0;
+    std::size_t contacts_last_step = 0;
+};
+
+void World::Impl::step() {
+    const double t0 = static_cast<double>(steps) / rate;
+    const double t1 = static_cast<double>(steps + 1) / rate;
+    const double dt = 1.0 / rate;
+    throws.begin_step(t0, t1, bodies);
+    broad_phase.update(bodies, disc_count, features, dt, gravity.norm(), contacts);
+    for (Contact& c : contacts) c.step_impulse = 0.0;
+    const double h = dt / substeps;
+    for (int k = 0; k < substeps; ++k) substep(h);
+    throws.end_step(t1, bodies);
+    ++steps;
+    collect_events(t1);
+    publish();
+}
+
+void World::Impl::substep(double h) {
+    const double fall = 0.5 * gravity.norm() * h * h;
+    auto reach = [&](const Body& b) {
+        return b.v.norm() * h + (b.falls() ? fall : 0.0);
+    };
+    active.clear();
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+        Contact& c = contacts[i];
+        const Body& a = bodies[c.a];
+        const Body& b = bodies[c.b];
+        const detail::Proximity p =
+            c.b >= disc_count ? detail::disc_feature(a.x, a.radius, features[c.b - disc_count])
+                              : detail::disc_disc(a.x, a.radius, b.x, b.radius);
+        c.normal = p.normal;
+        c.gap = p.gap;
+        if (p.gap <= reach(a) + reach(b)) {
+            active.push_back(static_cast<std::uint32_t>(i));
+        } else {
+            // Apart for good this substep: nothing to warm-start from next time.
+            c.normal_impulse = 0.0;
+            c.tangent_impulse = 0.0;
+        }
+    }
+    for (Body& b : bodies) {
+        b.shift = V2::Zero();
+        b.turn = 0.0;
+        b.t_last = 0.0;
+        b.changed_pass = -1;
+    }
+    detail::Substep s{bodies, disc_count, features, contacts, active, gravity, h};
+    detail::resolve_impacts(s);
+    for (Body& b : bodies) {
+        b.v_begin = b.v;
+        b.omega_begin = b.omega;
+    }
+    detail::solve_contacts(s, contact_iterations);
+    detail::project_positions(s, projection_iterations);
+}
+
+void World::Impl::collect_events(double t) {
+    contacts_last_step = 0;
+    for (Contact& c : contacts) {
+        const bool touching = c.step_impulse > 0.0;
+        if (touching) ++contacts_last_step;
+        if (touching && !c.touched_before) {
+            ContactEvent e;
+            e.t = t;
+            e.a = c.a;
+            if (c.b >= disc_count) {
+                e.other_kind = ContactEvent::Other::wall;
+                e.other = features[c.b - disc_count].wall;
+            } else {
+                e.other_kind = ContactEvent::Other::disc;
+                e.other = c.b;
+            }
+            e.impulse = c.step_impulse;
+            events.push_back(e);
+        }
+        c.touched_before = touching;
+    }
+}
+
+void World::Impl::publish() {
+    for (std::size_t i = 0; i < disc_count; ++i) {
+        const Body& b = bodies[i];
+        states[i] = DiscState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
+    }
+}
+
+World::World(const WorldDef& def) : impl_(std::make_unique<Impl>(def)) {}
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+void World::step() { impl_->step(); }
+std::int64_t World::step_count() const { return impl_->steps; }
+double World::time() const { return static_cast<double>(impl_->steps) / impl_->rate; }
+std::span<const DiscState> World::discs() const { return impl_->states; }
+std::vector<ContactEvent> World::take_events() { return std::exchange(impl_->events, {}); }
+
+WorldStats World::stats() const {
+    const Impl& w = *impl_;
+    WorldStats s;
+    for (std::size_t i = 0; i < w.disc_count; ++i) {
+        const Body& b = w.bodies[i];
+        if (b.motion == Motion::fixed) continue;
+        s.kinetic_energy += 0.5 * b.mass * b.v.squaredNorm() + 0.5 * b.inertia * b.omega * b.omega;
+        s.potential_energy -= b.mass * w.gravity.dot(b.x);
+    }
+    for (const Contact& c : w.contacts) {
+        const Body& a = w.bodies[c.a];
+        const Body& b = w.bodies[c.b];
+        const bool wall = c.b >= w.disc_count;
+        const detail::Proximity p =
+            wall ? detail::disc_feature(a.x, a.radius, w.features[c.b - w.disc_count])
+                 : detail::disc_disc(a.x, a.radius, b.x, b.radius);
+        if (-p.gap > s.max_overlap) {
+            s.max_overlap = -p.gap;
+            s.max_overlap_ratio = -p.gap / (wall ? a.radius : std::min(a.radius, b.radius));
+        }
+    }
+    s.contact_count = w.contacts_last_step;
+    return s;
+}
+
+double World::energy() const {
+    const WorldStats s = stats();
+    return s.kinetic_energy + s.potential_energy;
+}
+
+}  // namespace discreel::physics

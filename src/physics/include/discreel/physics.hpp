@@ -60,6 +60,8 @@ struct ThrowDef {
 struct WorldDef {
     Vec2 gravity{0.0, -9.81};      // m/s^2
     int rate = 480;                // steps per second; one step() advances 1/rate s
+    int substeps = 0;              // solver substeps per step; 0: the fewest that keep a
+                                   // substep at or under 1/480 s (docs/physics.md)
     std::vector<DiscDef> discs;
     std::vector<WallDef> walls;
     std::vector<ThrowDef> throws;
@@ -82,6 +84,15 @@ struct ContactEvent {
     double impulse = 0.0;          // N*s, normal impulse applied in that step
 };
 
+// A snapshot of quantities the CLI's summary and tests read; O(discs + contacts) to compute.
+struct WorldStats {
+    double kinetic_energy = 0.0;    // J, translational + rotational, over non-static discs
+    double potential_energy = 0.0;  // J, -m g.x over non-static discs (zero at the origin)
+    double max_overlap = 0.0;       // metres, deepest overlap between two bodies right now
+    double max_overlap_ratio = 0.0; // that overlap over the smaller radius involved
+    std::size_t contact_count = 0;  // pairs that exchanged an impulse during the last step
+};
+
 class World {
 public:
     explicit World(const WorldDef& def);
@@ -97,6 +108,9 @@ public:
 
     // Contacts that began during the steps since the last call, in a deterministic order.
     std::vector<ContactEvent> take_events();
+
+    WorldStats stats() const;
+    double energy() const;         // kinetic + potential, J (see WorldStats)
 
 private:
     struct Impl;

@@ -1,0 +1,171 @@
+#include "broad_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "discreel/physics.hpp"
+
+namespace discreel::physics::detail {
+namespace {
+
+// How far a body can travel in one step from its current velocity. Velocity gained from an
+// impact inside the step is not covered: such a disc is caught from the next step on.
+double reach(const Body& b, double dt, double gravity) {
+    if (!b.moves()) return 0.0;
+    const double fall = b.falls() ? 0.5 * gravity * dt * dt : 0.0;
+    return b.v.norm() * dt + fall;
+}
+
+// A quarter radius of slack: big enough that a settled pile rarely rebuilds, small enough that
+// the pair list stays close to the actual contacts.
+double base_margin(const Body& b) { return 0.25 * b.radius; }
+
+std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+    return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+std::uint64_t cell_hash(std::int64_t x, std::int64_t y) {
+    // Large odd multipliers spread neighbouring cells over the table.
+    const auto ux = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
+    const auto uy = static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
+    return (ux ^ (uy >> 7) ^ uy) >> 16;
+}
+
+}  // namespace
+
+void BroadPhase::update(const std::vector<Body>& bodies, std::size_t disc_count,
+                        const std::vector<Feature>& features, double dt, double gravity,
+                        std::vector<Contact>& contacts) {
+    if (built_ && still_valid(bodies, disc_count, dt, gravity)) return;
+    rebuild(bodies, disc_count, features, dt, gravity, contacts);
+}
+
+bool BroadPhase::still_valid(const std::vector<Body>& bodies, std::size_t disc_count, double dt,
+                             double gravity) const {
+    // A pair left out was farther apart than the sum of its margins at the rebuild; it cannot
+    // touch this step while every disc's drift plus reach stays within its own margin.
+    for (std::size_t i = 0; i < disc_count; ++i) {
+        const Body& b = bodies[i];
+        if (!b.moves()) continue;
+        if ((b.x - anchor_[i]).norm() + reach(b, dt, gravity) > margin_[i]) return false;
+    }
+    return true;
+}
+
+void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count,
+                         const std::vector<Feature>& features, double dt, double gravity,
+                         std::vector<Contact>& contacts) {
+    built_ = true;
+    anchor_.resize(disc_count);
+    margin_.resize(disc_count);
+    double fat_sum = 0.0;
+    for (std::size_t i = 0; i < disc_count; ++i) {
+        anchor_[i] = bodies[i].x;
+        margin_[i] = base_margin(bodies[i]) + 2.0 * reach(bodies[i], dt, gravity);
+        fat_sum += bodies[i].radius + margin_[i];
+    }
+    pairs_.clear();
+
+    // Discs much larger (or faster) than the typical one would force huge cells on everyone;
+    // they are paired by a plain scan instead.
+    const double fat_limit = disc_count > 0 ? 2.0 * fat_sum / static_cast<double>(disc_count) : 0.0;
+    auto fat = [&](std::size_t i) { return bodies[i].radius + margin_[i]; };
+    std::vector<std::uint32_t> oversized;
+    double cell = 0.0;
+    for (std::size_t i = 0; i < disc_count; ++i) {
+        if (fat(i) > fat_limit) {
+            oversized.push_back(static_cast<std::uint32_t>(i));
+        } else {
+            cell = std::max(cell, 2.0 * fat(i));
+        }
+    }
+    auto consider = [&](std::size_t i, std::size_t j) {
+        if (!bodies[i].moves() && !bodies[j].moves()) return;
+        const double reach_sum = fat(i) + fat(j);
+        if ((bodies[i].x - bodies[j].x).squaredNorm() > reach_sum * reach_sum) return;
+        const auto lo = static_cast<std::uint32_t>(std::min(i, j));
+        const auto hi = static_cast<std::uint32_t>(std::max(i, j));
+        pairs_.push_back(pair_key(lo, hi));
+    };
+
+    if (cell > 0.0) {
+        std::size_t table = 1;
+        while (table < 2 * disc_count) table <<= 1;
+        const std::uint64_t mask = table - 1;
+        cell_x_.assign(disc_count, 0);
+        cell_y_.assign(disc_count, 0);
+        bucket_start_.assign(table + 1, 0);
+        std::vector<bool> in_grid(disc_count, false);
+        for (std::size_t i = 0; i < disc_count; ++i) {
+            if (fat(i) > fat_limit) continue;
+            in_grid[i] = true;
+            cell_x_[i] = static_cast<std::int64_t>(std::floor(bodies[i].x.x() / cell));
+            cell_y_[i] = static_cast<std::int64_t>(std::floor(bodies[i].x.y() / cell));
+            ++bucket_start_[(cell_hash(cell_x_[i], cell_y_[i]) & mask) + 1];
+        }
+        for (std::size_t k = 0; k < table; ++k) bucket_start_[k + 1] += bucket_start_[k];
+        bucket_items_.assign(bucket_start_[table], 0);
+        std::vector<std::uint32_t> fill(bucket_start_.begin(), bucket_start_.end() - 1);
+        for (std::size_t i = 0; i < disc_count; ++i) {
+            if (!in_grid[i]) continue;
+            bucket_items_[fill[cell_hash(cell_x_[i], cell_y_[i]) & mask]++] =
+                static_cast<std::uint32_t>(i);
+        }
+        for (std::size_t i = 0; i < disc_count; ++i) {
+            if (!in_grid[i]) continue;
+            for (std::int64_t dy = -1; dy <= 1; ++dy) {
+                for (std::int64_t dx = -1; dx <= 1; ++dx) {
+                    const std::int64_t cx = cell_x_[i] + dx, cy = cell_y_[i] + dy;
+                    const std::uint64_t h = cell_hash(cx, cy) & mask;
+                    for (std::uint32_t k = bucket_start_[h]; k < bucket_start_[h + 1]; ++k) {
+                        const std::uint32_t j = bucket_items_[k];
+                        // Other cells sharing the bucket are skipped so no pair comes twice.
+                        if (j <= i || cell_x_[j] != cx || cell_y_[j] != cy) continue;
+                        consider(i, j);
+                    }
+                }
+            }
+        }
+    }
+    for (std::size_t k = 0; k < oversized.size(); ++k) {
+        const std::uint32_t o = oversized[k];
+        for (std::size_t j = 0; j < disc_count; ++j) {
+            const bool other_oversized = fat(j) > fat_limit;
+            // Oversized pairs are met twice in this loop; keep the one from the lower index.
+            if (j == o || (other_oversized && j < o)) continue;
+            consider(o, j);
+        }
+    }
+    for (std::size_t i = 0; i < disc_count; ++i) {
+        const Body& b = bodies[i];
+        if (!b.moves()) continue;
+        for (std::size_t f = 0; f < features.size(); ++f) {
+            if (!feature_applies(features[f], b.x)) continue;
+            if (disc_feature(b.x, b.radius, features[f]).gap > margin_[i]) continue;
+            pairs_.push_back(pair_key(static_cast<std::uint32_t>(i),
+                                      static_cast<std::uint32_t>(disc_count + f)));
+        }
+    }
+    std::sort(pairs_.begin(), pairs_.end());
+
+    // Merge with the previous list (both sorted) so surviving pairs keep their history.
+    merged_.clear();
+    merged_.reserve(pairs_.size());
+    std::size_t old = 0;
+    for (const std::uint64_t key : pairs_) {
+        Contact c;
+        c.a = static_cast<std::uint32_t>(key >> 32);
+        c.b = static_cast<std::uint32_t>(key & 0xffffffffu);
+        while (old < contacts.size() && pair_less(contacts[old], c)) ++old;
+        if (old < contacts.size() && contacts[old].a == c.a && contacts[old].b == c.b) {
+            c = contacts[old];
+        } else {
+            c.restitution = mix_restitution(bodies[c.a].restitution, bodies[c.b].restitution);
+            c.friction = mix_friction(bodies[c.a].friction, bodies[c.b].friction);
+        }
+        merged_.push_back(c);
+    }
+    contacts.swap(merged_);
+}
+
+}  // namespace discreel::physics::detail

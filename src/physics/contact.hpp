@@ -1,0 +1,35 @@
+#pragma once
+// A pair of bodies close enough to touch during the current step. Contacts persist between
+// steps while the pair stays in the broad phase, carrying warm-start impulses and whether the
+// pair touched in the previous step (for ContactEvents).
+#include <cstdint>
+#include <vector>
+
+#include "body.hpp"
+
+namespace discreel::physics::detail {
+
+struct Contact {
+    std::uint32_t a = 0;           // disc index
+    std::uint32_t b = 0;           // > a; a disc, or (>= disc count) a wall feature body
+    double restitution = 0.0;      // mixed
+    double friction = 0.0;         // mixed
+    double normal_impulse = 0.0;   // N s, accumulated by the resting stage, warm-starts the next
+    double tangent_impulse = 0.0;  // N s
+    double step_impulse = 0.0;     // N s, normal impulse summed over the current step
+    bool touched_before = false;   // exchanged an impulse during the previous step
+
+    // Geometry at the start of the current substep; the resting stage replaces the normal by
+    // the one at the predicted end of the substep.
+    V2 normal = V2::UnitY();       // unit, from b towards a
+    double gap = 0.0;              // metres, negative when overlapping
+    double target_speed = 0.0;     // m/s, lower bound on the normal displacement velocity
+    double normal_mass = 0.0;      // kg, 1 / (1/m_a + 1/m_b); 0 for two immovable bodies
+    double tangent_mass = 0.0;     // kg, the same with the rotational terms
+};
+
+inline bool pair_less(const Contact& l, const Contact& r) {
+    return l.a != r.a ? l.a < r.a : l.b < r.b;
+}
+
+}  // namespace discreel::physics::detail

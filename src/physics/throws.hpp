@@ -1,0 +1,35 @@
+#pragma once
+// Scripted interaction. A flick sets a disc's velocity at the first step starting at or after
+// its time. A grab holds a disc from the first step starting at or after its first waypoint:
+// the disc becomes kinematic (infinitely heavy to the others), moves along the straight
+// segments between waypoints with the path's velocity, and is released at the first step
+// starting at or after the last waypoint with the `release` velocity, or the last segment's.
+// Throws on static discs do nothing.
+#include <cstddef>
+#include <vector>
+
+#include "body.hpp"
+#include "discreel/physics.hpp"
+
+namespace discreel::physics::detail {
+
+class Throws {
+public:
+    explicit Throws(const std::vector<ThrowDef>& defs);
+
+    // For the step [t0, t1]: applies due flicks, starts and ends grabs, and gives held discs
+    // their position at t0 and the velocity that brings them to their path point at t1.
+    void begin_step(double t0, double t1, std::vector<Body>& bodies);
+    // Puts held discs exactly on their paths at t1 (integration would round).
+    void end_step(double t1, std::vector<Body>& bodies) const;
+
+private:
+    enum class Stage { waiting, holding, done };
+    struct Throw {
+        ThrowDef def;
+        Stage stage = Stage::waiting;
+    };
+    std::vector<Throw> throws_;
+};
+
+}  // namespace discreel::physics::detail

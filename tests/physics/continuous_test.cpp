@@ -1,0 +1,75 @@
+// Continuous collision: fast discs never pass through walls.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "discreel/physics.hpp"
+#include "scenes.hpp"
+
+namespace discreel::physics {
+namespace {
+
+using testing::disc;
+
+// A closed square of four 2 cm segments around the origin; a disc at 500 m/s (0.52 m per
+// substep, 26 wall thicknesses) must stay inside for a second of bouncing.
+TEST(Continuous, FastDiscStaysInsideThinWalls) {
+    const double half = 1.0, t = 0.02, r = 0.05;
+    WorldDef def;
+    def.gravity = {0, -9.81};
+    def.walls = {testing::segment({-half, -half}, {half, -half}, t),
+                 testing::segment({half, -half}, {half, half}, t),
+                 testing::segment({half, half}, {-half, half}, t),
+                 testing::segment({-half, half}, {-half, -half}, t)};
+    def.discs.push_back(disc({0, 0}, {500 * std::cos(0.3), 500 * std::sin(0.3)}, r, 1.0));
+    World world(def);
+    const double limit = half - t / 2 - r + 1e-6;
+    for (int k = 0; k < 480; ++k) {
+        world.step();
+        const DiscState& s = world.discs()[0];
+        ASSERT_LT(std::abs(s.position.x), limit) << "step " << k;
+        ASSERT_LT(std::abs(s.position.y), limit) << "step " << k;
+    }
+    EXPECT_GT(std::hypot(world.discs()[0].velocity.x, world.discs()[0].velocity.y), 450.0);
+}
+
+TEST(Continuous, FastDiscStaysInsideABox) {
+    WorldDef def;
+    def.walls.push_back(testing::box({0, 0}, {1, 1}));
+    def.discs.push_back(disc({0.5, 0.5}, {-300, 500}, 0.05, 1.0));
+    World world(def);
+    for (int k = 0; k < 480; ++k) {
+        world.step();
+        const DiscState& s = world.discs()[0];
+        ASSERT_GE(s.position.x, 0.05 - 1e-6);
+        ASSERT_LE(s.position.x, 0.95 + 1e-6);
+        ASSERT_GE(s.position.y, 0.05 - 1e-6);
+        ASSERT_LE(s.position.y, 0.95 + 1e-6);
+    }
+}
+
+TEST(Continuous, FastDiscBouncesOffASingleThinSegment) {
+    WorldDef def;
+    def.gravity = {0, 0};
+    def.walls.push_back(testing::segment({1, -1}, {1, 1}, 0.02));
+    def.discs.push_back(disc({0, 0.3}, {500, 0}, 0.01, 1.0));
+    World world(def);
+    testing::run_for(world, 0.05);
+    EXPECT_NEAR(world.discs()[0].velocity.x, -500.0, 1e-9);
+    EXPECT_LT(world.discs()[0].position.x, 1.0);
+}
+
+TEST(Continuous, FastDiscDoesNotSkipAPeg) {
+    WorldDef def;
+    def.gravity = {0, 0};
+    DiscDef peg = disc({1, 0}, {0, 0}, 0.01, 1.0);
+    peg.is_static = true;
+    def.discs = {disc({0, 0}, {400, 0}, 0.01, 1.0), peg};
+    World world(def);
+    testing::run_for(world, 0.05);
+    EXPECT_NEAR(world.discs()[0].velocity.x, -400.0, 1e-9);
+    EXPECT_EQ(world.discs()[1].position.x, 1.0);
+}
+
+}  // namespace
+}  // namespace discreel::physics

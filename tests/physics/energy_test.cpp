@@ -1,0 +1,73 @@
+// Energy bookkeeping on busy scenes: with e <= 1 total energy (kinetic + potential) must not
+// rise between frames by more than 0.1 % of its start value; an elastic gas keeps it.
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "discreel/physics.hpp"
+#include "scenes.hpp"
+
+namespace discreel::physics {
+namespace {
+
+// Steps `seconds` at 480 Hz and checks energy at every 60 fps frame; returns the final energy.
+double expect_no_energy_gain(World& world, double seconds) {
+    const double start = world.energy();
+    double previous = start;
+    for (int frame = 1; frame <= static_cast<int>(seconds * 60); ++frame) {
+        for (int k = 0; k < 8; ++k) world.step();
+        const double now = world.energy();
+        EXPECT_LE(now - previous, 1e-3 * std::abs(start)) << "frame " << frame;
+        previous = now;
+    }
+    return previous;
+}
+
+TEST(Energy, FallingPileNeverGainsEnergy) {
+    WorldDef def = testing::pile(400, 0.2, 0.5, 0.5, 0.6, {0, -9.8}, 1.0, 7);
+    World world(def);
+    expect_no_energy_gain(world, 4.0);
+    // Settled: overlap stays under 1 % of the radius.
+    EXPECT_LT(world.stats().max_overlap_ratio, 0.01);
+}
+
+TEST(Energy, ElasticPileUnderGravityNeverGainsEnergy) {
+    WorldDef def = testing::pile(300, 0.2, 0.5, 1.0, 0.3, {0, -9.8}, 2.0, 11);
+    World world(def);
+    expect_no_energy_gain(world, 3.0);
+}
+
+TEST(Energy, ElasticGasKeepsItsEnergy) {
+    // e = 1, no friction, no gravity: kinetic energy is all there is, and impacts conserve it.
+    WorldDef def = testing::pile(400, 0.1, 0.5, 1.0, 0.0, {0, 0}, 3.0, 3);
+    World world(def);
+    const double start = world.energy();
+    const double end = expect_no_energy_gain(world, 10.0);
+    EXPECT_NEAR(end, start, 1e-3 * start);  // Box2D v3.2 loses 15 % here
+}
+
+TEST(Energy, MixedSizesWithPegsAndSegmentsNeverGainEnergy) {
+    WorldDef def;
+    def.walls.push_back(testing::box({0, 0}, {12, 12}, 0.8, 0.3));
+    def.walls.push_back(testing::segment({1, 6}, {6, 4}, 0.05, 0.8, 0.3));
+    def.walls.push_back(testing::segment({11, 7}, {7, 5}, 0.05, 0.8, 0.3));
+    testing::Rng rng(5);
+    for (int k = 0; k < 12; ++k) {
+        DiscDef peg = testing::disc({1.0 + k, 2.5 + 0.4 * (k % 2)}, {0, 0}, 0.1, 1.0, 0.8, 0.3);
+        peg.is_static = true;
+        def.discs.push_back(peg);
+    }
+    for (int k = 0; k < 300; ++k) {
+        const double r = rng.uniform(0.08, 0.2);
+        def.discs.push_back(testing::disc({0.5 + 0.55 * (k % 20), 8.0 + 0.55 * (k / 20)},
+                                          {rng.uniform(-2, 2), rng.uniform(-2, 2)}, r,
+                                          3.14159 * r * r, rng.uniform(0.3, 1.0),
+                                          rng.uniform(0.0, 0.8)));
+    }
+    World world(def);
+    expect_no_energy_gain(world, 4.0);
+}
+
+}  // namespace
+}  // namespace discreel::physics
