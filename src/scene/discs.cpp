@@ -20,14 +20,17 @@ namespace {
 constexpr std::array<std::string_view, 14> entry_keys{
     "id",       "position",    "velocity", "angle", "angular_velocity", "radius", "mass",
     "density",  "restitution", "friction", "color", "static",           "grid",   "random"};
-// A generator's own keys, followed by the per-disc keys that belong beside it, not inside it:
-// those are recognised so that the message can say where they go.
-constexpr std::size_t grid_key_count = 6, random_key_count = 5;
-constexpr std::array<std::string_view, grid_key_count + 11> grid_keys{
+// A generator's own keys, followed by the per-disc keys it applies to every disc. Those may be
+// written inside `grid:` (as SCENE_FORMAT.md shows) or beside it; `position` is recognised only
+// so that the message can say what to use instead.
+constexpr std::array<std::string_view, 10> shared_disc_keys{
+    "id",   "velocity", "angle",       "angular_velocity", "mass",
+    "density", "restitution", "friction", "color",          "static"};
+constexpr std::array<std::string_view, 17> grid_keys{
     "origin", "count",    "spacing",     "radius",   "jitter", "colors", "id",   "velocity",
     "angle",  "angular_velocity", "mass", "density", "restitution", "friction", "color", "static",
     "position"};
-constexpr std::array<std::string_view, random_key_count + 11> random_keys{
+constexpr std::array<std::string_view, 16> random_keys{
     "count", "radius",  "region", "speed",   "colors",      "id",       "velocity", "angle",
     "angular_velocity", "mass", "density", "restitution", "friction", "color", "static", "position"};
 
@@ -230,21 +233,11 @@ std::string position_hint(std::string_view kind) {
                             "'region'";
 }
 
-// Per-disc keys written inside `grid:` or `random:` instead of beside it. True if any.
-bool report_misplaced(const Fields& fields, std::span<const std::string_view> disc_keys,
-                      std::string_view kind, Diagnostics& d) {
-    bool any = false;
-    for (const std::string_view key : disc_keys) {
-        if (!fields.has(key)) continue;
-        const std::string k(key);
-        const std::string generator(kind);
-        d.error(fields.key_location(key),
-                key == "position" ? fields.path() + ": " + position_hint(kind)
-                                  : fields.path() + ": '" + k + "' goes beside '" + generator +
-                                        ":', not inside it (it applies to every disc)");
-        any = true;
-    }
-    return any;
+// `position` written inside `grid:` or `random:`. True if so.
+bool report_misplaced_position(const Fields& fields, std::string_view kind, Diagnostics& d) {
+    if (!fields.has("position")) return false;
+    d.error(fields.key_location("position"), fields.path() + ": " + position_hint(kind));
+    return true;
 }
 
 // What a generator entry produces before the shared properties are applied.
@@ -255,29 +248,26 @@ struct Generated {
     std::optional<std::vector<Color>> colors;
 };
 
-std::optional<Generated> read_grid(Loader& loader, const Value& value, Rng& rng) {
+std::optional<Generated> read_grid(Loader& loader, const Fields& fields, Rng& rng) {
     auto& d = loader.diagnostics;
-    const auto fields = Fields::open(value, grid_keys, d);
-    if (!fields) return std::nullopt;
-    const auto count_value = required(*fields, "count", d);
-    const auto radius_value = required(*fields, "radius", d);
-    bool ok = count_value && radius_value &&
-              !report_misplaced(*fields, std::span(grid_keys).subspan(grid_key_count), "grid", d);
+    const auto count_value = required(fields, "count", d);
+    const auto radius_value = required(fields, "radius", d);
+    bool ok = count_value && radius_value && !report_misplaced_position(fields, "grid", d);
 
     GridSpec spec;
-    if (const auto v = fields->get("origin")) {
+    if (const auto v = fields.get("origin")) {
         const auto origin = read_vec2(*v, "[x, y]", d);
         ok = ok && origin;
         spec.origin = origin.value_or(Vec2{});
     }
     std::optional<double> radius;
     if (radius_value) radius = read_positive(*radius_value, d);
-    if (const auto v = fields->get("jitter")) {
+    if (const auto v = fields.get("jitter")) {
         const auto jitter = read_non_negative(*v, d);
         ok = ok && jitter;
         spec.jitter = jitter.value_or(0);
     }
-    if (const auto v = fields->get("spacing")) {
+    if (const auto v = fields.get("spacing")) {
         if (const auto items = read_tuple(*v, 2, "[x, y]", d)) {
             const auto x = read_positive((*items)[0], d);
             const auto y = read_positive((*items)[1], d);
@@ -314,7 +304,7 @@ std::optional<Generated> read_grid(Loader& loader, const Value& value, Rng& rng)
         }
     }
     Generated g;
-    if (const auto v = fields->get("colors")) {
+    if (const auto v = fields.get("colors")) {
         g.colors = read_colors(*v, d);
         ok = ok && g.colors;
     }
@@ -324,16 +314,14 @@ std::optional<Generated> read_grid(Loader& loader, const Value& value, Rng& rng)
     return g;
 }
 
-std::optional<Generated> read_random(Loader& loader, const Value& value, Rng& rng) {
+std::optional<Generated> read_random(Loader& loader, const Fields& fields, const Value& value,
+                                     Rng& rng) {
     auto& d = loader.diagnostics;
-    const auto fields = Fields::open(value, random_keys, d);
-    if (!fields) return std::nullopt;
-    const auto count_value = required(*fields, "count", d);
-    const auto region_value = required(*fields, "region", d);
-    const auto radius_value = required(*fields, "radius", d);
+    const auto count_value = required(fields, "count", d);
+    const auto region_value = required(fields, "region", d);
+    const auto radius_value = required(fields, "radius", d);
     bool ok = count_value && region_value && radius_value &&
-              !report_misplaced(*fields, std::span(random_keys).subspan(random_key_count),
-                                "random", d);
+              !report_misplaced_position(fields, "random", d);
 
     RandomSpec spec;
     if (count_value) {
@@ -361,13 +349,13 @@ std::optional<Generated> read_random(Loader& loader, const Value& value, Rng& rn
         ok = ok && r;
         if (r) spec.radius_min = r->min, spec.radius_max = r->max;
     }
-    if (const auto v = fields->get("speed")) {
+    if (const auto v = fields.get("speed")) {
         const auto s = read_range(*v, check_non_negative, d);
         ok = ok && s;
         if (s) spec.speed_min = s->min, spec.speed_max = s->max;
     }
     Generated g;
-    if (const auto v = fields->get("colors")) {
+    if (const auto v = fields.get("colors")) {
         g.colors = read_colors(*v, d);
         ok = ok && g.colors;
     }
@@ -416,23 +404,32 @@ void read_generator(Loader& loader, const Fields& fields, const Value& item,
                 item.path + ": 'radius' belongs inside '" + kind + ":'");
         ok = false;
     }
-    if (!is_grid && fields.has("velocity")) {
-        d.error(fields.key_location("velocity"),
+    const Value spec = *fields.get(kind);
+    const auto generator_fields =
+        is_grid ? Fields::open(spec, grid_keys, d) : Fields::open(spec, random_keys, d);
+    if (!generator_fields) {
+        loader.discs_complete = false;
+        return;
+    }
+    Fields merged = fields;
+    merged.adopt(*generator_fields, shared_disc_keys, d);
+    if (!is_grid && merged.has("velocity")) {
+        d.error(merged.key_location("velocity"),
                 item.path + ": 'velocity' cannot be used with 'random'; give 'speed: [min, max]' "
                             "inside 'random:' instead");
         ok = false;
     }
-    const Properties p = read_properties(loader, fields, item);
+    const Properties p = read_properties(loader, merged, item);
     std::string prefix = std::to_string(entry_index);
-    const auto id_value = fields.get("id");
+    const auto id_value = merged.get("id");
     if (id_value)
         if (const auto id = read_id(*id_value, d)) prefix = *id;
 
-    const Value spec = *fields.get(kind);
     Rng rng(loader.scene.physics.seed, entry_index);
-    const auto generated = is_grid ? read_grid(loader, spec, rng) : read_random(loader, spec, rng);
-    if (generated && generated->colors && fields.has("color")) {
-        d.error(fields.key_location("color"),
+    const auto generated = is_grid ? read_grid(loader, *generator_fields, rng)
+                                   : read_random(loader, *generator_fields, spec, rng);
+    if (generated && generated->colors && merged.has("color")) {
+        d.error(merged.key_location("color"),
                 item.path + ": 'color' and '" + kind + ".colors' both set the colour; give only one");
         ok = false;
     }

@@ -165,6 +165,23 @@ Location Fields::key_location(std::string_view key) const {
     return e ? e->key_where : where_;
 }
 
+void Fields::adopt(const Fields& inner, std::span<const std::string_view> keys,
+                   Diagnostics& diagnostics) {
+    const std::string inner_name = inner.path().substr(inner.path().rfind('.') + 1);
+    for (const std::string_view key : keys) {
+        const Entry* entry = inner.find(key);
+        if (!entry) continue;
+        if (const Entry* outer = find(key)) {
+            diagnostics.error(entry->key_where,
+                              inner.path() + ": '" + entry->key + "' is given both here and beside '" +
+                                  inner_name + ":' on line " +
+                                  std::to_string(outer->key_where.line) + "; give it once");
+            continue;
+        }
+        entries_.push_back(*entry);
+    }
+}
+
 std::string_view Fields::later_of(std::string_view a, std::string_view b) const {
     const Location la = key_location(a), lb = key_location(b);
     const bool a_later = la.line != lb.line ? la.line > lb.line : la.column > lb.column;

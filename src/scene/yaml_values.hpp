@@ -48,6 +48,12 @@ public:
     Location where() const { return where_; }
     const std::string& path() const { return path_; }
 
+    // Takes over `keys` from `inner` (a nested mapping whose keys may equally be written at
+    // this level), so one lookup finds them in either place. A key written in both places is
+    // reported at the inner one and the outer one is kept.
+    void adopt(const Fields& inner, std::span<const std::string_view> keys,
+               Diagnostics& diagnostics);
+
 private:
     struct Entry {
         std::string key;

@@ -55,6 +55,33 @@ discs:
     }
 }
 
+// SCENE_FORMAT.md writes the shared keys inside `grid:`; beside it works the same.
+TEST(Grid, SharedDiscKeysMayBeWrittenInsideTheGenerator) {
+    const Scene s = load_ok(R"(version: 1
+discs:
+  - grid:
+      id: pegs
+      count: [2, 1]
+      radius: 0.1
+      static: true
+      velocity: [1, 2]
+    restitution: 0.3
+  - random:
+      id: dust
+      count: 3
+      region: [[5, 5], [8, 8]]
+      radius: 0.1
+      density: 2
+)");
+    ASSERT_EQ(s.discs.size(), 5u);
+    EXPECT_EQ(s.discs[1].id, "pegs.1");
+    EXPECT_TRUE(s.discs[1].is_static);
+    EXPECT_EQ(s.discs[1].velocity, (Vec2{1, 2}));
+    EXPECT_EQ(s.discs[1].restitution, 0.3);
+    EXPECT_EQ(s.discs[4].id, "dust.2");
+    EXPECT_DOUBLE_EQ(s.discs[4].mass, 2 * std::numbers::pi * 0.01);
+}
+
 TEST(Grid, IdsUseTheEntryIndexAndDefaultSpacingJustTouches) {
     const Scene s = load_ok(R"(version: 1
 discs:
