@@ -1,1 +1,119 @@
-int main() { return 0; }
+// discreel: the command line. Parses arguments and hands over to the commands; all real work
+// lives in discreel_app so tests can call it without a process.
+#include <CLI/CLI.hpp>
+
+#include <charconv>
+#include <iostream>
+
+#include "commands.hpp"
+#include "exit_codes.hpp"
+#include "run_support.hpp"
+
+namespace {
+
+using namespace discreel::app;
+
+// "1280x720" -> width, height; anything else is rejected with CLI11's usual message.
+std::string parse_size(const std::string& text, VideoOverrides& video) {
+    const auto x = text.find('x');
+    int w = 0, h = 0;
+    if (x != std::string::npos) {
+        const char* end = text.data() + text.size();
+        const auto [pw, ew] = std::from_chars(text.data(), text.data() + x, w);
+        const auto [ph, eh] = std::from_chars(text.data() + x + 1, end, h);
+        if (ew == std::errc() && eh == std::errc() && pw == text.data() + x && ph == end) {
+            video.width = w;
+            video.height = h;
+            return {};
+        }
+    }
+    return "expected WIDTHxHEIGHT, e.g. 1280x720";
+}
+
+void add_output_files(CLI::App& cmd, OutputFiles& files) {
+    cmd.add_option("--trace", files.trace, "Write one CSV row per disc per frame to FILE")
+        ->option_text("FILE");
+    cmd.add_option("--events", files.events, "Write one CSV row per new contact to FILE")
+        ->option_text("FILE");
+}
+
+int run_validate(const std::vector<std::string>& paths) {
+    bool all_ok = true;
+    for (const std::string& path : paths) {
+        const auto loaded = discreel::scene::load_scene_file(path);
+        if (report_diagnostics(loaded, std::cerr)) {
+            std::cout << path << ": ok (" << loaded.scene.discs.size() << " discs, "
+                      << loaded.scene.video.frame_count() << " frames)\n";
+        } else {
+            all_ok = false;
+        }
+    }
+    return all_ok ? exit_ok : exit_bad_input;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"discreel: renders 2-D disc physics scenes to video, headless and deterministic",
+                 "discreel"};
+    app.set_version_flag("--version", std::string("discreel ") + DISCREEL_VERSION);
+    app.require_subcommand(1);
+
+    RenderOptions render;
+    CLI::App* render_cmd = app.add_subcommand(
+        "render", "Render a scene to a video (.mp4) or a still (.png)");
+    render_cmd->add_option("scene", render.scene_path,
+                           "Scene file (YAML); the built-in demo when omitted");
+    render_cmd->add_option("-o,--output", render.output,
+                           "Output file; the extension picks the format: .mp4 or .png")
+        ->required();
+    render_cmd->add_option("--frame", render.frame, "Frame index for a .png still (default 0)");
+    render_cmd->add_option("--at", render.at, "Time in seconds for a .png still");
+    render_cmd->add_option_function<std::string>(
+                  "--size",
+                  [&](const std::string& s) {
+                      if (auto problem = parse_size(s, render.video); !problem.empty()) {
+                          throw CLI::ValidationError("--size", problem);
+                      }
+                  },
+                  "Override the frame size, WIDTHxHEIGHT")
+        ->option_text("WxH");
+    render_cmd->add_option("--fps", render.video.fps, "Override frames per second");
+    render_cmd->add_option("--duration", render.video.duration, "Override duration in seconds");
+    render_cmd->add_option("--crf", render.crf, "H.264 quality, 0 (lossless) to 51 (worst)")
+        ->check(CLI::Range(0, 51))
+        ->capture_default_str();
+    render_cmd->add_option("--preset", render.preset, "x264 preset (ultrafast .. veryslow)")
+        ->capture_default_str();
+    add_output_files(*render_cmd, render.files);
+
+    SimulateOptions simulate;
+    CLI::App* simulate_cmd =
+        app.add_subcommand("simulate", "Run the physics only and print a summary");
+    simulate_cmd->add_option("scene", simulate.scene_path, "Scene file (YAML)")->required();
+    simulate_cmd->add_option("--duration", simulate.duration, "Override duration in seconds");
+    add_output_files(*simulate_cmd, simulate.files);
+
+    std::vector<std::string> validate_paths;
+    CLI::App* validate_cmd = app.add_subcommand(
+        "validate", "Check scene files and print every problem; exit 2 if any");
+    validate_cmd->add_option("scenes", validate_paths, "Scene files (YAML)")->required();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return exit_bad_input;
+    }
+
+    if (render_cmd->parsed()) return run_render(render, std::cout, std::cerr);
+    if (simulate_cmd->parsed()) return run_simulate(simulate, std::cout, std::cerr);
+    if (validate_cmd->parsed()) return run_validate(validate_paths);
+    return exit_bad_input;
+}

@@ -1,0 +1,48 @@
+#include "build_world.hpp"
+
+namespace discreel::app {
+
+physics::WorldDef build_world(const scene::Scene& scene) {
+    physics::WorldDef def;
+    def.gravity = scene.physics.gravity;
+    def.rate = scene.physics.rate;
+    def.discs.reserve(scene.discs.size());
+    for (const scene::Disc& d : scene.discs) {
+        physics::DiscDef disc;
+        disc.position = d.position;
+        disc.velocity = d.velocity;
+        disc.angle = d.angle;
+        disc.angular_velocity = d.angular_velocity;
+        disc.radius = d.radius;
+        disc.mass = d.mass;
+        disc.restitution = d.restitution;
+        disc.friction = d.friction;
+        disc.is_static = d.is_static;
+        def.discs.push_back(disc);
+    }
+    def.walls.reserve(scene.walls.size());
+    for (const scene::Wall& w : scene.walls) {
+        physics::WallDef wall;
+        wall.shape = w.shape == scene::Wall::Shape::box ? physics::WallDef::Shape::box
+                                                        : physics::WallDef::Shape::segment;
+        wall.a = w.a;
+        wall.b = w.b;
+        wall.thickness = w.thickness;
+        wall.restitution = w.restitution;
+        wall.friction = w.friction;
+        def.walls.push_back(wall);
+    }
+    def.throws.reserve(scene.throws.size());
+    for (const scene::Throw& t : scene.throws) {
+        physics::ThrowDef th;
+        th.disc = t.disc;
+        th.at = t.at;
+        th.velocity = t.velocity;
+        th.release = t.release;
+        for (const scene::Waypoint& p : t.path) th.path.push_back({p.t, p.position});
+        def.throws.push_back(th);
+    }
+    return def;
+}
+
+}  // namespace discreel::app

@@ -1,0 +1,10 @@
+#pragma once
+// The one place where a loaded scene becomes a physics world definition.
+#include "discreel/physics.hpp"
+#include "discreel/scene.hpp"
+
+namespace discreel::app {
+
+physics::WorldDef build_world(const scene::Scene& scene);
+
+}  // namespace discreel::app

@@ -1,0 +1,37 @@
+#pragma once
+// The CLI's verbs, callable without a process (tests use them directly). Each returns an
+// ExitCode and reports problems to `err`.
+#include <optional>
+#include <ostream>
+#include <string>
+
+#include "scene_source.hpp"
+
+namespace discreel::app {
+
+struct OutputFiles {
+    std::optional<std::string> trace;    // CSV, one row per disc per frame
+    std::optional<std::string> events;   // CSV, one row per new contact
+};
+
+struct RenderOptions {
+    std::optional<std::string> scene_path;   // none: the built-in demo
+    std::string output;                      // extension picks the format
+    std::optional<int> frame;                // for a .png still
+    std::optional<double> at;                // seconds, for a .png still
+    VideoOverrides video;
+    int crf = 20;
+    std::string preset = "veryfast";
+    OutputFiles files;
+};
+
+struct SimulateOptions {
+    std::string scene_path;
+    std::optional<double> duration;
+    OutputFiles files;
+};
+
+int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
+int run_simulate(const SimulateOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace discreel::app

@@ -1,0 +1,63 @@
+#include "run_support.hpp"
+
+namespace discreel::app {
+
+bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err) {
+    for (const scene::Diagnostic& d : loaded.diagnostics) err << d.to_string() << '\n';
+    return loaded.ok();
+}
+
+std::optional<SideOutputs> SideOutputs::open(const OutputFiles& files, const scene::Scene& scene,
+                                             std::ostream& err) {
+    SideOutputs outputs;
+    if (files.trace) {
+        auto trace = TraceWriter::create(*files.trace, scene);
+        if (!trace) {
+            err << "discreel: " << trace.error().message << '\n';
+            return std::nullopt;
+        }
+        outputs.trace_.emplace(std::move(*trace));
+    }
+    if (files.events) {
+        auto events = EventWriter::create(*files.events, scene);
+        if (!events) {
+            err << "discreel: " << events.error().message << '\n';
+            return std::nullopt;
+        }
+        outputs.events_.emplace(std::move(*events));
+    }
+    return outputs;
+}
+
+void SideOutputs::record(int frame, double t, std::span<const physics::DiscState> discs,
+                         std::span<const physics::ContactEvent> events) {
+    if (trace_) trace_->write_frame(frame, t, discs);
+    if (events_) events_->write(events);
+}
+
+Status SideOutputs::commit() {
+    if (trace_) {
+        if (Status s = trace_->commit(); !s) return s;
+    }
+    if (events_) {
+        if (Status s = events_->commit(); !s) return s;
+    }
+    return {};
+}
+
+double total_energy(const scene::Scene& scene, std::span<const physics::DiscState> discs) {
+    const Vec2 g = scene.physics.gravity;
+    double energy = 0;
+    for (std::size_t i = 0; i < discs.size(); ++i) {
+        const scene::Disc& d = scene.discs[i];
+        if (d.is_static) continue;
+        const physics::DiscState& s = discs[i];
+        const double inertia = 0.5 * d.mass * d.radius * d.radius;
+        energy += 0.5 * d.mass * (s.velocity.x * s.velocity.x + s.velocity.y * s.velocity.y) +
+                  0.5 * inertia * s.angular_velocity * s.angular_velocity -
+                  d.mass * (g.x * s.position.x + g.y * s.position.y);
+    }
+    return energy;
+}
+
+}  // namespace discreel::app

@@ -1,0 +1,39 @@
+#pragma once
+// Pieces `render` and `simulate` share: printing scene diagnostics, and the optional trace and
+// events files that both can write alongside their main work.
+#include <optional>
+#include <ostream>
+#include <span>
+#include <vector>
+
+#include "commands.hpp"
+#include "discreel/physics.hpp"
+#include "discreel/scene.hpp"
+#include "trace.hpp"
+
+namespace discreel::app {
+
+// Prints every diagnostic as `file:line:column: message`; returns whether the scene loaded.
+bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err);
+
+class SideOutputs {
+public:
+    // Opens the requested files (under temporary names); prints the problem and returns nullopt
+    // when one cannot be created.
+    static std::optional<SideOutputs> open(const OutputFiles& files, const scene::Scene& scene,
+                                           std::ostream& err);
+
+    void record(int frame, double t, std::span<const physics::DiscState> discs,
+                std::span<const physics::ContactEvent> events);
+    Status commit();
+
+private:
+    std::optional<TraceWriter> trace_;
+    std::optional<EventWriter> events_;
+};
+
+// Kinetic (translational + rotational) plus gravitational potential energy of the dynamic
+// discs, in joules, with potential zero at the origin.
+double total_energy(const scene::Scene& scene, std::span<const physics::DiscState> discs);
+
+}  // namespace discreel::app

@@ -1,0 +1,24 @@
+#pragma once
+// Where the CLI gets its scene: a file, or the demo compiled into the binary.
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "discreel/scene.hpp"
+
+namespace discreel::app {
+
+std::string_view builtin_demo_yaml();
+
+// Loads `path`, or the built-in demo when no path is given.
+scene::LoadResult load_scene_or_demo(const std::optional<std::string>& path);
+
+// Overrides from the command line, applied after loading. Returns the problems, in words.
+struct VideoOverrides {
+    std::optional<int> width, height;   // pixels
+    std::optional<int> fps;
+    std::optional<double> duration;     // seconds
+};
+std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverrides& o);
+
+}  // namespace discreel::app

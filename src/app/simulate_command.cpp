@@ -1,0 +1,57 @@
+#include <chrono>
+#include <iomanip>
+
+#include "build_world.hpp"
+#include "commands.hpp"
+#include "exit_codes.hpp"
+#include "run_support.hpp"
+#include "stepper.hpp"
+
+namespace discreel::app {
+
+int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) {
+    const auto started = std::chrono::steady_clock::now();
+    scene::LoadResult loaded = scene::load_scene_file(o.scene_path);
+    if (!report_diagnostics(loaded, err)) return exit_bad_input;
+    scene::Scene& scene = loaded.scene;
+    VideoOverrides overrides;
+    overrides.duration = o.duration;
+    if (auto problem = apply_overrides(scene, overrides)) {
+        err << "discreel: " << *problem << '\n';
+        return exit_bad_input;
+    }
+    auto outputs = SideOutputs::open(o.files, scene, err);
+    if (!outputs) return exit_runtime_failure;
+
+    const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
+    physics::World world(build_world(scene));
+    FrameStepper stepper(world, timeline);
+    const double energy_start = total_energy(scene, world.discs());
+    std::size_t contacts = 0;
+    for (int frame = 0; frame < timeline.frame_count; ++frame) {
+        stepper.advance_to(frame);
+        const std::vector<physics::ContactEvent> events = stepper.take_events();
+        contacts += events.size();
+        outputs->record(frame, timeline.time_of_frame(frame), world.discs(), events);
+    }
+    if (Status done = outputs->commit(); !done) {
+        err << "discreel: " << done.error().message << '\n';
+        return exit_runtime_failure;
+    }
+    const double energy_end = total_energy(scene, world.discs());
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+    out << std::setprecision(6);
+    out << "scene     " << scene.name << ": " << scene.discs.size() << " discs, "
+        << scene.walls.size() << " walls, " << scene.throws.size() << " throws\n";
+    out << "frames    " << timeline.frame_count << " at " << scene.video.fps << " fps ("
+        << world.step_count() << " physics steps at " << scene.physics.rate << " Hz, t = "
+        << world.time() << " s)\n";
+    out << "contacts  " << contacts << " new contacts\n";
+    out << "energy    " << energy_start << " J at start, " << energy_end << " J at end\n";
+    out << std::fixed << std::setprecision(3) << "time      " << seconds << " s wall clock\n";
+    return exit_ok;
+}
+
+}  // namespace discreel::app
