@@ -45,19 +45,4 @@ Status SideOutputs::commit() {
     return {};
 }
 
-double total_energy(const scene::Scene& scene, std::span<const physics::DiscState> discs) {
-    const Vec2 g = scene.physics.gravity;
-    double energy = 0;
-    for (std::size_t i = 0; i < discs.size(); ++i) {
-        const scene::Disc& d = scene.discs[i];
-        if (d.is_static) continue;
-        const physics::DiscState& s = discs[i];
-        const double inertia = 0.5 * d.mass * d.radius * d.radius;
-        energy += 0.5 * d.mass * (s.velocity.x * s.velocity.x + s.velocity.y * s.velocity.y) +
-                  0.5 * inertia * s.angular_velocity * s.angular_velocity -
-                  d.mass * (g.x * s.position.x + g.y * s.position.y);
-    }
-    return energy;
-}
-
 }  // namespace discreel::app

@@ -32,8 +32,4 @@ private:
     std::optional<EventWriter> events_;
 };
 
-// Kinetic (translational + rotational) plus gravitational potential energy of the dynamic
-// discs, in joules, with potential zero at the origin.
-double total_energy(const scene::Scene& scene, std::span<const physics::DiscState> discs);
-
 }  // namespace discreel::app

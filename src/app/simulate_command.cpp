@@ -26,19 +26,22 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
     physics::World world(build_world(scene));
     FrameStepper stepper(world, timeline);
-    const double energy_start = total_energy(scene, world.discs());
+    const double energy_start = world.energy();
     std::size_t contacts = 0;
+    physics::WorldStats deepest;   // the frame with the deepest overlap
     for (int frame = 0; frame < timeline.frame_count; ++frame) {
         stepper.advance_to(frame);
         const std::vector<physics::ContactEvent> events = stepper.take_events();
         contacts += events.size();
         outputs->record(frame, timeline.time_of_frame(frame), world.discs(), events);
+        const physics::WorldStats stats = world.stats();
+        if (stats.max_overlap > deepest.max_overlap) deepest = stats;
     }
     if (Status done = outputs->commit(); !done) {
         err << "discreel: " << done.error().message << '\n';
         return exit_runtime_failure;
     }
-    const double energy_end = total_energy(scene, world.discs());
+    const double energy_end = world.energy();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
@@ -49,6 +52,8 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
         << world.step_count() << " physics steps at " << scene.physics.rate << " Hz, t = "
         << world.time() << " s)\n";
     out << "contacts  " << contacts << " new contacts\n";
+    out << "overlap   " << deepest.max_overlap << " m at most, " << 100 * deepest.max_overlap_ratio
+        << " % of the smaller radius\n";
     out << "energy    " << energy_start << " J at start, " << energy_end << " J at end\n";
     out << std::fixed << std::setprecision(3) << "time      " << seconds << " s wall clock\n";
     return exit_ok;
