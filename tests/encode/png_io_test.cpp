@@ -3,7 +3,7 @@
 #include <cstdlib>
 
 #include "discreel/encode.hpp"
-#include "test_support.hpp"
+#include "encode_test_support.hpp"
 
 namespace discreel::encode::test {
 namespace {

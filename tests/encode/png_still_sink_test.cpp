@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "discreel/encode.hpp"
-#include "test_support.hpp"
+#include "encode_test_support.hpp"
 
 namespace discreel::encode::test {
 namespace {

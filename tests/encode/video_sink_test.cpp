@@ -5,9 +5,7 @@
 #include <string>
 
 #include "discreel/encode.hpp"
-#include "ffprobe.hpp"
-#include "mp4_boxes.hpp"
-#include "test_support.hpp"
+#include "encode_test_support.hpp"
 
 namespace discreel::encode::test {
 namespace {
@@ -43,7 +41,7 @@ TEST(VideoSinkTest, Mp4IsH264Yuv420pWithEveryFrameAndTheRightDuration) {
     const SinkDef def = small_mp4(path);
     write_animation(def, 36);
 
-    auto stream = probe_video_stream(path.string());
+    auto stream = discreel::testing::probe_video(path.string());
     EXPECT_EQ(stream["codec_name"], "h264");
     EXPECT_EQ(stream["pix_fmt"], "yuv420p");
     EXPECT_EQ(stream["width"], "64");
@@ -59,7 +57,7 @@ TEST(VideoSinkTest, Mp4IsTaggedBt709LimitedRange) {
     const auto path = directory / "tagged.mp4";
     write_animation(small_mp4(path), 4);
 
-    auto stream = probe_video_stream(path.string());
+    auto stream = discreel::testing::probe_video(path.string());
     EXPECT_EQ(stream["color_space"], "bt709");
     EXPECT_EQ(stream["color_primaries"], "bt709");
     EXPECT_EQ(stream["color_transfer"], "bt709");
@@ -71,7 +69,7 @@ TEST(VideoSinkTest, Mp4HasItsIndexBeforeTheMediaData) {
     const auto path = directory / "faststart.mp4";
     write_animation(small_mp4(path), 10);
 
-    const auto boxes = top_level_boxes(file_bytes(path));
+    const auto boxes = discreel::testing::mp4_top_level_boxes(path.string());
     const auto moov = std::find(boxes.begin(), boxes.end(), "moov");
     const auto mdat = std::find(boxes.begin(), boxes.end(), "mdat");
     ASSERT_NE(moov, boxes.end());
@@ -104,7 +102,7 @@ TEST(VideoSinkTest, PureRedDecodesAsRedInATagAwareDecoder) {
         }
         ASSERT_TRUE((*sink)->finish().ok());
     }
-    const auto rgb = decode_first_frame_rgb24(path.string());
+    const auto rgb = discreel::testing::decode_first_frame_rgb24(path.string());
     ASSERT_EQ(rgb.size(), std::size_t{3} * 64 * 48);
     // A pixel in the middle. Limited-range 8-bit YUV and H.264 quantisation of a flat frame
     // cost a few units at most; converting with BT.601 while tagging BT.709 (libswscale's

@@ -65,8 +65,8 @@ CommandResult run_command(const std::vector<std::string>& argv) {
 std::map<std::string, std::string> probe_video(const std::string& path) {
     const CommandResult probe = run_command(
         {"ffprobe", "-v", "error", "-select_streams", "v:0", "-count_frames", "-show_entries",
-         "stream=codec_name,pix_fmt,width,height,nb_read_frames,color_space,color_transfer,"
-         "color_primaries,color_range:format=duration,format_name",
+         "stream=codec_name,profile,pix_fmt,width,height,r_frame_rate,duration,nb_read_frames,"
+         "color_space,color_transfer,color_primaries,color_range",
          "-of", "default=noprint_wrappers=1", path});
     std::map<std::string, std::string> fields;
     if (probe.exit_code != 0) return fields;
@@ -78,22 +78,37 @@ std::map<std::string, std::string> probe_video(const std::string& path) {
     return fields;
 }
 
+std::vector<std::uint8_t> decode_first_frame_rgb24(const std::string& path) {
+    const CommandResult decode = run_command({"ffmpeg", "-v", "error", "-i", path, "-frames:v", "1",
+                                              "-f", "rawvideo", "-pix_fmt", "rgb24", "-"});
+    if (decode.exit_code != 0) return {};
+    return {decode.out.begin(), decode.out.end()};
+}
+
 std::vector<std::string> mp4_top_level_boxes(const std::string& path) {
-    const std::string data = read_file(path);
-    std::vector<std::string> boxes;
-    std::size_t at = 0;
-    while (at + 8 <= data.size()) {
-        const auto byte = [&](std::size_t i) { return static_cast<std::uint8_t>(data[at + i]); };
-        std::uint64_t size = (std::uint64_t{byte(0)} << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
-        boxes.push_back(data.substr(at + 4, 4));
-        if (size == 1 && at + 16 <= data.size()) {   // 64-bit size follows the type
-            size = 0;
-            for (int i = 8; i < 16; ++i) size = (size << 8) | byte(i);
+    const std::string bytes = read_file(path);
+    const auto read_be = [&](std::uint64_t at, int count) {
+        std::uint64_t value = 0;
+        for (int i = 0; i < count; ++i) value = (value << 8) | static_cast<std::uint8_t>(bytes[at + i]);
+        return value;
+    };
+    std::vector<std::string> types;
+    std::uint64_t offset = 0;
+    while (offset + 8 <= bytes.size()) {
+        std::uint64_t size = read_be(offset, 4);
+        types.push_back(bytes.substr(offset + 4, 4));
+        if (size == 1 && offset + 16 <= bytes.size()) {   // 64-bit "largesize" follows the type
+            size = read_be(offset + 8, 8);
+        } else if (size == 0) {                             // the box runs to the end of the file
+            size = bytes.size() - offset;
         }
-        if (size < 8) break;
-        at += size;
+        if (size < 8) {
+            types.push_back("<malformed>");
+            break;
+        }
+        offset += size;
     }
-    return boxes;
+    return types;
 }
 
 }  // namespace discreel::testing

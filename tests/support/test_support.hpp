@@ -1,6 +1,7 @@
 #pragma once
 // Test helpers: a temporary directory that cleans up after itself, running a shell command and
 // capturing its output and exit code, reading files, and asking ffprobe about a media file.
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -34,12 +35,19 @@ CommandResult run_command(const std::vector<std::string>& argv);
 std::string read_file(const std::filesystem::path& path);
 void write_file(const std::filesystem::path& path, const std::string& content);
 
-// ffprobe's view of the first video stream and the container: keys such as codec_name, pix_fmt,
-// width, height, nb_read_frames, color_space, color_transfer, color_primaries, color_range,
-// duration (the container's). Empty when ffprobe fails.
+// ffprobe's view of the first video stream: codec_name, profile, pix_fmt, width, height,
+// r_frame_rate, duration, nb_read_frames (frames counted by decoding the whole stream, so it is
+// what a player gets), color_space, color_transfer, color_primaries, color_range. ffprobe is an
+// independent reader: tests check what players see, not what our code believes it wrote.
+// Empty when ffprobe fails.
 std::map<std::string, std::string> probe_video(const std::string& path);
 
-// Names of the top-level boxes of an MP4/MOV file, in file order ("ftyp", "moov", "mdat", ...).
+// The first frame as decoded by the ffmpeg CLI, packed RGB24. ffmpeg honours the stream's colour
+// tags when converting, as HD players do. Empty when ffmpeg fails.
+std::vector<std::uint8_t> decode_first_frame_rgb24(const std::string& path);
+
+// Types of the top-level boxes of an MP4/MOV file, in file order ("ftyp", "moov", "mdat", ...);
+// "<malformed>" ends the list where a box size makes no sense.
 std::vector<std::string> mp4_top_level_boxes(const std::string& path);
 
 }  // namespace discreel::testing

@@ -12,8 +12,11 @@
 #include <vector>
 
 #include "discreel/image.hpp"
+#include "test_support.hpp"
 
 namespace discreel::encode::test {
+
+using discreel::testing::write_file;
 
 // A directory named after the running test, emptied before the test starts.
 inline std::filesystem::path scratch_directory() {
@@ -37,10 +40,6 @@ inline std::vector<std::string> directory_entries(const std::filesystem::path& d
 inline std::vector<std::uint8_t> file_bytes(const std::filesystem::path& path) {
     std::ifstream file(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
-
-inline void write_file(const std::filesystem::path& path, const std::string& contents) {
-    std::ofstream(path, std::ios::binary) << contents;
 }
 
 inline Image solid_image(int width, int height, std::uint8_t r, std::uint8_t g, std::uint8_t b,
