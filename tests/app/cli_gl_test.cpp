@@ -198,5 +198,54 @@ TEST(CliTest, TraceAgreesAcrossFrameRates) {
     EXPECT_EQ(t30[3].substr(t30[3].rfind(',')), ",0");
 }
 
+TEST(CliTest, EventsListNewContactsWithTheirImpulse) {
+    TempDir dir;
+    const auto run = run_command({bin, "simulate", short_scene, "--events", dir / "events.csv"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::istringstream in(read_file(dir / "events.csv"));
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "t,a,b,impulse");
+    int rows = 0, wall_rows = 0;
+    double previous_t = 0;
+    while (std::getline(in, line)) {
+        ++rows;
+        std::istringstream fields(line);
+        std::string t, a, b, impulse;
+        std::getline(fields, t, ',');
+        std::getline(fields, a, ',');
+        std::getline(fields, b, ',');
+        std::getline(fields, impulse, ',');
+        EXPECT_GE(std::stod(t), previous_t) << line;
+        previous_t = std::stod(t);
+        EXPECT_TRUE(a == "red" || a == "teal" || a == "peg") << line;
+        if (b == "wall:0") ++wall_rows;
+        EXPECT_GT(std::stod(impulse), 0) << line;
+    }
+    EXPECT_GT(rows, 0);
+    EXPECT_GT(wall_rows, 0);   // both discs are thrown against the box in 1.25 s
+    EXPECT_NE(run.out.find("contacts  " + std::to_string(rows) + " new contacts"), std::string::npos)
+        << run.out;
+}
+
+// render and simulate drive the physics the same way, so their traces are the same bytes.
+TEST(CliGLTest, RenderWritesTheSameTraceAsSimulate) {
+    TempDir dir;
+    ASSERT_EQ(run_command({bin, "simulate", short_scene, "--trace", dir / "sim.csv",
+                           "--events", dir / "sim-events.csv"}).exit_code, 0);
+    ASSERT_EQ(run_command({bin, "render", short_scene, "-o", dir / "clip.mp4", "--trace",
+                           dir / "render.csv", "--events", dir / "render-events.csv"}).exit_code, 0);
+    EXPECT_TRUE(read_file(dir / "sim.csv") == read_file(dir / "render.csv"));
+    EXPECT_TRUE(read_file(dir / "sim-events.csv") == read_file(dir / "render-events.csv"));
+}
+
+TEST(CliTest, UnwritableTraceFailsBeforeAnyWork) {
+    TempDir dir;
+    const auto run = run_command({bin, "simulate", short_scene, "--trace", dir / "no/such/dir/t.csv"});
+    EXPECT_EQ(run.exit_code, 3);
+    EXPECT_EQ(run.err.rfind("discreel: cannot write '" + (dir / "no/such/dir/t.csv") + "': ", 0), 0u)
+        << run.err;
+}
+
 }  // namespace
 }  // namespace discreel
