@@ -1,0 +1,30 @@
+# discreel image: `docker build -t discreel .`, then
+#   docker run --rm -u "$(id -u):$(id -g)" -v "$PWD:/work" discreel render -o /work/demo.mp4
+# See docs/container.md (also for building and running without Docker, with buildah).
+
+# Build stage: the same set-up script a developer runs, then the test suite. The container
+# test is left out: it builds this very image.
+FROM debian:bookworm-slim AS build
+WORKDIR /src
+# setup.sh alone first, so the package layer is cached until the package list changes.
+COPY setup.sh ./
+RUN bash setup.sh deps && rm -rf /var/lib/apt/lists/*
+COPY . .
+RUN bash setup.sh build \
+ && ctest --test-dir build --output-on-failure --parallel "$(nproc)" --label-exclude container
+
+# Runtime stage: the binary and the shared libraries it links (from its ldd), nothing else.
+FROM debian:bookworm-slim
+RUN apt-get update \
+ && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
+      libosmesa6 libavcodec59 libavformat59 libswscale6 libavutil57 libyaml-cpp0.7 \
+ && rm -rf /var/lib/apt/lists/*
+COPY --from=build /src/build/bin/discreel /usr/local/bin/discreel
+# Fail the image build, not the first user, if a library is missing from the list above.
+RUN if ldd /usr/local/bin/discreel | grep 'not found'; then exit 1; fi
+RUN useradd --create-home --uid 1000 --user-group discreel \
+ && mkdir /work && chown discreel:discreel /work
+USER discreel
+WORKDIR /work
+ENTRYPOINT ["discreel"]
+CMD ["--help"]

@@ -1,0 +1,104 @@
+#!/usr/bin/env bash
+# Set up a Debian bookworm machine for discreel, build it, and render the demo or run the tests.
+#
+#   bash setup.sh demo          install packages, build, render the demo to out/demo.mp4
+#   bash setup.sh test [ARGS]   install packages (with the container tools), build, run ctest;
+#                               ARGS go to ctest, e.g. `bash setup.sh test -LE container`
+#   bash setup.sh build         install packages, build (what the Dockerfile runs)
+#   bash setup.sh deps          install packages only
+#
+# Environment: BUILD_DIR (default: build, relative to this file), JOBS (default: all cores).
+# Only missing packages are installed; a machine that has them all is never touched by apt.
+set -euo pipefail
+
+readonly SOURCE_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+readonly BUILD_DIR="${BUILD_DIR:-$SOURCE_DIR/build}"
+readonly JOBS="${JOBS:-$(nproc)}"
+
+# What the top-level CMakeLists.txt finds, plus ffprobe/ffmpeg, which the tests call.
+readonly BUILD_PACKAGES=(
+  g++ cmake make pkg-config
+  libosmesa6-dev libeigen3-dev libyaml-cpp-dev libcli11-dev
+  libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  ffmpeg
+)
+# Only the container test (ctest label `container`) needs these; see docs/container.md.
+readonly CONTAINER_TEST_PACKAGES=(buildah podman debootstrap debian-archive-keyring)
+
+usage() {
+  sed -n '2,11s/^# \{0,1\}//p' "${BASH_SOURCE[0]}" >&2
+  exit 2
+}
+
+log() { printf '\n==> %s\n' "$*" >&2; }
+
+as_root() {
+  if [[ $EUID -eq 0 ]]; then
+    "$@"
+  elif command -v sudo >/dev/null; then
+    sudo "$@"
+  else
+    echo "setup.sh: installing packages needs root (or sudo): $*" >&2
+    exit 1
+  fi
+}
+
+missing_packages() {
+  local package
+  for package in "$@"; do
+    if [[ "$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null)" != installed ]]; then
+      echo "$package"
+    fi
+  done
+}
+
+install_packages() {
+  local missing
+  mapfile -t missing < <(missing_packages "$@")
+  if [[ ${#missing[@]} -eq 0 ]]; then
+    log "All ${#@} required packages are installed"
+    return
+  fi
+  log "Installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  as_root apt-get update
+  as_root apt-get install -y --no-install-recommends "${missing[@]}" </dev/null
+}
+
+build() {
+  log "Configuring (Release) in $BUILD_DIR"
+  cmake -S "$SOURCE_DIR" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
+  log "Building with $JOBS jobs"
+  cmake --build "$BUILD_DIR" --parallel "$JOBS"
+}
+
+[[ $# -ge 1 ]] || usage
+command="$1"
+shift
+case "$command" in
+  deps)
+    install_packages "${BUILD_PACKAGES[@]}"
+    ;;
+  build)
+    install_packages "${BUILD_PACKAGES[@]}"
+    build
+    ;;
+  demo)
+    install_packages "${BUILD_PACKAGES[@]}"
+    build
+    mkdir -p "$SOURCE_DIR/out"
+    log "Rendering the built-in demo"
+    "$BUILD_DIR/bin/discreel" render -o "$SOURCE_DIR/out/demo.mp4"
+    log "Done: $SOURCE_DIR/out/demo.mp4"
+    ;;
+  test)
+    install_packages "${BUILD_PACKAGES[@]}" "${CONTAINER_TEST_PACKAGES[@]}"
+    build
+    log "Running the tests"
+    ctest --test-dir "$BUILD_DIR" --output-on-failure --parallel "$JOBS" "$@"
+    ;;
+  *)
+    usage
+    ;;
+esac
