@@ -8,6 +8,13 @@
 #include "stepper.hpp"
 
 namespace discreel::app {
+namespace {
+
+std::string count_of(std::size_t n, const char* singular, const char* plural) {
+    return std::to_string(n) + ' ' + (n == 1 ? singular : plural);
+}
+
+}  // namespace
 
 int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = std::chrono::steady_clock::now();
@@ -46,8 +53,9 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
     out << std::setprecision(6);
-    out << "scene     " << scene.name << ": " << scene.discs.size() << " discs, "
-        << scene.walls.size() << " walls, " << scene.throws.size() << " throws\n";
+    out << "scene     " << scene.name << ": " << count_of(scene.discs.size(), "disc", "discs")
+        << ", " << count_of(scene.walls.size(), "wall", "walls") << ", "
+        << count_of(scene.throws.size(), "throw", "throws") << '\n';
     out << "frames    " << timeline.frame_count << " at " << scene.video.fps << " fps ("
         << world.step_count() << " physics steps at " << scene.physics.rate << " Hz, t = "
         << world.time() << " s)\n";
