@@ -19,13 +19,8 @@ struct Contact {
     double step_impulse = 0.0;     // N s, normal impulse summed over the current step
     bool touched_before = false;   // exchanged an impulse during the previous step
 
-    // Geometry at the start of the current substep; the resting stage replaces the normal by
-    // the one at the predicted end of the substep.
-    V2 normal = V2::UnitY();       // unit, from b towards a
+    // The gap at the start of the current substep; set for active contacts only.
     double gap = 0.0;              // metres, negative when overlapping
-    double target_speed = 0.0;     // m/s, lower bound on the normal displacement velocity
-    double normal_mass = 0.0;      // kg, 1 / (1/m_a + 1/m_b); 0 for two immovable bodies
-    double tangent_mass = 0.0;     // kg, the same with the rotational terms
 };
 
 inline bool pair_less(const Contact& l, const Contact& r) {

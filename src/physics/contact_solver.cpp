@@ -11,72 +11,113 @@
 // start-of-substep normal would push them apart and add energy). Existing overlap is not
 // resolved here (that would become velocity) but left to project_positions. The friction row
 // constrains the end velocity of the contact points (stick), within +- friction * normal impulse.
+// The iterations only read and write velocities, so they run on a compact copy: one row per
+// contact with everything constant over the substep folded in (normal, masses, the part of the
+// displacement velocity fixed by the impulsive stage), and one small velocity record per body.
+// That keeps the hot loop inside a few cache lines per contact, even for 10 000 discs.
 #include <algorithm>
 
 #include "substep.hpp"
 
 namespace discreel::physics::detail {
-namespace {
 
-V2 displacement_velocity(const Body& b) { return b.w_base + b.v * 0.5; }
-
-}  // namespace
-
-void solve_contacts(Substep& s, int iterations) {
+void ContactSolver::solve(Substep& s, int iterations) {
     const double inv_h = 1.0 / s.h;
-    for (Body& b : s.bodies) {
+    velocities_.resize(s.bodies.size());
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+        Body& b = s.bodies[i];
         if (b.falls()) b.v += s.gravity * s.h;
         b.w_base = b.v_begin * 0.5 + b.shift * inv_h;
+        velocities_[i] = Velocity{b.v, b.omega};
     }
+
+    rows_.clear();
     for (const std::uint32_t index : s.active) {
         Contact& c = s.contacts[index];
         const Body& a = s.bodies[c.a];
         const Body& b = s.bodies[c.b];
-        const V2 wa = displacement_velocity(a);
-        const V2 wb = displacement_velocity(b);
+        const double k = normal_mass_inverse(a, b);
+        if (k == 0.0) continue;  // two immovable bodies: nothing to solve
+        // Displacement velocity w = w_base + v / 2 (see the top of this file).
+        const V2 wa = a.w_base + a.v * 0.5;
+        const V2 wb = b.w_base + b.v * 0.5;
         const V2 end_a = a.x + wa * s.h;
         const Feature* f = s.feature_of(c);
         const Proximity end = f ? disc_feature(end_a, a.radius, *f)
                                 : disc_disc(end_a, a.radius, b.x + wb * s.h, b.radius);
         const double allowed_overlap = std::min(c.gap, 0.0);
         const V2& n = end.normal;
-        c.normal = n;
-        c.target_speed = n.dot(wa - wb) - (end.gap - allowed_overlap) / s.h;
+        double target = n.dot(wa - wb) - (end.gap - allowed_overlap) * inv_h;
         // Never ask for more than a restitution bounce: the pair must not leave faster than
         // e times its approach speed (after gravity, forces only ever stop a pair). Overlap that
         // this cannot prevent is removed by project_positions, without creating velocity.
         const double approach = n.dot(a.v_begin - b.v_begin);
         const double leave = std::max(0.0, -c.restitution * approach);
-        const double capped = 0.5 * (approach + leave) + n.dot(a.shift - b.shift) / s.h;
-        c.target_speed = std::min(c.target_speed, capped);
-        const double k = normal_mass_inverse(a, b);
-        c.normal_mass = k > 0.0 ? 1.0 / k : 0.0;
-        c.tangent_mass = k > 0.0 ? 1.0 / tangent_mass_inverse(a, b) : 0.0;
+        const double capped = 0.5 * (approach + leave) + n.dot(a.shift - b.shift) * inv_h;
+        target = std::min(target, capped);
+
+        Row r;
+        r.a = c.a;
+        r.b = c.b;
+        r.contact = index;
+        r.normal = n;
+        // The row drives n.(w_a - w_b) = n.(w_base_a - w_base_b) + n.(v_a - v_b) / 2 up to the
+        // target; only v changes while iterating, so the rest is folded into the bias.
+        r.bias = 2.0 * (target - n.dot(a.w_base - b.w_base));
+        r.normal_mass = 1.0 / k;
+        r.tangent_mass = 1.0 / tangent_mass_inverse(a, b);
+        r.friction = c.friction;
+        r.inv_mass_a = a.inv_mass;
+        r.inv_mass_b = b.inv_mass;
+        r.radius_a = a.radius;
+        r.radius_b = b.radius;
+        r.spin_a = a.radius * a.inv_inertia;
+        r.spin_b = b.radius * b.inv_inertia;
+        r.normal_impulse = c.normal_impulse;
+        r.tangent_impulse = c.tangent_impulse;
+        rows_.push_back(r);
     }
-    for (const std::uint32_t index : s.active) {
-        const Contact& c = s.contacts[index];
-        apply_impulse(s.bodies[c.a], s.bodies[c.b], c.normal,
-                      c.normal * c.normal_impulse + perp(c.normal) * c.tangent_impulse);
+
+    // Warm start, then sequential impulses. A normal impulse passes through the centres, so
+    // only tangential impulses turn the discs.
+    for (const Row& r : rows_) {
+        Velocity& a = velocities_[r.a];
+        Velocity& b = velocities_[r.b];
+        const V2 p = r.normal * r.normal_impulse + perp(r.normal) * r.tangent_impulse;
+        a.v += p * r.inv_mass_a;
+        b.v -= p * r.inv_mass_b;
+        a.omega -= r.spin_a * r.tangent_impulse;
+        b.omega -= r.spin_b * r.tangent_impulse;
     }
     for (int it = 0; it < iterations; ++it) {
-        for (const std::uint32_t index : s.active) {
-            Contact& c = s.contacts[index];
-            Body& a = s.bodies[c.a];
-            Body& b = s.bodies[c.b];
-            if (c.normal_mass == 0.0) continue;  // two immovable bodies
-            const double wn =
-                c.normal.dot(displacement_velocity(a) - displacement_velocity(b));
-            const double dn = (c.target_speed - wn) * 2.0 * c.normal_mass;
-            const double jn = std::max(c.normal_impulse + dn, 0.0);
-            apply_impulse(a, b, c.normal, c.normal * (jn - c.normal_impulse));
-            c.normal_impulse = jn;
+        for (Row& r : rows_) {
+            Velocity& a = velocities_[r.a];
+            Velocity& b = velocities_[r.b];
+            const V2& n = r.normal;
+            const double dn = (r.bias - n.dot(a.v - b.v)) * r.normal_mass;
+            const double jn = std::max(r.normal_impulse + dn, 0.0);
+            const V2 pn = n * (jn - r.normal_impulse);
+            a.v += pn * r.inv_mass_a;
+            b.v -= pn * r.inv_mass_b;
+            r.normal_impulse = jn;
 
-            const double limit = c.friction * c.normal_impulse;
-            const double dt = -tangential_speed(a, b, c.normal) * c.tangent_mass;
-            const double jt = std::clamp(c.tangent_impulse + dt, -limit, limit);
-            apply_impulse(a, b, c.normal, perp(c.normal) * (jt - c.tangent_impulse));
-            c.tangent_impulse = jt;
+            const V2 t = perp(n);
+            const double vt = t.dot(a.v - b.v) - r.radius_a * a.omega - r.radius_b * b.omega;
+            const double limit = r.friction * jn;
+            const double jt = std::clamp(r.tangent_impulse - vt * r.tangent_mass, -limit, limit);
+            const double dt = jt - r.tangent_impulse;
+            a.v += t * (dt * r.inv_mass_a);
+            b.v -= t * (dt * r.inv_mass_b);
+            a.omega -= r.spin_a * dt;
+            b.omega -= r.spin_b * dt;
+            r.tangent_impulse = jt;
         }
+    }
+
+    for (const Row& r : rows_) {
+        Contact& c = s.contacts[r.contact];
+        c.normal_impulse = r.normal_impulse;
+        c.tangent_impulse = r.tangent_impulse;
     }
     for (const std::uint32_t index : s.active) {
         Contact& c = s.contacts[index];
@@ -85,6 +126,8 @@ void solve_contacts(Substep& s, int iterations) {
     for (std::size_t i = 0; i < s.disc_count; ++i) {
         Body& b = s.bodies[i];
         if (!b.moves()) continue;
+        b.v = velocities_[i].v;
+        b.omega = velocities_[i].omega;
         b.x += (b.v_begin + b.v) * (0.5 * s.h) + b.shift;
         b.angle += (b.omega_begin + b.omega) * (0.5 * s.h) + b.turn;
     }
@@ -99,10 +142,13 @@ void project_positions(Substep& s, int iterations) {
             const double k = normal_mass_inverse(a, b);
             if (k == 0.0) continue;
             const Feature* f = s.feature_of(c);
-            const Proximity p = f ? disc_feature(a.x, a.radius, *f)
-                                  : disc_disc(a.x, a.radius, b.x, b.radius);
             // A sliver of overlap is left alone, so touching pairs are not nudged every substep.
             const double slop = 1e-4 * std::min(a.radius, f ? a.radius : b.radius);
+            if (!f && certainly_farther((a.x - b.x).squaredNorm(), a.radius + b.radius, -slop)) {
+                continue;
+            }
+            const Proximity p = f ? disc_feature(a.x, a.radius, *f)
+                                  : disc_disc(a.x, a.radius, b.x, b.radius);
             if (p.gap >= -slop) continue;
             const double push = 0.8 * (-p.gap - slop) / k;
             a.x += p.normal * (push * a.inv_mass);

@@ -98,14 +98,6 @@ bool feature_applies(const Feature& f, const V2& x) {
            x.y() <= f.box_max.y();
 }
 
-Proximity disc_disc(const V2& xa, double ra, const V2& xb, double rb) {
-    const V2 d = xa - xb;
-    const double dist = d.norm();
-    // Coincident centres have no direction; any fixed one keeps the result deterministic.
-    const V2 n = dist > 0.0 ? V2(d / dist) : V2(V2::UnitY());
-    return {n, dist - ra - rb};
-}
-
 namespace {
 V2 closest_on_segment(const V2& x, const V2& a, const V2& b) {
     const V2 ab = b - a;

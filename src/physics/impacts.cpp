@@ -6,6 +6,7 @@
 // to the time discretisation. Impacts are swept pair by pair until none approaches, which lets
 // a hit travel down a row of touching discs (Newton's cradle) instead of being shared out.
 #include <algorithm>
+#include <functional>
 #include <optional>
 
 #include "substep.hpp"
@@ -28,19 +29,26 @@ Trajectory trajectory(const Substep& s, const Body& b) {
     return Trajectory{b.x + b.shift, b.v, s.gravity_on(b)};
 }
 
-// The impact of contact c in this substep, if its pair approaches faster than `slow` then.
-std::optional<Impact> find_impact(const Substep& s, const Contact& c, double slow) {
+// Cheap tests that rule out most pairs of a pile before the swept test (kept small so that it
+// is inlined into the sweeps).
+bool surely_no_impact(const Substep& s, const Contact& c, double slow) {
     const Body& a = s.bodies[c.a];
     const Body& b = s.bodies[c.b];
-    if (normal_mass_inverse(a, b) == 0.0) return std::nullopt;  // two immovable bodies
+    if (normal_mass_inverse(a, b) == 0.0) return true;  // two immovable bodies
+    if (c.b >= s.disc_count || a.falls() != b.falls()) return false;
+    // No relative acceleration: a pair moving apart along its centre line never meets, and one
+    // slower than `slow` cannot approach faster than that.
+    const V2 u = a.v - b.v;
+    if (u.squaredNorm() <= slow * slow) return true;
+    return ((a.x + a.shift) - (b.x + b.shift)).dot(u) >= 0.0;
+}
+
+// The impact of contact c in this substep, if its pair approaches faster than `slow` then,
+// for a pair that surely_no_impact did not rule out.
+std::optional<Impact> swept_impact(const Substep& s, const Contact& c, double slow) {
+    const Body& a = s.bodies[c.a];
+    const Body& b = s.bodies[c.b];
     const Feature* f = s.feature_of(c);
-    if (!f && a.falls() == b.falls()) {
-        // No relative acceleration: a pair moving apart along its centre line never meets,
-        // and one slower than `slow` cannot approach faster than that.
-        const V2 u = a.v - b.v;
-        if (u.squaredNorm() <= slow * slow) return std::nullopt;
-        if (((a.x + a.shift) - (b.x + b.shift)).dot(u) >= 0.0) return std::nullopt;
-    }
     const double t_min = std::max(a.t_last, b.t_last);
     const Trajectory ta = trajectory(s, a);
     const std::optional<Impact> hit =
@@ -53,44 +61,125 @@ std::optional<Impact> find_impact(const Substep& s, const Contact& c, double slo
     return hit;
 }
 
-bool needs_check(const Contact& c, const std::vector<Body>& bodies, int pass) {
-    // After the first sweep only pairs whose velocities just changed can start to approach.
-    return pass == 0 || bodies[c.a].changed_pass >= pass - 1 || bodies[c.b].changed_pass >= pass - 1;
+std::optional<Impact> find_impact(const Substep& s, const Contact& c, double slow) {
+    if (surely_no_impact(s, c, slow)) return std::nullopt;
+    return swept_impact(s, c, slow);
 }
 
 }  // namespace
 
-void resolve_impacts(Substep& s) {
+void ImpactResolver::resolve(Substep& s) {
     const double slow = std::max(min_approach_speed, s.gravity.norm() * s.h);
+    const std::size_t count = s.active.size();
+    found_.assign(count, FoundImpact{});
+    queued_.assign(count, -1);
+
+    // Which active contacts each body is in, so a sweep after the first visits only the pairs
+    // whose velocities just changed (the only ones that can start to approach) instead of all.
+    contacts_of_start_.assign(s.bodies.size() + 1, 0);
+    for (const std::uint32_t index : s.active) {
+        ++contacts_of_start_[s.contacts[index].a + 1];
+        ++contacts_of_start_[s.contacts[index].b + 1];
+    }
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+        contacts_of_start_[i + 1] += contacts_of_start_[i];
+    }
+    contacts_of_.resize(2 * count);
+    fill_.assign(contacts_of_start_.begin(), contacts_of_start_.end() - 1);
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const Contact& c = s.contacts[s.active[k]];
+        contacts_of_[fill_[c.a]++] = k;
+        contacts_of_[fill_[c.b]++] = k;
+    }
+
+    for (Body& b : s.bodies) b.next_impact = s.h;
+    changed_.clear();
     for (int pass = 0; pass < max_passes; ++pass) {
-        // A body's impacts must happen in time order, or a later one computed first would move
-        // it through the earlier one's wall: find each body's earliest impact first.
-        for (Body& b : s.bodies) b.next_impact = s.h;
-        for (const std::uint32_t index : s.active) {
-            const Contact& c = s.contacts[index];
-            if (!needs_check(c, s.bodies, pass)) continue;
-            if (const auto hit = find_impact(s, c, slow)) {
-                for (Body* body : {&s.bodies[c.a], &s.bodies[c.b]}) {
-                    body->next_impact = std::min(body->next_impact, hit->t);
+        // This sweep's pairs, in active order: all of them first, then those of bodies changed
+        // in the previous sweep.
+        candidates_.clear();
+        if (pass == 0) {
+            for (std::uint32_t k = 0; k < count; ++k) candidates_.push_back(k);
+        } else {
+            for (const std::uint32_t body : changed_) {
+                for (std::uint32_t e = contacts_of_start_[body]; e < contacts_of_start_[body + 1];
+                     ++e) {
+                    const std::uint32_t k = contacts_of_[e];
+                    if (queued_[k] == pass) continue;
+                    queued_[k] = pass;
+                    candidates_.push_back(k);
                 }
             }
+            std::sort(candidates_.begin(), candidates_.end());
         }
+        changed_.clear();
+
+        // A body's impacts must happen in time order, or a later one computed first would move
+        // it through the earlier one's wall: find each body's earliest impact first.
+        lowered_.clear();
+        for (const std::uint32_t k : candidates_) {
+            const Contact& c = s.contacts[s.active[k]];
+            FoundImpact& found = found_[k];
+            found.pass = pass;
+            found.hit = find_impact(s, c, slow);
+            if (!found.hit) continue;
+            for (const std::uint32_t i : {c.a, c.b}) {
+                Body& body = s.bodies[i];
+                if (body.next_impact == s.h) lowered_.push_back(i);
+                body.next_impact = std::min(body.next_impact, found.hit->t);
+            }
+        }
+
+        // Visited in active order; a body changed during this sweep adds its later pairs to it
+        // (a hit travelling down a row of touching discs listed in order), kept in a min-heap
+        // merged with the sorted candidates.
+        queue_.clear();
+        auto mark_changed = [&](std::uint32_t i, std::uint32_t after) {
+            Body& body = s.bodies[i];
+            if (body.inv_mass == 0.0 || body.changed_pass == pass) return;
+            // Changed in the previous sweep (or this is the first): all its pairs are listed.
+            const bool already_queued = body.changed_pass == pass - 1;
+            body.changed_pass = pass;
+            changed_.push_back(i);
+            if (already_queued) return;
+            for (std::uint32_t e = contacts_of_start_[i]; e < contacts_of_start_[i + 1]; ++e) {
+                const std::uint32_t k = contacts_of_[e];
+                if (k <= after || queued_[k] == pass) continue;
+                queued_[k] = pass;
+                queue_.push_back(k);
+                std::push_heap(queue_.begin(), queue_.end(), std::greater<>());
+            }
+        };
         bool any = false;
-        for (const std::uint32_t index : s.active) {
-            Contact& c = s.contacts[index];
-            if (!needs_check(c, s.bodies, pass)) continue;
+        std::size_t next_candidate = 0;
+        while (next_candidate < candidates_.size() || !queue_.empty()) {
+            std::uint32_t k;
+            if (queue_.empty() ||
+                (next_candidate < candidates_.size() && candidates_[next_candidate] < queue_[0])) {
+                k = candidates_[next_candidate++];
+            } else {
+                std::pop_heap(queue_.begin(), queue_.end(), std::greater<>());
+                k = queue_.back();
+                queue_.pop_back();
+            }
+            Contact& c = s.contacts[s.active[k]];
             Body& a = s.bodies[c.a];
             Body& b = s.bodies[c.b];
-            const std::optional<Impact> hit = find_impact(s, c, slow);
+            // The answer found above still holds unless an impact of this sweep moved a or b.
+            const FoundImpact& found = found_[k];
+            const std::optional<Impact> hit =
+                found.pass == pass && a.struck_pass != pass && b.struck_pass != pass
+                    ? found.hit
+                    : find_impact(s, c, slow);
             if (!hit) continue;
+            any = true;
             // An impact set off by another one in this sweep (a row of touching discs) happens
             // at that one's time, which is then this body's earliest; later ones wait a pass.
             if (hit->t > std::max(a.next_impact, a.t_last) ||
                 hit->t > std::max(b.next_impact, b.t_last)) {
                 // Make the next sweep look at this pair again.
-                if (a.inv_mass > 0.0) a.changed_pass = pass;
-                if (b.inv_mass > 0.0) b.changed_pass = pass;
-                any = true;
+                mark_changed(c.a, k);
+                mark_changed(c.b, k);
                 continue;
             }
             const V2& n = hit->normal;
@@ -113,11 +202,13 @@ void resolve_impacts(Substep& s) {
             for (Body* body : {&a, &b}) {
                 if (body->inv_mass == 0.0) continue;
                 body->t_last = std::max(body->t_last, hit->t);
-                body->changed_pass = pass;
+                body->struck_pass = pass;
             }
+            mark_changed(c.a, k);
+            mark_changed(c.b, k);
             c.step_impulse += jn;
-            any = true;
         }
+        for (const std::uint32_t i : lowered_) s.bodies[i].next_impact = s.h;
         if (!any) break;
     }
 }

@@ -3,6 +3,7 @@
 // in this substep, and the substep's length.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "body.hpp"
@@ -37,11 +38,6 @@ inline void apply_impulse(Body& a, Body& b, const V2& n, const V2& p) {
     b.omega -= b.radius * pt * b.inv_inertia;
 }
 
-// Relative velocity of a's contact point against b's, along tangent perp(n).
-inline double tangential_speed(const Body& a, const Body& b, const V2& n) {
-    return perp(n).dot(a.v - b.v) - a.radius * a.omega - b.radius * b.omega;
-}
-
 inline double normal_mass_inverse(const Body& a, const Body& b) { return a.inv_mass + b.inv_mass; }
 inline double tangent_mass_inverse(const Body& a, const Body& b) {
     return a.inv_mass + b.inv_mass + a.radius * a.radius * a.inv_inertia +
@@ -49,12 +45,60 @@ inline double tangent_mass_inverse(const Body& a, const Body& b) {
 }
 
 // Stage 1: impacts. Every approaching pair that meets within the substep gets a restitution
-// impulse at its time of impact, from the approach speed at that instant.
-void resolve_impacts(Substep& s);
+// impulse at its time of impact, from the approach speed at that instant. A class only to keep
+// its scratch arrays between substeps.
+class ImpactResolver {
+public:
+    void resolve(Substep& s);
+
+private:
+    // The swept test's answer for an active contact in a sweep, reused while neither body has
+    // been struck since (the test is the costly part).
+    struct FoundImpact {
+        int pass = -1;             // the sweep it was computed in; -1: never
+        std::optional<Impact> hit;
+    };
+    std::vector<FoundImpact> found_;               // per active contact
+    std::vector<int> queued_;                      // per active contact: last sweep listing it
+    std::vector<std::uint32_t> contacts_of_start_;  // per body, into contacts_of_
+    std::vector<std::uint32_t> contacts_of_;       // active contact positions, grouped by body
+    std::vector<std::uint32_t> fill_;
+    std::vector<std::uint32_t> changed_;           // bodies changed in the current sweep
+    std::vector<std::uint32_t> lowered_;           // bodies whose next_impact was set
+    std::vector<std::uint32_t> candidates_;        // this sweep's pairs, sorted
+    std::vector<std::uint32_t> queue_;             // min-heap of pairs still to visit
+};
 
 // Stage 2: resting contact. Sequential impulses with accumulated clamping and warm starting,
-// acting like forces spread over the substep; then positions are integrated.
-void solve_contacts(Substep& s, int iterations);
+// acting like forces spread over the substep; then positions are integrated. A class only to
+// keep its scratch arrays between substeps.
+class ContactSolver {
+public:
+    void solve(Substep& s, int iterations);
+
+private:
+    struct Velocity {
+        V2 v = V2::Zero();         // m/s
+        double omega = 0.0;        // rad/s
+    };
+    // One contact, with what stays constant over the substep precomputed.
+    struct Row {
+        std::uint32_t a = 0, b = 0;    // body indices
+        std::uint32_t contact = 0;     // index into Substep::contacts
+        V2 normal = V2::UnitY();       // unit, from b towards a, at the predicted end
+        double bias = 0.0;             // m/s, lower bound on n.(v_a - v_b)
+        double normal_mass = 0.0;      // kg
+        double tangent_mass = 0.0;     // kg
+        double friction = 0.0;
+        double inv_mass_a = 0.0, inv_mass_b = 0.0;    // 1/kg
+        double radius_a = 0.0, radius_b = 0.0;        // m
+        double spin_a = 0.0, spin_b = 0.0;            // r / I, 1/(kg m)
+        double normal_impulse = 0.0;   // N s, accumulated
+        double tangent_impulse = 0.0;  // N s, accumulated
+    };
+    std::vector<Velocity> velocities_;  // per body
+    std::vector<Row> rows_;
+};
 
 // Stage 3: overlap left by unconverged iterations is removed by moving positions only, so it
 // never turns into velocity (and kinetic energy).

@@ -84,7 +84,10 @@ struct World::Impl {
     std::vector<Body> bodies;
     std::vector<Contact> contacts;
     std::vector<std::uint32_t> active;
+    std::vector<double> reach;  // metres per body, scratch of substep()
     detail::BroadPhase broad_phase;
+    detail::ImpactResolver impact_resolver;
+    detail::ContactSolver contact_solver;
     detail::Throws throws;
     std::vector<DiscState> states;
     std::vector<ContactEvent> events;
@@ -109,20 +112,33 @@ void World::Impl::step() {
 
 void World::Impl::substep(double h) {
     const double fall = 0.5 * gravity.norm() * h * h;
-    auto reach = [&](const Body& b) {
-        return b.v.norm() * h + (b.falls() ? fall : 0.0);
-    };
+    // How far each body can travel in this substep, computed once rather than per contact.
+    reach.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Body& b = bodies[i];
+        reach[i] = b.v.norm() * h + (b.falls() ? fall : 0.0);
+    }
     active.clear();
     for (std::size_t i = 0; i < contacts.size(); ++i) {
         Contact& c = contacts[i];
         const Body& a = bodies[c.a];
         const Body& b = bodies[c.b];
-        const detail::Proximity p =
-            c.b >= disc_count ? detail::disc_feature(a.x, a.radius, features[c.b - disc_count])
-                              : detail::disc_disc(a.x, a.radius, b.x, b.radius);
-        c.normal = p.normal;
-        c.gap = p.gap;
-        if (p.gap <= reach(a) + reach(b)) {
+        const double reach_sum = reach[c.a] + reach[c.b];
+        bool near;
+        if (c.b >= disc_count) {
+            c.gap = detail::disc_feature(a.x, a.radius, features[c.b - disc_count]).gap;
+            near = c.gap <= reach_sum;
+        } else {
+            // Most listed pairs are apart in a pile; rule them out without a square root.
+            near = !detail::certainly_farther((a.x - b.x).squaredNorm(), a.radius + b.radius,
+                                              reach_sum);
+            if (near) {
+                c.gap = detail::disc_disc(a.x, a.radius, b.x, b.radius).gap;
+                near = c.gap <= reach_sum;
+            }
+        }
+        // Only the gap is kept: the resting stage takes its normal at the end of the substep.
+        if (near) {
             active.push_back(static_cast<std::uint32_t>(i));
         } else {
             // Apart for good this substep: nothing to warm-start from next time.
@@ -135,14 +151,15 @@ void World::Impl::substep(double h) {
         b.turn = 0.0;
         b.t_last = 0.0;
         b.changed_pass = -1;
+        b.struck_pass = -1;
     }
     detail::Substep s{bodies, disc_count, features, contacts, active, gravity, h};
-    detail::resolve_impacts(s);
+    impact_resolver.resolve(s);
     for (Body& b : bodies) {
         b.v_begin = b.v;
         b.omega_begin = b.omega;
     }
-    detail::solve_contacts(s, contact_iterations);
+    contact_solver.solve(s, contact_iterations);
     detail::project_positions(s, projection_iterations);
 }
 
