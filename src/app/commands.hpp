@@ -16,12 +16,15 @@ struct OutputFiles {
 
 struct RenderOptions {
     std::optional<std::string> scene_path;   // none: the built-in demo
-    std::string output;                      // extension picks the format
+    std::string output;                      // extension picks the format; "-": stdout
     std::optional<int> frame;                // for a .png still
     std::optional<double> at;                // seconds, for a .png still
     VideoOverrides video;
-    int crf = 20;
-    std::string preset = "veryfast";
+    std::optional<int> crf;                  // none: the codec's default
+    std::string preset;                      // x264 preset; empty: veryfast
+    std::string codec;                       // empty: the container's default
+    std::string pixel_format;                // empty: yuv420p
+    bool lossless = false;                   // FFV1 in Matroska
     OutputFiles files;
 };
 

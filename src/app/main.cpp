@@ -61,11 +61,13 @@ int main(int argc, char** argv) {
 
     RenderOptions render;
     CLI::App* render_cmd = app.add_subcommand(
-        "render", "Render a scene to a video (.mp4) or a still (.png)");
+        "render", "Render a scene to a video (.mp4 .mkv .webm .gif) or stills (.png)");
     render_cmd->add_option("scene", render.scene_path,
                            "Scene file (YAML); the built-in demo when omitted");
     render_cmd->add_option("-o,--output", render.output,
-                           "Output file; the extension picks the format: .mp4 or .png")
+                           "Output file; the extension picks the format: .mp4, .mkv, .webm, "
+                           ".gif, .png (a still, or every frame for frame_%04d.png), or - for "
+                           "Matroska on standard output")
         ->required();
     render_cmd->add_option("--frame", render.frame, "Frame index for a .png still (default 0)");
     render_cmd->add_option("--at", render.at, "Time in seconds for a .png still");
@@ -80,11 +82,17 @@ int main(int argc, char** argv) {
         ->option_text("WxH");
     render_cmd->add_option("--fps", render.video.fps, "Override frames per second");
     render_cmd->add_option("--duration", render.video.duration, "Override duration in seconds");
-    render_cmd->add_option("--crf", render.crf, "H.264 quality, 0 (lossless) to 51 (worst)")
-        ->check(CLI::Range(0, 51))
-        ->capture_default_str();
-    render_cmd->add_option("--preset", render.preset, "x264 preset (ultrafast .. veryslow)")
-        ->capture_default_str();
+    render_cmd->add_option("--crf", render.crf,
+                           "Quality, lower is better: H.264 0..51 (default 20), VP9 0..63 "
+                           "(default 32)");
+    render_cmd->add_option("--preset", render.preset,
+                           "x264 preset, ultrafast .. veryslow (default veryfast)");
+    render_cmd->add_option("--codec", render.codec,
+                           "Video codec: h264 (.mp4, .mkv), vp9 (.webm, .mkv), ffv1 (.mkv)");
+    render_cmd->add_option("--pix-fmt", render.pixel_format,
+                           "yuv420p (default) or yuv444p, for crisp colour edges (H.264, VP9)");
+    render_cmd->add_flag("--lossless", render.lossless,
+                         "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);
 
     SimulateOptions simulate;

@@ -1,6 +1,7 @@
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <iomanip>
 #include <memory>
 
@@ -21,13 +22,19 @@ struct FrameRange {
     int last = 0;   // inclusive
 };
 
-// A .png output is one still; everything else is the whole clip.
+// A .png output is one still; everything else (a numbered .png sequence included) is the
+// whole clip.
 std::optional<FrameRange> pick_frames(const RenderOptions& o, const scene::Scene& scene,
-                                      bool still, std::ostream& err) {
+                                      const encode::OutputDescription& output,
+                                      std::ostream& err) {
     const int count = scene.video.frame_count();
-    if (!still) {
+    if (!output.one_frame) {
         if (o.frame || o.at) {
-            err << "discreel: --frame and --at select a still; use them with a .png output\n";
+            err << (output.format == "png sequence"
+                        ? "discreel: --frame and --at select a still; a numbered .png name "
+                          "writes every frame\n"
+                        : "discreel: --frame and --at select a still; use them with a .png "
+                          "output\n");
             return std::nullopt;
         }
         return FrameRange{0, count - 1};
@@ -53,6 +60,16 @@ std::optional<FrameRange> pick_frames(const RenderOptions& o, const scene::Scene
     return FrameRange{frame, frame};
 }
 
+// The colours frames are drawn in; a GIF palette starts with them so they come out exact.
+std::vector<encode::Rgb> scene_colours(const scene::Scene& scene) {
+    std::vector<encode::Rgb> colours;
+    const auto add = [&](const scene::Color& c) { colours.push_back({c.r, c.g, c.b}); };
+    add(scene.video.background);
+    for (const auto& wall : scene.walls) add(wall.color);
+    for (const auto& disc : scene.discs) add(disc.color);
+    return colours;
+}
+
 }  // namespace
 
 int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
@@ -65,15 +82,35 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         return exit_bad_input;
     }
 
-    const std::string extension = std::filesystem::path(o.output).extension().string();
-    if (extension != ".mp4" && extension != ".png") {
-        err << "discreel: cannot tell the output format from '" << o.output
-            << "': use a name ending in .mp4 (H.264 video) or .png (one frame)\n";
+    const auto output = encode::describe_output(o.output);
+    if (!output) {
+        err << "discreel: " << output.error().message << '\n';
         return exit_bad_input;
     }
-    const bool still = extension == ".png";
-    const std::optional<FrameRange> frames = pick_frames(o, scene, still, err);
+    const encode::SinkDef sink_def{.path = o.output,
+                                   .width = scene.video.width,
+                                   .height = scene.video.height,
+                                   .fps = scene.video.fps,
+                                   .crf = o.crf,
+                                   .preset = o.preset,
+                                   .codec = o.codec,
+                                   .pixel_format = o.pixel_format,
+                                   .lossless = o.lossless,
+                                   .key_colours = scene_colours(scene)};
+    if (Status settings = encode::check_settings(sink_def); !settings) {
+        err << "discreel: " << settings.error().message << '\n';
+        return exit_bad_input;
+    }
+    if (output->to_stdout && isatty(STDOUT_FILENO)) {
+        err << "discreel: -o - writes video to standard output, which is a terminal; pipe it "
+               "into another program or redirect it to a file\n";
+        return exit_bad_input;
+    }
+    const bool still = output->one_frame;
+    const std::optional<FrameRange> frames = pick_frames(o, scene, *output, err);
     if (!frames) return exit_bad_input;
+    // With -o - standard output carries the video, so the summary goes to standard error.
+    std::ostream& summary = output->to_stdout ? err : out;
 
     auto outputs = SideOutputs::open(o.files, scene, err);
     if (!outputs) return exit_runtime_failure;
@@ -84,12 +121,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         err << "discreel: " << renderer.error().message << '\n';
         return exit_runtime_failure;
     }
-    auto sink = encode::open_sink({.path = o.output,
-                                   .width = scene.video.width,
-                                   .height = scene.video.height,
-                                   .fps = scene.video.fps,
-                                   .crf = o.crf,
-                                   .preset = o.preset});
+    auto sink = encode::open_sink(sink_def);
     if (!sink) {
         err << "discreel: " << sink.error().message << '\n';
         return exit_runtime_failure;
@@ -126,15 +158,15 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const int written = frames->last - frames->first + 1;
-    out << "wrote " << o.output << ": " << written << (written == 1 ? " frame" : " frames")
+    summary << "wrote " << o.output << ": " << written << (written == 1 ? " frame" : " frames")
         << ", " << scene.video.width << 'x' << scene.video.height;
     if (!still) {
-        out << ", " << std::fixed << std::setprecision(2) << scene.video.duration << " s at "
+        summary << ", " << std::fixed << std::setprecision(2) << scene.video.duration << " s at "
             << scene.video.fps << " fps";
     } else {
-        out << ", frame " << frames->first;
+        summary << ", frame " << frames->first;
     }
-    out << std::fixed << std::setprecision(1) << " (" << seconds << " s, "
+    summary << std::fixed << std::setprecision(1) << " (" << seconds << " s, "
         << (seconds > 0 ? written / seconds : 0.0) << " frames/s)\n";
     return exit_ok;
 }

@@ -1,4 +1,4 @@
-// Sink selection: the extension of the output path names the format.
+// The table of output formats: what a path names, which settings it takes, which sink writes it.
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -6,6 +6,9 @@
 #include <string_view>
 
 #include "discreel/encode.hpp"
+#include "frame_pattern.hpp"
+#include "output_file.hpp"
+#include "png_sequence_sink.hpp"
 #include "png_still_sink.hpp"
 #include "video_format.hpp"
 #include "video_sink.hpp"
@@ -13,52 +16,121 @@
 namespace discreel::encode {
 namespace {
 
-using SinkOpener = Expected<std::unique_ptr<Sink>> (*)(const SinkDef&);
+using FormatBuilder = Expected<VideoFormat> (*)(const SinkDef&);
 
-struct SinkKind {
-    std::string_view extension;   // lower case, with the dot
-    SinkOpener open;
+struct OutputKind {
+    std::string_view name;        // extension with the dot, or "-" for standard output
+    std::string_view summary;     // for the list of supported formats
+    std::string_view format;      // OutputDescription::format
+    FormatBuilder video;          // null: PNG (a still, or a sequence for a numbered name)
 };
 
-Expected<std::unique_ptr<Sink>> open_mp4(const SinkDef& def) {
-    auto format = mp4_h264_format(def);
-    if (!format) {
-        return format.error();
-    }
-    return open_video_sink(def, *format);
-}
-
 // A new container or codec is a VideoFormat builder plus one row here.
-constexpr std::array<SinkKind, 2> sink_kinds = {{
-    {".mp4", open_mp4},
-    {".png", open_png_still_sink},
+constexpr std::array<OutputKind, 6> output_kinds = {{
+    {".mp4", ".mp4 (H.264)", "mp4", mp4_format},
+    {".mkv", ".mkv (H.264, VP9, or FFV1 lossless)", "mkv", mkv_format},
+    {".webm", ".webm (VP9)", "webm", webm_format},
+    {".gif", ".gif", "gif", gif_format},
+    {".png", ".png (one frame, or every frame for a numbered name such as frame_%04d.png)",
+     "png", nullptr},
+    {"-", "- (Matroska on standard output)", "mkv", mkv_format},
 }};
 
-std::string supported_extensions() {
+std::string supported_formats() {
     std::string list;
-    for (const auto& kind : sink_kinds) {
-        list += (list.empty() ? "" : ", ") + std::string(kind.extension);
+    for (const auto& kind : output_kinds) {
+        list += (list.empty() ? "" : ", ") + std::string(kind.summary);
     }
     return list;
 }
 
-}  // namespace
+struct Resolved {
+    const OutputKind* kind = nullptr;
+    std::optional<FramePattern> pattern;   // a PNG sequence
+};
 
-Expected<std::unique_ptr<Sink>> open_sink(const SinkDef& def) {
-    std::string extension = std::filesystem::path(def.path).extension().string();
+Expected<Resolved> resolve(const std::string& path) {
+    std::string extension = path == "-" ? path : std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    const auto kind = std::find_if(sink_kinds.begin(), sink_kinds.end(),
-                                   [&](const SinkKind& k) { return k.extension == extension; });
-    if (kind == sink_kinds.end()) {
+    const auto kind = std::find_if(output_kinds.begin(), output_kinds.end(),
+                                   [&](const OutputKind& k) { return k.name == extension; });
+    if (kind == output_kinds.end()) {
         if (extension.empty()) {
-            return Error{"output '" + def.path + "' has no extension (supported: " +
-                         supported_extensions() + ")"};
+            return Error{"output '" + path + "' has no extension (supported: " +
+                         supported_formats() + ")"};
         }
         return Error{"unsupported output extension '" + extension + "' (supported: " +
-                     supported_extensions() + ")"};
+                     supported_formats() + ")"};
     }
-    return kind->open(def);
+    Resolved resolved{&*kind, std::nullopt};
+    if (kind->video == nullptr) {
+        auto pattern = parse_frame_pattern(path);
+        if (!pattern) {
+            return pattern.error();
+        }
+        resolved.pattern = std::move(*pattern);
+    }
+    return resolved;
+}
+
+Status check_resolved(const Resolved& resolved, const SinkDef& def) {
+    if (resolved.kind->video != nullptr) {
+        auto format = resolved.kind->video(def);
+        if (!format) {
+            return format.error();
+        }
+        return {};
+    }
+    return reject_encoder_settings(def, "PNG");
+}
+
+}  // namespace
+
+Expected<OutputDescription> describe_output(const std::string& path) {
+    auto resolved = resolve(path);
+    if (!resolved) {
+        return resolved.error();
+    }
+    OutputDescription description;
+    description.format = std::string(resolved->kind->format);
+    description.to_stdout = path == "-";
+    if (resolved->kind->video == nullptr) {
+        description.one_frame = !resolved->pattern.has_value();
+        if (resolved->pattern) {
+            description.format = "png sequence";
+        }
+    }
+    return description;
+}
+
+Status check_settings(const SinkDef& def) {
+    auto resolved = resolve(def.path);
+    if (!resolved) {
+        return resolved.error();
+    }
+    return check_resolved(*resolved, def);
+}
+
+Expected<std::unique_ptr<Sink>> open_sink(const SinkDef& def) {
+    auto resolved = resolve(def.path);
+    if (!resolved) {
+        return resolved.error();
+    }
+    if (resolved->kind->video != nullptr) {
+        auto format = resolved->kind->video(def);
+        if (!format) {
+            return write_error(def.path, format.error().message);
+        }
+        return open_video_sink(def, *format);
+    }
+    if (auto status = check_resolved(*resolved, def); !status) {
+        return write_error(def.path, status.error().message);
+    }
+    if (resolved->pattern) {
+        return open_png_sequence_sink(def, std::move(*resolved->pattern));
+    }
+    return open_png_still_sink(def);
 }
 
 }  // namespace discreel::encode

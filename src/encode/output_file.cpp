@@ -103,7 +103,10 @@ Status OutputFile::write_all(const void* data, std::size_t size) {
     return {};
 }
 
-Status OutputFile::commit() {
+Status OutputFile::seal() {
+    if (fd_ < 0) {
+        return {};
+    }
     // Without the fsync a crash right after the rename could leave an empty target where the
     // old file used to be.
     if (fsync(fd_) != 0) {
@@ -111,6 +114,13 @@ Status OutputFile::commit() {
     }
     close(fd_);
     fd_ = -1;
+    return {};
+}
+
+Status OutputFile::commit() {
+    if (auto sealed = seal(); !sealed) {
+        return sealed;
+    }
     if (std::rename(temp_path_.c_str(), target_path_.c_str()) != 0) {
         return write_error(target_path_, errno_text(errno));
     }

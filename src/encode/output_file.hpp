@@ -27,7 +27,11 @@ public:
     // For writers that produce the bytes themselves; libavformat opens temp_path() instead.
     Status write_all(const void* data, std::size_t size);
 
-    // Flushes the bytes to disk and renames the temporary file onto the target.
+    // Flushes the bytes to disk and closes the file, keeping it under its temporary name: for
+    // writers of many files, which cannot hold a descriptor open per file until the end.
+    Status seal();
+
+    // Seals the file if that was not done yet, and renames it onto the target.
     Status commit();
 
 private:
@@ -36,7 +40,7 @@ private:
 
     std::string target_path_;
     std::string temp_path_;
-    int fd_ = -1;          // open until commit, for write_all and the final fsync
+    int fd_ = -1;          // open until seal or commit, for write_all and the final fsync
     bool committed_ = false;
 };
 

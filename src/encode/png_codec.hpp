@@ -3,10 +3,12 @@
 // carry the reason only; callers prefix the path they were reading or writing.
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "discreel/expected.hpp"
 #include "discreel/image.hpp"
+#include "output_file.hpp"
 
 namespace discreel::encode {
 
@@ -16,5 +18,9 @@ Expected<std::vector<std::uint8_t>> encode_png(const ImageView& image);
 // Any PNG the decoder reads (grey, palette, RGB, 16-bit, with or without alpha), converted to
 // RGBA8, top row first.
 Expected<Image> decode_png(std::span<const std::uint8_t> png_bytes);
+
+// The PNG of `image` written to a temporary file for `path`, not yet committed or sealed: the
+// caller decides when it becomes visible (a still at once, a sequence when all frames are in).
+Expected<OutputFile> write_png_to_temporary(const std::string& path, const ImageView& image);
 
 }  // namespace discreel::encode

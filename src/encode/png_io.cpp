@@ -27,7 +27,7 @@ Expected<Image> read_png(const std::string& path) {
     return image;
 }
 
-Status write_png(const std::string& path, const ImageView& image) {
+Expected<OutputFile> write_png_to_temporary(const std::string& path, const ImageView& image) {
     auto png = encode_png(image);
     if (!png) {
         return write_error(path, png.error().message);
@@ -37,7 +37,15 @@ Status write_png(const std::string& path, const ImageView& image) {
         return file.error();
     }
     if (auto written = file->write_all(png->data(), png->size()); !written) {
-        return written;
+        return written.error();
+    }
+    return file;
+}
+
+Status write_png(const std::string& path, const ImageView& image) {
+    auto file = write_png_to_temporary(path, image);
+    if (!file) {
+        return file.error();
     }
     return file->commit();
 }

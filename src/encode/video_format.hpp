@@ -1,7 +1,7 @@
 #pragma once
 // What distinguishes one video output from another, as data: the muxer, the encoder, the pixel
 // format and colour tags, and the options each takes. The VideoSink is written once against
-// this; MKV, WebM/VP9 or GIF are further VideoFormat builders, not further sinks.
+// this; each container is a builder here and one row in open_sink's table, not a further sink.
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,7 +20,9 @@ using OptionList = std::vector<std::pair<std::string, std::string>>;
 struct VideoFormat {
     std::string muxer;                                  // libavformat short name, e.g. "mp4"
     std::string encoder;                                // libavcodec encoder name, e.g. "libx264"
-    AVPixelFormat pixel_format = AV_PIX_FMT_YUV420P;    // what the encoder is fed
+    // What the encoder is fed. PAL8 means a palette built by PaletteConverter; anything else is
+    // converted from RGBA by libswscale.
+    AVPixelFormat pixel_format = AV_PIX_FMT_YUV420P;
     // YUV matrix for the RGBA conversion and the tags written on the stream, so players decode
     // with the matrix the pixels were made with.
     AVColorSpace colorspace = AVCOL_SPC_BT709;
@@ -28,12 +30,23 @@ struct VideoFormat {
     AVColorTransferCharacteristic transfer = AVCOL_TRC_BT709;
     AVColorRange range = AVCOL_RANGE_MPEG;              // limited ("tv") range
     int threads = 1;                                    // encoder threads, pinned
-    OptionList encoder_options;                         // the encoder's private options
+    OptionList encoder_options;                         // the encoder's options
     OptionList muxer_options;                           // the muxer's private options
 };
 
-// H.264 (libx264) in MP4, yuv420p BT.709 limited range, index first (faststart). Checks the
-// SinkDef's encoder settings and says which one is wrong.
-Expected<VideoFormat> mp4_h264_format(const SinkDef& def);
+// Each builder checks the SinkDef's encoder settings for its container and says which one is
+// wrong (without the path; open_sink adds it).
+//   .mp4: H.264 (libx264), index first (faststart).
+//   .mkv and "-": H.264 by default, VP9 with codec "vp9", FFV1 (bgr0) with lossless or "ffv1".
+//   .webm: VP9 (libvpx-vp9).
+//   .gif: GIF with a palette from the key colours and the first frame.
+Expected<VideoFormat> mp4_format(const SinkDef& def);
+Expected<VideoFormat> mkv_format(const SinkDef& def);
+Expected<VideoFormat> webm_format(const SinkDef& def);
+Expected<VideoFormat> gif_format(const SinkDef& def);
+
+// "<setting> does not apply to <target>" when the SinkDef sets any of crf, preset, codec,
+// pixel format or lossless: for outputs that take none of them (GIF, PNG).
+Status reject_encoder_settings(const SinkDef& def, const std::string& target);
 
 }  // namespace discreel::encode

@@ -1,5 +1,6 @@
 #include "video_sink.hpp"
 
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -9,10 +10,10 @@ extern "C" {
 }
 
 #include "av_handles.hpp"
+#include "frame_converter.hpp"
 #include "image_check.hpp"
 #include "libav_log.hpp"
 #include "output_file.hpp"
-#include "rgba_converter.hpp"
 
 namespace discreel::encode {
 namespace {
@@ -50,7 +51,8 @@ private:
 
 class VideoSink final : public Sink {
 public:
-    VideoSink(const SinkDef& def, OutputFile file, RgbaConverter converter,
+    VideoSink(const SinkDef& def, std::optional<OutputFile> file,
+              std::unique_ptr<FrameConverter> converter,
               OutputFormatContextPtr muxer, CodecContextPtr encoder, AVStream* stream,
               FramePtr frame, PacketPtr packet)
         : def_(def),
@@ -75,8 +77,9 @@ private:
     Status encode(const AVFrame* frame);
 
     SinkDef def_;
-    OutputFile file_;   // declared first: destroyed last, after libav has closed the file
-    RgbaConverter converter_;
+    // Declared first: destroyed last, after libav has closed the file. None for standard output.
+    std::optional<OutputFile> file_;
+    std::unique_ptr<FrameConverter> converter_;
     OutputFormatContextPtr muxer_;
     CodecContextPtr encoder_;
     AVStream* stream_;  // owned by muxer_
@@ -114,7 +117,7 @@ Status VideoSink::write(const ImageView& frame) {
     if (const int result = av_frame_make_writable(frame_.get()); result < 0) {
         return failure("cannot reuse the frame buffer", result);
     }
-    converter_.convert(frame, *frame_);
+    converter_->convert(frame, *frame_);
     frame_->pts = frames_written_;   // encoder time base is 1/fps: pts counts frames
     if (auto status = encode(frame_.get()); !status) {
         return status;
@@ -166,7 +169,7 @@ Status VideoSink::finish() {
         return failure("closing the file failed", result);
     }
     finished_ = true;
-    return file_.commit();
+    return file_ ? file_->commit() : Status{};
 }
 
 }  // namespace
@@ -196,14 +199,23 @@ Expected<std::unique_ptr<Sink>> open_video_sink(const SinkDef& def, const VideoF
         return write_error(def.path, "libavcodec has no encoder '" + format.encoder + "'");
     }
 
-    auto file = OutputFile::create(def.path);
-    if (!file) {
-        return file.error();
+    // "-" is standard output: a pipe cannot seek, so the muxer writes a stream that needs no
+    // going back (Matroska with unknown-size clusters and no index). There is no temporary
+    // file to rename: the bytes leave as they are encoded.
+    const bool to_stdout = def.path == "-";
+    std::optional<OutputFile> file;
+    if (!to_stdout) {
+        auto created = OutputFile::create(def.path);
+        if (!created) {
+            return created.error();
+        }
+        file.emplace(std::move(*created));
     }
+    const std::string io_url = to_stdout ? std::string("pipe:1") : file->temp_path();
 
     AVFormatContext* raw_muxer = nullptr;
     if (const int result = avformat_alloc_output_context2(
-            &raw_muxer, nullptr, format.muxer.c_str(), file->temp_path().c_str());
+            &raw_muxer, nullptr, format.muxer.c_str(), io_url.c_str());
         result < 0) {
         return fail("cannot set up the " + format.muxer + " muxer", result);
     }
@@ -252,9 +264,10 @@ Expected<std::unique_ptr<Sink>> open_video_sink(const SinkDef& def, const VideoF
         return fail("cannot describe the video stream", result);
     }
 
-    if (const int result = avio_open(&muxer->pb, file->temp_path().c_str(), AVIO_FLAG_WRITE);
-        result < 0) {
-        return fail("cannot open the temporary file '" + file->temp_path() + "'", result);
+    if (const int result = avio_open(&muxer->pb, io_url.c_str(), AVIO_FLAG_WRITE); result < 0) {
+        return fail(to_stdout ? std::string("cannot open standard output")
+                              : "cannot open the temporary file '" + io_url + "'",
+                    result);
     }
     Options muxer_options(format.muxer_options);
     if (const int result = avformat_write_header(muxer.get(), muxer_options.get()); result < 0) {
@@ -270,13 +283,12 @@ Expected<std::unique_ptr<Sink>> open_video_sink(const SinkDef& def, const VideoF
     if (const int result = av_frame_get_buffer(frame.get(), 0); result < 0) {
         return fail("cannot allocate a frame", result);
     }
-    auto converter = RgbaConverter::create(def.width, def.height, format.pixel_format,
-                                           format.colorspace, format.range);
+    auto converter = make_frame_converter(def, format);
     if (!converter) {
         return write_error(def.path, converter.error().message);
     }
     return std::unique_ptr<Sink>(std::make_unique<VideoSink>(
-        def, std::move(*file), std::move(*converter), std::move(muxer), std::move(encoder),
+        def, std::move(file), std::move(*converter), std::move(muxer), std::move(encoder),
         stream, std::move(frame), std::move(packet)));
 }
 

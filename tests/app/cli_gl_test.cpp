@@ -97,8 +97,124 @@ TEST(CliGLTest, UnknownOutputExtensionIsABadCommandLine) {
     TempDir dir;
     const auto run = run_command({bin, "render", short_scene, "-o", dir / "clip.avi"});
     EXPECT_EQ(run.exit_code, 2);
-    EXPECT_EQ(run.err, "discreel: cannot tell the output format from '" + (dir / "clip.avi") +
-                           "': use a name ending in .mp4 (H.264 video) or .png (one frame)\n");
+    EXPECT_EQ(run.err,
+              "discreel: unsupported output extension '.avi' (supported: .mp4 (H.264), .mkv "
+              "(H.264, VP9, or FFV1 lossless), .webm (VP9), .gif, .png (one frame, or every frame "
+              "for a numbered name such as frame_%04d.png), - (Matroska on standard output))\n");
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+TEST(CliGLTest, EveryVideoFormatFromTheCommandLine) {
+    TempDir dir;
+    struct Case {
+        std::vector<std::string> args;
+        std::string codec, pix_fmt, color_space;
+    };
+    const std::vector<Case> cases = {
+        {{"-o", dir / "h264.mkv"}, "h264", "yuv420p", "bt709"},
+        {{"-o", dir / "crisp.mp4", "--pix-fmt", "yuv444p", "--crf", "18", "--preset", "fast"},
+         "h264", "yuv444p", "bt709"},
+        {{"-o", dir / "clip.webm", "--crf", "40"}, "vp9", "yuv420p", "bt709"},
+        {{"-o", dir / "vp9.mkv", "--codec", "vp9"}, "vp9", "yuv420p", "bt709"},
+        {{"-o", dir / "exact.mkv", "--lossless"}, "ffv1", "bgr0", "gbr"},
+        {{"-o", dir / "clip.gif"}, "gif", "bgra", ""},
+    };
+    for (const Case& c : cases) {
+        std::vector<std::string> argv = {bin, "render", short_scene};
+        argv.insert(argv.end(), c.args.begin(), c.args.end());
+        const auto run = run_command(argv);
+        ASSERT_EQ(run.exit_code, 0) << c.args[1] << ": " << run.err;
+        auto probe = probe_video(c.args[1]);
+        EXPECT_EQ(probe["codec_name"], c.codec) << c.args[1];
+        EXPECT_EQ(probe["pix_fmt"], c.pix_fmt) << c.args[1];
+        EXPECT_EQ(probe["width"], "160") << c.args[1];
+        EXPECT_EQ(probe["height"], "120") << c.args[1];
+        EXPECT_EQ(probe["nb_read_frames"], "30") << c.args[1];
+        if (!c.color_space.empty()) {
+            EXPECT_EQ(probe["color_space"], c.color_space) << c.args[1];
+        }
+    }
+}
+
+// "Any thread count": the renderer's thread count (llvmpipe's LP_NUM_THREADS) must not change a
+// byte of any format; the encoders' thread counts are pinned in the sink.
+TEST(CliGLTest, SameBytesWhateverTheRendererThreadCount) {
+    TempDir dir;
+    for (const std::string name : {"clip.mp4", "clip.webm", "clip.gif", "exact.mkv"}) {
+        std::vector<std::string> outputs;
+        for (const std::string threads : {"1", "4"}) {
+            const std::string output = dir / (threads + name);
+            std::vector<std::string> argv = {bin, "render", short_scene, "-o", output};
+            if (name == "exact.mkv") argv.push_back("--lossless");
+            const auto run = run_command(argv, {{"LP_NUM_THREADS", threads}});
+            ASSERT_EQ(run.exit_code, 0) << run.err;
+            outputs.push_back(read_file(output));
+        }
+        EXPECT_GT(outputs[0].size(), 1000u) << name;
+        EXPECT_TRUE(outputs[0] == outputs[1]) << name;
+    }
+}
+
+TEST(CliGLTest, PngSequenceFramesEqualTheStills) {
+    TempDir dir;
+    std::filesystem::create_directory(dir / "seq");
+    const auto run = run_command({bin, "render", short_scene, "-o", dir / "seq/frame_%04d.png"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path() / "seq"),
+                            std::filesystem::directory_iterator()), 30);
+    for (const std::string frame : {"0", "12", "29"}) {
+        const std::string still = dir / ("still" + frame + ".png");
+        ASSERT_EQ(run_command({bin, "render", short_scene, "-o", still, "--frame", frame}).exit_code, 0);
+        const std::string numbered = std::string(4 - frame.size(), '0') + frame;
+        EXPECT_TRUE(read_file(still) == read_file(dir / ("seq/frame_" + numbered + ".png"))) << frame;
+    }
+}
+
+TEST(CliGLTest, DashWritesStreamableMatroskaToStdoutAndTheSummaryToStderr) {
+    TempDir dir;
+    const auto first = run_command({bin, "render", short_scene, "-o", "-"});
+    ASSERT_EQ(first.exit_code, 0) << first.err;
+    EXPECT_EQ(first.err.rfind("wrote -: 30 frames, 160x120, 1.25 s at 24 fps", 0), 0u) << first.err;
+    testing::write_file(dir / "piped.mkv", first.out);
+    auto probe = probe_video(dir / "piped.mkv");
+    EXPECT_EQ(probe["codec_name"], "h264");
+    EXPECT_EQ(probe["nb_read_frames"], "30");
+    EXPECT_EQ(probe["color_space"], "bt709");
+    // Written for a pipe: Matroska's EBML header first, and no index (Cues), which would need
+    // seeking back to write.
+    EXPECT_EQ(first.out.substr(0, 4), std::string("\x1a\x45\xdf\xa3"));
+    EXPECT_EQ(first.out.find(std::string("\x1c\x53\xbb\x6b")), std::string::npos);
+    EXPECT_TRUE(run_command({bin, "render", short_scene, "-o", "-"}).out == first.out);
+}
+
+TEST(CliGLTest, FormatOptionsThatDoNotFitAreABadCommandLine) {
+    TempDir dir;
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"-o", dir / "c.mp4", "--lossless"},
+         "discreel: lossless output is FFV1 in Matroska: use .mkv or -, not .mp4\n"},
+        {{"-o", dir / "c.mp4", "--codec", "vp9"},
+         "discreel: codec 'vp9' is not available for .mp4 (h264)\n"},
+        {{"-o", dir / "c.webm", "--preset", "slow"},
+         "discreel: preset does not apply to VP9 (it is an x264 setting)\n"},
+        {{"-o", dir / "c.mkv", "--lossless", "--crf", "10"},
+         "discreel: crf does not apply to FFV1 (lossless)\n"},
+        {{"-o", dir / "c.mp4", "--crf", "52"}, "discreel: crf 52 is outside 0..51\n"},
+        {{"-o", dir / "c.mp4", "--pix-fmt", "rgb24"},
+         "discreel: pixel format 'rgb24' is not available for H.264 (yuv420p, yuv444p)\n"},
+        {{"-o", dir / "c.gif", "--crf", "20"}, "discreel: crf does not apply to GIF\n"},
+        {{"-o", dir / "f%04d.png", "--frame", "3"},
+         "discreel: --frame and --at select a still; a numbered .png name writes every frame\n"},
+        {{"-o", dir / "f%s.png"},
+         "discreel: '" + (dir / "f%s.png") + "': a '%' in an output name must be one frame "
+         "number, %d or %0Nd such as %04d (write %% for a percent sign)\n"},
+    };
+    for (const auto& [args, message] : cases) {
+        std::vector<std::string> argv = {bin, "render", short_scene};
+        argv.insert(argv.end(), args.begin(), args.end());
+        const auto run = run_command(argv);
+        EXPECT_EQ(run.exit_code, 2) << message;
+        EXPECT_EQ(run.err, message);
+    }
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 

@@ -37,7 +37,19 @@ void write_file(const std::filesystem::path& path, const std::string& content) {
     std::ofstream(path, std::ios::binary) << content;
 }
 
-CommandResult run_command(const std::vector<std::string>& argv) {
+CommandResult run_command(const std::vector<std::string>& argv) { return run_command(argv, {}); }
+
+CommandResult run_command(const std::vector<std::string>& argv,
+                          const std::map<std::string, std::string>& environment) {
+    std::vector<std::string> variables;
+    for (char** entry = environ; *entry != nullptr; ++entry) {
+        const std::string variable(*entry);
+        if (!environment.count(variable.substr(0, variable.find('=')))) variables.push_back(variable);
+    }
+    for (const auto& [name, value] : environment) variables.push_back(name + "=" + value);
+    std::vector<char*> envp;
+    for (std::string& v : variables) envp.push_back(v.data());
+    envp.push_back(nullptr);
     TempDir capture;
     const std::string out_path = capture / "stdout";
     const std::string err_path = capture / "stderr";
@@ -51,7 +63,7 @@ CommandResult run_command(const std::vector<std::string>& argv) {
     args.push_back(nullptr);
     pid_t pid = 0;
     CommandResult result;
-    if (posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ) == 0) {
+    if (posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), envp.data()) == 0) {
         int status = 0;
         ::waitpid(pid, &status, 0);
         result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -81,6 +93,16 @@ std::map<std::string, std::string> probe_video(const std::string& path) {
 std::vector<std::uint8_t> decode_first_frame_rgb24(const std::string& path) {
     const CommandResult decode = run_command({"ffmpeg", "-v", "error", "-i", path, "-frames:v", "1",
                                               "-f", "rawvideo", "-pix_fmt", "rgb24", "-"});
+    if (decode.exit_code != 0) return {};
+    return {decode.out.begin(), decode.out.end()};
+}
+
+std::vector<std::uint8_t> decode_frames_rgb24(const std::string& path) {
+    const CommandResult decode = run_command(
+        // passthrough: every decoded frame once, none duplicated or dropped to fit a frame rate
+        // (GIF delays are whole centiseconds, so its timestamps are not evenly spaced).
+        {"ffmpeg", "-v", "error", "-i", path, "-fps_mode", "passthrough", "-f", "rawvideo",
+         "-pix_fmt", "rgb24", "-"});
     if (decode.exit_code != 0) return {};
     return {decode.out.begin(), decode.out.end()};
 }

@@ -31,6 +31,9 @@ struct CommandResult {
 
 // Runs `argv` (no shell interpretation of the arguments) with stdin from /dev/null.
 CommandResult run_command(const std::vector<std::string>& argv);
+// The same, with `environment` set on top of this process's environment (e.g. LP_NUM_THREADS).
+CommandResult run_command(const std::vector<std::string>& argv,
+                          const std::map<std::string, std::string>& environment);
 
 std::string read_file(const std::filesystem::path& path);
 void write_file(const std::filesystem::path& path, const std::string& content);
@@ -45,6 +48,10 @@ std::map<std::string, std::string> probe_video(const std::string& path);
 // The first frame as decoded by the ffmpeg CLI, packed RGB24. ffmpeg honours the stream's colour
 // tags when converting, as HD players do. Empty when ffmpeg fails.
 std::vector<std::uint8_t> decode_first_frame_rgb24(const std::string& path);
+
+// Every frame as decoded by the ffmpeg CLI, packed RGB24, one after the other (frame i starts
+// at i * 3 * width * height). Empty when ffmpeg fails.
+std::vector<std::uint8_t> decode_frames_rgb24(const std::string& path);
 
 // Types of the top-level boxes of an MP4/MOV file, in file order ("ftyp", "moov", "mdat", ...);
 // "<malformed>" ends the list where a box size makes no sense.

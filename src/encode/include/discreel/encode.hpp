@@ -2,23 +2,36 @@
 // Frames in, files out (libavformat/libavcodec/libswscale behind this header). A Sink writes to
 // a temporary file beside the target and renames it onto the target only in finish(): a sink
 // destroyed without a successful finish() deletes its temporary file, so the target path holds
-// either the complete new output or whatever was there before.
+// either the complete new output or whatever was there before. The exception is "-" (standard
+// output), which is a stream: bytes leave as they are encoded.
+#include <array>
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "discreel/expected.hpp"
 #include "discreel/image.hpp"
 
 namespace discreel::encode {
 
+using Rgb = std::array<std::uint8_t, 3>;
+
 struct SinkDef {
-    std::string path;              // output file; the extension picks the format (.mp4, .png)
-    int width = 1280;              // pixels, even for video
-    int height = 720;              // pixels, even for video
+    std::string path;              // output file; see describe_output for what picks the format
+    int width = 1280;              // pixels, even for yuv420p video
+    int height = 720;              // pixels, even for yuv420p video
     int fps = 60;                  // frames per second
-    int crf = 20;                  // H.264 constant rate factor, 0..51 (lower is better)
-    std::string preset = "veryfast";  // x264 preset
+    std::optional<int> crf;        // quality, lower is better; none: H.264 20 (0..51), VP9 32 (0..63)
+    std::string preset;            // x264 preset; empty: veryfast. H.264 only
     int threads = 2;               // encoder threads; pinned, because x264's bytes depend on it
+    std::string codec;             // "h264", "vp9", "ffv1"; empty: the format's default
+    std::string pixel_format;      // "yuv420p" or "yuv444p" (H.264, VP9); empty: yuv420p
+    bool lossless = false;         // FFV1 in Matroska, bit-exact RGB (.mkv and "-" only)
+    // Colours the frames are mostly made of (the scene's background, walls and discs). A GIF
+    // palette starts with them, so they come out exact; other formats ignore them.
+    std::vector<Rgb> key_colours;
 };
 
 class Sink {
@@ -28,10 +41,27 @@ public:
     virtual Status finish() = 0;                        // flush, close, rename into place
 };
 
-// Opens the sink that the extension of def.path names (case-insensitive): .mp4 is H.264 in
-// MP4 (yuv420p, BT.709 limited range, index first); .png is a still that takes exactly one
-// frame. Fails for unknown extensions, odd sizes for video, missing or unwritable directories,
-// bad encoder settings and encoders that cannot be opened. Errors name the path.
+// What an output path will be written as.
+struct OutputDescription {
+    std::string format;            // "mp4", "mkv", "webm", "gif", "png", "png sequence"
+    bool one_frame = false;        // a still: the sink takes exactly one frame
+    bool to_stdout = false;        // "-": Matroska streamed to standard output
+};
+
+// The format an output path names, from the file system's point of view of nothing: "-" is
+// Matroska on standard output; otherwise the extension, case-insensitive (.mp4, .mkv, .webm,
+// .gif, .png); a .png name holding one printf-style frame number (%d, %04d) is a sequence with
+// one file per frame, numbered from 0. The error lists the supported formats.
+Expected<OutputDescription> describe_output(const std::string& path);
+
+// Checks the encoder settings of `def` (codec, pixel format, crf, preset, lossless, threads)
+// against the format its path names, without touching the file system. The message names the
+// setting and says what is allowed; it does not quote the path.
+Status check_settings(const SinkDef& def);
+
+// Opens the sink for def.path (see describe_output). Fails for unknown formats, settings that
+// check_settings rejects (prefixed "cannot write '<path>': "), odd sizes for yuv420p video,
+// missing or unwritable directories and encoders that cannot be opened. Errors name the path.
 Expected<std::unique_ptr<Sink>> open_sink(const SinkDef& def);
 
 // PNG stills for goldens and single frames: decoded/encoded with libavcodec's PNG codec.
