@@ -9,7 +9,7 @@
 // pair would end up without contact forces, not where it starts: a constraint acts only if the
 // pair would actually overlap by then, so discs grazing past each other feel nothing (a
 // start-of-substep normal would push them apart and add energy). Existing overlap is not
-// resolved here (that would become velocity) but left to project_positions. The friction row
+// resolved here (that would become velocity) but left to PositionProjector. The friction row
 // constrains the end velocity of the contact points (stick), within +- friction * normal impulse.
 // The iterations only read and write velocities, so they run on a compact copy: one row per
 // contact with everything constant over the substep folded in (normal, masses, the part of the
@@ -50,7 +50,7 @@ void ContactSolver::solve(Substep& s, int iterations) {
         double target = n.dot(wa - wb) - (end.gap - allowed_overlap) * inv_h;
         // Never ask for more than a restitution bounce: the pair must not leave faster than
         // e times its approach speed (after gravity, forces only ever stop a pair). Overlap that
-        // this cannot prevent is removed by project_positions, without creating velocity.
+        // this cannot prevent is removed by PositionProjector, without creating velocity.
         const double approach = n.dot(a.v_begin - b.v_begin);
         const double leave = std::max(0.0, -c.restitution * approach);
         const double capped = 0.5 * (approach + leave) + n.dot(a.shift - b.shift) * inv_h;
@@ -89,27 +89,30 @@ void ContactSolver::solve(Substep& s, int iterations) {
         a.omega -= r.spin_a * r.tangent_impulse;
         b.omega -= r.spin_b * r.tangent_impulse;
     }
+    // Both rows of a contact are solved from the same velocities: a normal impulse passes
+    // through the centres along n, so it leaves the tangential relative velocity unchanged and
+    // the friction row need not wait for it. One update per body per contact, and a dependency
+    // chain half as long as solving the rows one after the other.
     for (int it = 0; it < iterations; ++it) {
         for (Row& r : rows_) {
             Velocity& a = velocities_[r.a];
             Velocity& b = velocities_[r.b];
             const V2& n = r.normal;
-            const double dn = (r.bias - n.dot(a.v - b.v)) * r.normal_mass;
-            const double jn = std::max(r.normal_impulse + dn, 0.0);
-            const V2 pn = n * (jn - r.normal_impulse);
-            a.v += pn * r.inv_mass_a;
-            b.v -= pn * r.inv_mass_b;
-            r.normal_impulse = jn;
-
             const V2 t = perp(n);
-            const double vt = t.dot(a.v - b.v) - r.radius_a * a.omega - r.radius_b * b.omega;
+            const V2 dv = a.v - b.v;
+            const double vn = n.dot(dv);
+            const double vt = t.dot(dv) - r.radius_a * a.omega - r.radius_b * b.omega;
+            const double jn = std::max(r.normal_impulse + (r.bias - vn) * r.normal_mass, 0.0);
             const double limit = r.friction * jn;
             const double jt = std::clamp(r.tangent_impulse - vt * r.tangent_mass, -limit, limit);
+            const double dn = jn - r.normal_impulse;
             const double dt = jt - r.tangent_impulse;
-            a.v += t * (dt * r.inv_mass_a);
-            b.v -= t * (dt * r.inv_mass_b);
+            const V2 p = n * dn + t * dt;
+            a.v += p * r.inv_mass_a;
+            b.v -= p * r.inv_mass_b;
             a.omega -= r.spin_a * dt;
             b.omega -= r.spin_b * dt;
+            r.normal_impulse = jn;
             r.tangent_impulse = jt;
         }
     }
@@ -130,30 +133,6 @@ void ContactSolver::solve(Substep& s, int iterations) {
         b.omega = velocities_[i].omega;
         b.x += (b.v_begin + b.v) * (0.5 * s.h) + b.shift;
         b.angle += (b.omega_begin + b.omega) * (0.5 * s.h) + b.turn;
-    }
-}
-
-void project_positions(Substep& s, int iterations) {
-    for (int it = 0; it < iterations; ++it) {
-        for (const std::uint32_t index : s.active) {
-            const Contact& c = s.contacts[index];
-            Body& a = s.bodies[c.a];
-            Body& b = s.bodies[c.b];
-            const double k = normal_mass_inverse(a, b);
-            if (k == 0.0) continue;
-            const Feature* f = s.feature_of(c);
-            // A sliver of overlap is left alone, so touching pairs are not nudged every substep.
-            const double slop = 1e-4 * std::min(a.radius, f ? a.radius : b.radius);
-            if (!f && certainly_farther((a.x - b.x).squaredNorm(), a.radius + b.radius, -slop)) {
-                continue;
-            }
-            const Proximity p = f ? disc_feature(a.x, a.radius, *f)
-                                  : disc_disc(a.x, a.radius, b.x, b.radius);
-            if (p.gap >= -slop) continue;
-            const double push = 0.8 * (-p.gap - slop) / k;
-            a.x += p.normal * (push * a.inv_mass);
-            b.x -= p.normal * (push * b.inv_mass);
-        }
     }
 }
 

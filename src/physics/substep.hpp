@@ -58,6 +58,13 @@ private:
         int pass = -1;             // the sweep it was computed in; -1: never
         std::optional<Impact> hit;
     };
+    void list_contacts_of_bodies(const Substep& s);
+    // The approach speed below which contact c is left to the resting stage in this substep.
+    double slowest_impact(const Substep& s, const Contact& c, double slow) const;
+    // The impact of contact c in this substep, if it approaches faster than slowest_impact.
+    std::optional<Impact> find_impact(const Substep& s, const Contact& c, double slow) const;
+
+    std::vector<double> settle_speed_;             // m/s per disc, see impacts.cpp
     std::vector<FoundImpact> found_;               // per active contact
     std::vector<int> queued_;                      // per active contact: last sweep listing it
     std::vector<std::uint32_t> contacts_of_start_;  // per body, into contacts_of_
@@ -101,7 +108,15 @@ private:
 };
 
 // Stage 3: overlap left by unconverged iterations is removed by moving positions only, so it
-// never turns into velocity (and kinetic energy).
-void project_positions(Substep& s, int iterations);
+// never turns into velocity (and kinetic energy). A class only to keep its scratch array.
+class PositionProjector {
+public:
+    void project(Substep& s, int iterations);
+
+private:
+    // Moves a and b of contact c apart by most of their overlap; false if they hardly overlap.
+    static bool push_apart(Substep& s, const Contact& c);
+    std::vector<std::uint32_t> overlapping_;  // contacts pushed by the first sweep
+};
 
 }  // namespace discreel::physics::detail

@@ -88,6 +88,7 @@ struct World::Impl {
     detail::BroadPhase broad_phase;
     detail::ImpactResolver impact_resolver;
     detail::ContactSolver contact_solver;
+    detail::PositionProjector projector;
     detail::Throws throws;
     std::vector<DiscState> states;
     std::vector<ContactEvent> events;
@@ -160,7 +161,7 @@ void World::Impl::substep(double h) {
         b.omega_begin = b.omega;
     }
     contact_solver.solve(s, contact_iterations);
-    detail::project_positions(s, projection_iterations);
+    projector.project(s, projection_iterations);
 }
 
 void World::Impl::collect_events(double t) {
