@@ -6,6 +6,7 @@ layout(location = 0) in vec2 i_a;
 layout(location = 1) in vec2 i_b;
 layout(location = 2) in float i_radius;
 layout(location = 3) in vec4 i_color;
+layout(location = 4) in uint i_flags;
 
 uniform vec2 u_pixels_to_ndc;   // (2/width, -2/height): the y flip puts the image top in GL row 0
 
@@ -13,6 +14,7 @@ out vec2 v_local;               // this fragment relative to end a, pixels, y up
 flat out vec2 v_ab;             // b - a, pixels
 flat out float v_radius;        // pixels
 flat out vec4 v_color;
+flat out uint v_flags;
 
 const float kQuadMargin = 1.0;
 const float kMinRadius = 0.5;   // hairline walls stay one pixel wide
@@ -28,5 +30,6 @@ void main() {
     float side = float(gl_VertexID >> 1) * 2.0 - 1.0;
     v_local = along * (t * len + (t * 2.0 - 1.0) * pad) + across * (side * pad);
     v_color = i_color;
+    v_flags = i_flags;
     gl_Position = vec4((i_a + v_local) * u_pixels_to_ndc, 0.0, 1.0);
 }

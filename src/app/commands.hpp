@@ -26,6 +26,10 @@ struct RenderOptions {
     std::string pixel_format;                // empty: yuv420p
     bool lossless = false;                   // FFV1 in Matroska
     OutputFiles files;
+    bool sequential = false;                 // every stage on one thread: same bytes, slower
+    bool progress = false;                   // progress lines even when stderr is no terminal
+    bool quiet = false;                      // errors only: no progress, no summary
+    bool verbose = false;                    // settings, stage timings and peak memory too
 };
 
 struct SimulateOptions {

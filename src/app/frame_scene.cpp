@@ -1,7 +1,11 @@
 #include "frame_scene.hpp"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
 #include <limits>
+#include <string>
 
 namespace discreel::app {
 namespace {
@@ -38,6 +42,36 @@ void add_box_capsules(const scene::Wall& w, std::vector<render::CapsuleGeom>& ou
     out.push_back({f(x0), f(y1), f(x0), f(y0), f(r), color});
 }
 
+// The trail is drawn in the disc's colour, this far toward it from the background at its
+// newest end, so that trails never compete with the discs themselves.
+constexpr float kTrailStrength = 0.65f;
+// With fading, the oldest end thins to this fraction of the trail's width.
+constexpr float kTrailThinnest = 0.3f;
+
+render::Rgba toward(const render::Rgba& from, const render::Rgba& to, float amount) {
+    const float k = amount * to.a;
+    return {from.r + (to.r - from.r) * k, from.g + (to.g - from.g) * k,
+            from.b + (to.b - from.b) * k, 1.0f};
+}
+
+render::Corner to_render(scene::Corner c) {
+    switch (c) {
+        case scene::Corner::top_left: return render::Corner::top_left;
+        case scene::Corner::top_right: return render::Corner::top_right;
+        case scene::Corner::bottom_left: return render::Corner::bottom_left;
+        case scene::Corner::bottom_right: return render::Corner::bottom_right;
+    }
+    return render::Corner::top_left;
+}
+
+// "t = 1.25 s": fixed two decimals, independent of the C locale.
+std::string time_text(double seconds) {
+    std::array<char, 32> digits{};
+    const auto end = std::to_chars(digits.data(), digits.data() + digits.size(), seconds,
+                                   std::chars_format::fixed, 2).ptr;
+    return "t = " + std::string(digits.data(), end) + " s";
+}
+
 }  // namespace
 
 render::Camera fit_camera(const scene::Scene& scene) {
@@ -70,7 +104,10 @@ render::Camera fit_camera(const scene::Scene& scene) {
 
 FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) {
     frame_.background = to_rgba(scene.video.background);
-    frame_.camera = fit_camera(scene);
+    fitted_camera_ = fit_camera(scene);
+    frame_.camera = fitted_camera_;
+    frame_.disc_outlines = scene.style.outline;
+    frame_.spin_markers = scene.style.spin_marker;
     for (const scene::Wall& w : scene.walls) {
         if (w.shape == scene::Wall::Shape::box) {
             add_box_capsules(w, frame_.capsules);
@@ -87,15 +124,122 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
         frame_.discs[i].fill = to_rgba(d.color);
         frame_.discs[i].is_static = d.is_static;
     }
+
+    const scene::Trails& trails = scene.style.trails;
+    if (trails.enabled) {
+        for (std::size_t i = 0; i < scene.discs.size(); ++i)
+            if (!scene.discs[i].is_static) trailed_.push_back(i);
+    }
+    if (!trailed_.empty()) {
+        const auto wanted =
+            static_cast<std::size_t>(std::ceil(trails.length * scene.video.fps)) + 1;
+        const std::size_t affordable = max_trail_points / trailed_.size();
+        trail_capacity_ = std::max<std::size_t>(2, std::min(wanted, affordable));
+        trail_points_.resize(trail_capacity_ * trailed_.size());
+    }
 }
 
-const render::FrameScene& FrameSceneBuilder::build(std::span<const physics::DiscState> discs) {
+void FrameSceneBuilder::observe(int frame, std::span<const physics::DiscState> discs) {
+    if (const auto follow = scene_.camera.follow; follow && *follow < discs.size()) {
+        const Vec2 target = discs[*follow].position;
+        const double lag = scene_.camera.follow_lag;
+        if (last_frame_ < 0 || lag <= 0) {
+            follow_center_ = target;
+        } else {
+            // Exponential smoothing in simulation time: after dt the camera has closed the
+            // fraction 1 - exp(-dt / lag) of its distance to the disc, whatever the frame rate.
+            const double dt = static_cast<double>(frame - last_frame_) / scene_.video.fps;
+            const double closed = 1.0 - std::exp(-dt / lag);
+            follow_center_.x += (target.x - follow_center_.x) * closed;
+            follow_center_.y += (target.y - follow_center_.y) * closed;
+        }
+    }
+    if (!trailed_.empty()) {
+        trail_newest_ = trail_rows_filled_ == 0 ? 0 : (trail_newest_ + 1) % trail_capacity_;
+        trail_rows_filled_ = std::min(trail_rows_filled_ + 1, trail_capacity_);
+        Point* row = &trail_points_[trail_newest_ * trailed_.size()];
+        for (std::size_t j = 0; j < trailed_.size(); ++j) {
+            const Vec2 p = discs[trailed_[j]].position;
+            row[j] = {static_cast<float>(p.x), static_cast<float>(p.y)};
+        }
+    }
+    last_frame_ = frame;
+}
+
+const render::FrameScene& FrameSceneBuilder::build(int frame,
+                                                   std::span<const physics::DiscState> discs) {
+    observe(frame, discs);
     for (std::size_t i = 0; i < discs.size(); ++i) {
         frame_.discs[i].x = static_cast<float>(discs[i].position.x);
         frame_.discs[i].y = static_cast<float>(discs[i].position.y);
         frame_.discs[i].angle = static_cast<float>(discs[i].angle);
     }
+    if (scene_.camera.follow) {
+        frame_.camera.center_x = follow_center_.x;
+        frame_.camera.center_y = follow_center_.y;
+    }
+    add_trails();
+    add_arrows(discs);
+    add_clock(frame);
     return frame_;
+}
+
+void FrameSceneBuilder::add_trails() {
+    frame_.trails.clear();
+    if (trail_rows_filled_ < 2) return;
+    const scene::Trails& style = scene_.style.trails;
+    const std::size_t n = trailed_.size();
+    const std::size_t segments = trail_rows_filled_ - 1;
+    const float oldest_age = static_cast<float>(trail_capacity_ - 1);
+    for (std::size_t j = 0; j < n; ++j) {
+        const render::DiscGeom& disc = frame_.discs[trailed_[j]];
+        const float full_radius = static_cast<float>(style.width) * disc.radius;
+        // Oldest first, so newer stretches lie on top where a trail crosses itself.
+        for (std::size_t k = segments; k-- > 0;) {
+            const std::size_t newer = (trail_newest_ + trail_capacity_ - k) % trail_capacity_;
+            const std::size_t older = (newer + trail_capacity_ - 1) % trail_capacity_;
+            const Point a = trail_points_[older * n + j];
+            const Point b = trail_points_[newer * n + j];
+            if (a == b) continue;
+            // The colour is mixed with the background here, not blended in GL: neighbouring
+            // segments overlap at their round caps, and opaque colours keep the joints even.
+            const float age = (static_cast<float>(k) + 0.5f) / oldest_age;   // 0 new .. 1 old
+            const float fresh = style.fade ? 1.0f - age : 1.0f;
+            const float radius =
+                full_radius * (style.fade ? kTrailThinnest + (1 - kTrailThinnest) * fresh : 1.0f);
+            frame_.trails.push_back({a.x, a.y, b.x, b.y, radius,
+                                     toward(frame_.background, disc.fill, kTrailStrength * fresh)});
+        }
+    }
+}
+
+void FrameSceneBuilder::add_arrows(std::span<const physics::DiscState> discs) {
+    frame_.arrows.clear();
+    const scene::VelocityArrows& style = scene_.style.velocity_arrows;
+    if (!style.enabled) return;
+    for (std::size_t i = 0; i < discs.size(); ++i) {
+        if (scene_.discs[i].is_static) continue;
+        const Vec2 tail = discs[i].position;
+        const Vec2 v = discs[i].velocity;
+        frame_.arrows.push_back({static_cast<float>(tail.x), static_cast<float>(tail.y),
+                                 static_cast<float>(tail.x + v.x * style.scale),
+                                 static_cast<float>(tail.y + v.y * style.scale),
+                                 static_cast<float>(style.width), to_rgba(style.color)});
+    }
+}
+
+void FrameSceneBuilder::add_clock(int frame) {
+    frame_.texts.clear();
+    const scene::Clock& style = scene_.style.clock;
+    if (!style.enabled) return;
+    const std::string frame_text = "frame " + std::to_string(frame);
+    const std::string time = time_text(static_cast<double>(frame) / scene_.video.fps);
+    std::string text = style.format == scene::ClockFormat::time    ? time
+                       : style.format == scene::ClockFormat::frame ? frame_text
+                                                                   : time + "  " + frame_text;
+    // 7 dots tall: 7 pixels at 180 rows, 28 at 720, 42 at 1080.
+    const int dot = std::max(1, scene_.video.height / 180);
+    frame_.texts.push_back({std::move(text), to_render(style.corner), dot, to_rgba(style.color)});
 }
 
 }  // namespace discreel::app

@@ -1,7 +1,10 @@
 #pragma once
-// Turns the scene's look (colours, walls, camera) plus the current physics state into the plain
-// frame description the renderer draws.
+// Turns the scene's look (colours, walls, camera, style) plus the current physics state into
+// the plain frame description the renderer draws. Trails and the follow camera need the past:
+// the builder remembers what it was shown, frame by frame.
+#include <cstddef>
 #include <span>
+#include <vector>
 
 #include "discreel/physics.hpp"
 #include "discreel/render.hpp"
@@ -13,16 +16,46 @@ namespace discreel::app {
 // are no walls) with a 5 % margin on every side, widened to the frame's aspect ratio.
 render::Camera fit_camera(const scene::Scene& scene);
 
+// Trails keep at most this many points over all discs (8 bytes each): with very many discs
+// the trails get shorter rather than the memory larger.
+inline constexpr std::size_t max_trail_points = 4'000'000;
+
 class FrameSceneBuilder {
 public:
     explicit FrameSceneBuilder(const scene::Scene& scene);
 
-    // The returned reference stays valid until the next call.
-    const render::FrameScene& build(std::span<const physics::DiscState> discs);
+    // Frames must be shown in order, each once, starting at 0; a frame that is not drawn is
+    // still observed, so that trails and the follow camera see it. Frame n is at t = n / fps.
+    void observe(int frame, std::span<const physics::DiscState> discs);
+
+    // observe() and the frame description of that state. The returned reference stays valid
+    // until the next call.
+    const render::FrameScene& build(int frame, std::span<const physics::DiscState> discs);
 
 private:
+    void add_trails();
+    void add_arrows(std::span<const physics::DiscState> discs);
+    void add_clock(int frame);
+
     const scene::Scene& scene_;
     render::FrameScene frame_;
+    render::Camera fitted_camera_;
+
+    // Follow camera: the smoothed centre, metres, and the frame it was last moved for.
+    Vec2 follow_center_;
+    int last_frame_ = -1;
+
+    // Trail history: a ring of the last `trail_capacity_` positions of every moving disc.
+    // Row k holds one frame's positions of all trailed discs.
+    struct Point {
+        float x, y;
+        friend bool operator==(const Point&, const Point&) = default;
+    };
+    std::vector<std::size_t> trailed_;   // indices of the discs that get trails
+    std::vector<Point> trail_points_;    // trail_capacity_ rows of trailed_.size() points
+    std::size_t trail_capacity_ = 0;     // rows
+    std::size_t trail_newest_ = 0;       // row of the latest frame
+    std::size_t trail_rows_filled_ = 0;
 };
 
 }  // namespace discreel::app

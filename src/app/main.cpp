@@ -7,7 +7,9 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "golden_command.hpp"
 #include "run_support.hpp"
+#include "signals.hpp"
 
 namespace {
 
@@ -94,6 +96,17 @@ int main(int argc, char** argv) {
     render_cmd->add_flag("--lossless", render.lossless,
                          "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);
+    render_cmd->add_flag("--progress", render.progress,
+                         "Report progress on standard error even when it is not a terminal "
+                         "(one line per second)");
+    render_cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
+    render_cmd->add_flag("-v,--verbose", render.verbose,
+                         "Also print the settings, the renderer, time per stage and peak memory");
+    render_cmd->add_flag("--sequential", render.sequential,
+                         "Simulate, render and encode one frame at a time on one thread "
+                         "(same output, slower)");
+    render_cmd->get_option("--quiet")->excludes("--verbose");
+    render_cmd->get_option("--quiet")->excludes("--progress");
 
     SimulateOptions simulate;
     CLI::App* simulate_cmd =
@@ -106,6 +119,31 @@ int main(int argc, char** argv) {
     CLI::App* validate_cmd = app.add_subcommand(
         "validate", "Check scene files and print every problem; exit 2 if any");
     validate_cmd->add_option("scenes", validate_paths, "Scene files (YAML)")->required();
+
+    GoldenOptions golden;
+    CLI::App* golden_cmd = app.add_subcommand(
+        "golden", "Render each scene's golden frames and compare them with DIR/<scene>/frame_<n>.png");
+    golden_cmd->add_option("scenes", golden.scene_paths, "Scene files (YAML)")->required();
+    golden_cmd->add_option("--dir", golden.dir, "Directory of the goldens, one folder per scene")
+        ->required();
+    golden_cmd->add_flag("--update", golden.update, "Write (or refresh) the goldens instead");
+    golden_cmd->add_option("--tolerance", golden.tolerance,
+                           "Perceptual colour distance still counted as equal, 0..1 (default 0.1)");
+    golden_cmd->add_option("--max-diff-pixels", golden.max_diff_pixels,
+                           "Differing pixels allowed per frame (default 0)");
+    golden_cmd->add_option("--max-diff-ratio", golden.max_diff_ratio,
+                           "Differing pixels allowed per frame, as a fraction of all, 0..1");
+    golden_cmd->add_option("--junit", golden.junit, "Also write a JUnit XML report to FILE")
+        ->option_text("FILE");
+    golden_cmd->add_option_function<std::string>(
+                  "--size",
+                  [&](const std::string& s) {
+                      if (auto problem = parse_size(s, golden.video); !problem.empty()) {
+                          throw CLI::ValidationError("--size", problem);
+                      }
+                  },
+                  "Override every scene's frame size, WIDTHxHEIGHT")
+        ->option_text("WxH");
 
     try {
         app.parse(argc, argv);
@@ -120,8 +158,12 @@ int main(int argc, char** argv) {
         return exit_bad_input;
     }
 
-    if (render_cmd->parsed()) return run_render(render, std::cout, std::cerr);
+    if (render_cmd->parsed()) {
+        install_stop_handlers();
+        return run_render(render, std::cout, std::cerr);
+    }
     if (simulate_cmd->parsed()) return run_simulate(simulate, std::cout, std::cerr);
     if (validate_cmd->parsed()) return run_validate(validate_paths);
+    if (golden_cmd->parsed()) return run_golden(golden, std::cout, std::cerr);
     return exit_bad_input;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 #include <memory>
+#include <sstream>
 
 #include "build_world.hpp"
 #include "commands.hpp"
@@ -12,6 +13,9 @@
 #include "exit_codes.hpp"
 #include "frame_scene.hpp"
 #include "run_support.hpp"
+#include "pipeline.hpp"
+#include "progress.hpp"
+#include "signals.hpp"
 #include "stepper.hpp"
 
 namespace discreel::app {
@@ -70,10 +74,46 @@ std::vector<encode::Rgb> scene_colours(const scene::Scene& scene) {
     return colours;
 }
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string describe_encoder(const encode::SinkDef& def) {
+    std::ostringstream text;
+    text << "codec " << (def.codec.empty() ? "default" : def.codec) << ", crf ";
+    if (def.crf) {
+        text << *def.crf;
+    } else {
+        text << "default";
+    }
+    text << ", preset " << (def.preset.empty() ? "veryfast" : def.preset) << ", "
+         << def.threads << " encoder threads";
+    return text.str();
+}
+
+// --verbose: where the time went and how much memory the process needed at most.
+void report_details(const PipelineResult& run, int frames, std::ostream& err) {
+    const auto per_frame = [&](double seconds) {
+        std::ostringstream text;
+        text << std::fixed << std::setprecision(2) << seconds << " s ("
+             << (frames > 0 ? 1000.0 * seconds / frames : 0.0) << " ms/frame)";
+        return text.str();
+    };
+    err << "discreel: renderer: " << run.renderer_info << '\n';
+    err << "discreel: busy: simulate " << per_frame(run.busy.simulate) << ", render "
+        << per_frame(run.busy.render) << ", encode " << per_frame(run.busy.encode) << '\n';
+    if (const auto peak = peak_resident_bytes()) {
+        err << "discreel: peak memory: " << std::fixed << std::setprecision(1)
+            << static_cast<double>(*peak) / (1024.0 * 1024.0) << " MiB (VmHWM)\n";
+    }
+}
+
 }  // namespace
 
 int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
-    const auto started = std::chrono::steady_clock::now();
+    const auto started = Clock::now();
     scene::LoadResult loaded = load_scene_or_demo(o.scene_path);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
@@ -114,37 +154,60 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
 
     auto outputs = SideOutputs::open(o.files, scene, err);
     if (!outputs) return exit_runtime_failure;
-
-    auto renderer = render::Renderer::create({.width = scene.video.width,
-                                              .height = scene.video.height});
-    if (!renderer) {
-        err << "discreel: " << renderer.error().message << '\n';
-        return exit_runtime_failure;
-    }
     auto sink = encode::open_sink(sink_def);
     if (!sink) {
         err << "discreel: " << sink.error().message << '\n';
         return exit_runtime_failure;
     }
 
+    const int to_write = frames->last - frames->first + 1;
+    if (o.verbose) {
+        err << "discreel: " << scene.video.width << 'x' << scene.video.height << ", "
+            << scene.video.fps << " fps, frames " << frames->first << ".." << frames->last
+            << ", " << scene.discs.size() << " discs; " << output->format << ", "
+            << describe_encoder(sink_def) << "; "
+            << (o.sequential ? "one thread" : "simulate, render and encode threads") << '\n';
+    }
+
     const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
     physics::World world(build_world(scene));
     FrameStepper stepper(world, timeline);
     FrameSceneBuilder frame_builder(scene);
-    for (int frame = 0; frame <= frames->last; ++frame) {
-        stepper.advance_to(frame);
-        outputs->record(frame, timeline.time_of_frame(frame), world.discs(),
-                        stepper.take_events());
-        if (frame < frames->first) continue;
-        auto image = renderer->draw(frame_builder.build(world.discs()));
-        if (!image) {
-            err << "discreel: " << image.error().message << '\n';
-            return exit_runtime_failure;
-        }
-        if (Status written = (*sink)->write(*image); !written) {
-            err << "discreel: " << written.error().message << '\n';
-            return exit_runtime_failure;
-        }
+    ProgressMeter progress(err,
+                           pick_progress_style(o.quiet, o.progress, isatty(STDERR_FILENO) == 1),
+                           to_write);
+    const PipelineStages stages{
+        .simulate = [&](int frame) -> const render::FrameScene* {
+            stepper.advance_to(frame);
+            outputs->record(frame, timeline.time_of_frame(frame), world.discs(),
+                            stepper.take_events());
+            if (frame < frames->first) {
+                frame_builder.observe(frame, world.discs());   // trails and follow camera
+                return nullptr;
+            }
+            return &frame_builder.build(frame, world.discs());
+        },
+        .encode = [&](const ImageView& image) { return (*sink)->write(image); },
+        .encoded = [&](int done) { progress.update(done, seconds_since(started)); },
+        .should_stop = [] { return stop_signal() != 0; },
+    };
+    const PipelineResult run = run_pipeline(
+        {.frame_count = frames->last + 1,
+         .renderer = {.width = scene.video.width, .height = scene.video.height},
+         .threaded = !o.sequential},
+        stages);
+    progress.finish();
+    if (!run.status) {
+        err << "discreel: " << run.status.error().message << '\n';
+        return exit_runtime_failure;
+    }
+    // A signal during the last frames may arrive after the simulate stage stopped polling.
+    if (run.stopped || stop_signal() != 0) {
+        err << "discreel: interrupted; "
+            << (output->to_stdout ? "the stream on standard output ends early"
+                                  : "nothing was written")
+            << '\n';
+        return exit_interrupted_base + stop_signal();
     }
     if (Status done = (*sink)->finish(); !done) {
         err << "discreel: " << done.error().message << '\n';
@@ -155,10 +218,10 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         return exit_runtime_failure;
     }
 
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    const int written = frames->last - frames->first + 1;
-    summary << "wrote " << o.output << ": " << written << (written == 1 ? " frame" : " frames")
+    const double seconds = seconds_since(started);
+    if (o.verbose) report_details(run, to_write, err);
+    if (o.quiet) return exit_ok;
+    summary << "wrote " << o.output << ": " << to_write << (to_write == 1 ? " frame" : " frames")
         << ", " << scene.video.width << 'x' << scene.video.height;
     if (!still) {
         summary << ", " << std::fixed << std::setprecision(2) << scene.video.duration << " s at "
@@ -167,7 +230,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         summary << ", frame " << frames->first;
     }
     summary << std::fixed << std::setprecision(1) << " (" << seconds << " s, "
-        << (seconds > 0 ? written / seconds : 0.0) << " frames/s)\n";
+        << (seconds > 0 ? to_write / seconds : 0.0) << " frames/s)\n";
     return exit_ok;
 }
 

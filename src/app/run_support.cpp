@@ -1,6 +1,18 @@
 #include "run_support.hpp"
 
+#include <fstream>
+#include <string>
+
 namespace discreel::app {
+
+std::optional<std::int64_t> peak_resident_bytes() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind("VmHWM:", 0) == 0) return std::stoll(line.substr(6)) * 1024;   // kB
+    }
+    return std::nullopt;
+}
 
 bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err) {
     for (const scene::Diagnostic& d : loaded.diagnostics) err << d.to_string() << '\n';

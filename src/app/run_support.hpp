@@ -1,6 +1,7 @@
 #pragma once
 // Pieces `render` and `simulate` share: printing scene diagnostics, and the optional trace and
 // events files that both can write alongside their main work.
+#include <cstdint>
 #include <optional>
 #include <ostream>
 #include <span>
@@ -12,6 +13,10 @@
 #include "trace.hpp"
 
 namespace discreel::app {
+
+// The most resident memory this process has used so far (VmHWM), in bytes; nullopt where
+// /proc does not say.
+std::optional<std::int64_t> peak_resident_bytes();
 
 // Prints every diagnostic as `file:line:column: message`; returns whether the scene loaded.
 bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err);

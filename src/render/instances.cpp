@@ -1,5 +1,8 @@
 #include "instances.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace discreel::render {
 namespace {
 
@@ -11,11 +14,15 @@ struct ToPixels {
     float length(double metres) const { return static_cast<float>(metres * scale); }
 };
 
+constexpr float kBarbAngle = 0.5f;   // radians between shaft and barb, about 29 degrees
+
 }  // namespace
 
 void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
                          std::vector<DiscInstance>& out) {
     const ToPixels to_px{frame.camera, pixels_per_metre};
+    const std::uint32_t style_flags = (frame.disc_outlines ? 0u : kDiscNoOutline) |
+                                      (frame.spin_markers ? 0u : kDiscNoSpinMarker);
     out.clear();
     for (const DiscGeom& d : frame.discs) {
         out.push_back({
@@ -23,7 +30,7 @@ void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
             .radius = to_px.length(d.radius),
             .angle = d.angle,
             .color = {d.fill.r, d.fill.g, d.fill.b, d.fill.a},
-            .flags = d.is_static ? kDiscStatic : 0u,
+            .flags = (d.is_static ? kDiscStatic : 0u) | style_flags,
         });
     }
 }
@@ -38,7 +45,53 @@ void make_capsule_instances(const FrameScene& frame, double pixels_per_metre,
             .b = {to_px.x(c.bx), to_px.y(c.by)},
             .radius = to_px.length(c.radius),
             .color = {c.color.r, c.color.g, c.color.b, c.color.a},
+            .flags = 0,
         });
+    }
+}
+
+void make_trail_instances(const FrameScene& frame, double pixels_per_metre,
+                          std::vector<CapsuleInstance>& out) {
+    const ToPixels to_px{frame.camera, pixels_per_metre};
+    out.clear();
+    for (const LineGeom& l : frame.trails) {
+        out.push_back({
+            .a = {to_px.x(l.ax), to_px.y(l.ay)},
+            .b = {to_px.x(l.bx), to_px.y(l.by)},
+            .radius = to_px.length(l.radius),
+            .color = {l.color.r, l.color.g, l.color.b, l.color.a},
+            .flags = kCapsuleFlat,
+        });
+    }
+}
+
+void make_arrow_instances(const FrameScene& frame, double pixels_per_metre,
+                          std::vector<CapsuleInstance>& out) {
+    const ToPixels to_px{frame.camera, pixels_per_metre};
+    out.clear();
+    for (const ArrowGeom& a : frame.arrows) {
+        const float tx = to_px.x(a.tail_x), ty = to_px.y(a.tail_y);
+        const float hx = to_px.x(a.head_x), hy = to_px.y(a.head_y);
+        const float dx = hx - tx, dy = hy - ty;
+        const float length = std::hypot(dx, dy);
+        // Shorter than a pixel there is no direction worth showing.
+        if (!(length >= 1.0f)) continue;
+        const float ux = dx / length, uy = dy / length;
+        // The head grows with the line width but never past 40 % of the arrow, so short arrows
+        // stay arrows rather than chevrons.
+        const float barb = std::min(3.0f * a.width + 4.0f, 0.4f * length);
+        const float c = std::cos(kBarbAngle), s = std::sin(kBarbAngle);
+        const float radius = a.width / 2;
+        const float color[4] = {a.color.r, a.color.g, a.color.b, a.color.a};
+        const auto line = [&](float x0, float y0, float x1, float y1) {
+            out.push_back({.a = {x0, y0}, .b = {x1, y1}, .radius = radius,
+                           .color = {color[0], color[1], color[2], color[3]},
+                           .flags = kCapsuleFlat});
+        };
+        line(tx, ty, hx, hy);
+        // The barbs point back from the head, turned by +-kBarbAngle from the shaft.
+        line(hx, hy, hx - barb * (c * ux - s * uy), hy - barb * (s * ux + c * uy));
+        line(hx, hy, hx - barb * (c * ux + s * uy), hy - barb * (-s * ux + c * uy));
     }
 }
 

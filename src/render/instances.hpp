@@ -16,19 +16,29 @@ struct DiscInstance {
     float color[4];
     std::uint32_t flags;
 };
-inline constexpr std::uint32_t kDiscStatic = 1;   // matches kStatic in disc.frag
+// Match the constants of the same names in disc.frag.
+inline constexpr std::uint32_t kDiscStatic = 1;
+inline constexpr std::uint32_t kDiscNoOutline = 2;
+inline constexpr std::uint32_t kDiscNoSpinMarker = 4;
 
 struct CapsuleInstance {
     float a[2];        // pixels
     float b[2];        // pixels
     float radius;      // pixels
     float color[4];
+    std::uint32_t flags;
 };
+inline constexpr std::uint32_t kCapsuleFlat = 1;   // matches kFlat in capsule.frag: no rim
 
 // Replaces the contents of `out` (its capacity is reused from frame to frame).
 void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
                          std::vector<DiscInstance>& out);
 void make_capsule_instances(const FrameScene& frame, double pixels_per_metre,
                             std::vector<CapsuleInstance>& out);
+void make_trail_instances(const FrameScene& frame, double pixels_per_metre,
+                          std::vector<CapsuleInstance>& out);
+// Each arrow becomes three flat capsules: the shaft and two barbs.
+void make_arrow_instances(const FrameScene& frame, double pixels_per_metre,
+                          std::vector<CapsuleInstance>& out);
 
 }  // namespace discreel::render

@@ -2,6 +2,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "offscreen_target.hpp"
 #include "osmesa_context.hpp"
 #include "shader_program.hpp"
+#include "text_instances.hpp"
 
 namespace discreel::render {
 namespace {
@@ -50,12 +52,23 @@ struct Renderer::Impl {
     std::optional<OffscreenTarget> target;
     GlProgram disc_program;
     GlProgram capsule_program;
+    GlProgram glyph_program;
     std::optional<InstanceStream> disc_stream;
     std::optional<InstanceStream> capsule_stream;
+    std::optional<InstanceStream> glyph_stream;
 
     std::vector<DiscInstance> disc_instances;        // reused from frame to frame
     std::vector<CapsuleInstance> capsule_instances;
-    std::vector<std::uint8_t> pixels;                // the last frame, top row first
+    std::vector<CapsuleInstance> trail_instances;
+    std::vector<CapsuleInstance> arrow_instances;
+    std::vector<GlyphInstance> glyph_instances;
+    // The last frame of draw(), top row first; sized on first use, so callers of draw_into()
+    // do not pay a frame of memory for it.
+    std::vector<std::uint8_t> pixels;
+
+    std::size_t frame_bytes() const {
+        return std::size_t{4} * static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    }
 
     explicit Impl(OsmesaContext c) : context(std::move(c)) {}
     ~Impl() { (void)context.make_current(); }
@@ -63,7 +76,7 @@ struct Renderer::Impl {
     Impl& operator=(const Impl&) = delete;
 
     Status init(const RendererDef& def);
-    Expected<ImageView> draw(const FrameScene& frame);
+    Expected<ImageView> draw(const FrameScene& frame, std::span<std::uint8_t> out);
 };
 
 Status Renderer::Impl::init(const RendererDef& def) {
@@ -91,8 +104,12 @@ Status Renderer::Impl::init(const RendererDef& def) {
     auto capsules = build_program(discreel_shaders::capsule_vert, discreel_shaders::capsule_frag);
     if (!capsules) return Error{"capsule shaders: " + capsules.error().message};
     capsule_program = std::move(capsules.value());
+    auto glyphs = build_program(discreel_shaders::glyph_vert, discreel_shaders::glyph_frag);
+    if (!glyphs) return Error{"glyph shaders: " + glyphs.error().message};
+    glyph_program = std::move(glyphs.value());
     set_pixels_to_ndc(disc_program, width, height);
     set_pixels_to_ndc(capsule_program, width, height);
+    set_pixels_to_ndc(glyph_program, width, height);
 
     disc_stream = InstanceStream::create(
         sizeof(DiscInstance), {{0, 2, GL_FLOAT, offsetof(DiscInstance, center)},
@@ -104,7 +121,13 @@ Status Renderer::Impl::init(const RendererDef& def) {
         sizeof(CapsuleInstance), {{0, 2, GL_FLOAT, offsetof(CapsuleInstance, a)},
                                   {1, 2, GL_FLOAT, offsetof(CapsuleInstance, b)},
                                   {2, 1, GL_FLOAT, offsetof(CapsuleInstance, radius)},
-                                  {3, 4, GL_FLOAT, offsetof(CapsuleInstance, color)}});
+                                  {3, 4, GL_FLOAT, offsetof(CapsuleInstance, color)},
+                                  {4, 1, GL_UNSIGNED_INT, offsetof(CapsuleInstance, flags)}});
+    glyph_stream = InstanceStream::create(
+        sizeof(GlyphInstance), {{0, 2, GL_FLOAT, offsetof(GlyphInstance, origin)},
+                                {1, 1, GL_FLOAT, offsetof(GlyphInstance, dot)},
+                                {2, 2, GL_UNSIGNED_INT, offsetof(GlyphInstance, bits)},
+                                {3, 4, GL_FLOAT, offsetof(GlyphInstance, color)}});
 
     // The context belongs to this renderer alone, so fixed state is set once.
     glDisable(GL_DEPTH_TEST);
@@ -114,12 +137,14 @@ Status Renderer::Impl::init(const RendererDef& def) {
     // frame has no translucent edges.
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
-    pixels.resize(std::size_t{4} * static_cast<std::size_t>(width) *
-                  static_cast<std::size_t>(height));
     return check_gl("setting up the renderer");
 }
 
-Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame) {
+Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std::uint8_t> out) {
+    if (out.size() < frame_bytes()) {
+        return Error{"frame buffer holds " + std::to_string(out.size()) + " bytes, " +
+                     std::to_string(frame_bytes()) + " needed"};
+    }
     const double view_height = frame.camera.height;
     if (!(view_height > 0.0) || !std::isfinite(view_height)) {
         return Error{"camera height must be a positive number of metres"};
@@ -128,17 +153,25 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame) {
 
     const double pixels_per_metre = static_cast<double>(height) / view_height;
     make_capsule_instances(frame, pixels_per_metre, capsule_instances);
+    make_trail_instances(frame, pixels_per_metre, trail_instances);
     make_disc_instances(frame, pixels_per_metre, disc_instances);
+    make_arrow_instances(frame, pixels_per_metre, arrow_instances);
+    make_text_instances(frame, width, height, glyph_instances);
 
     glClearColor(frame.background.r, frame.background.g, frame.background.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     glUseProgram(capsule_program.id());
     capsule_stream->draw(capsule_instances.data(), capsule_instances.size());
+    capsule_stream->draw(trail_instances.data(), trail_instances.size());
     glUseProgram(disc_program.id());
     disc_stream->draw(disc_instances.data(), disc_instances.size());
-    target->read(pixels);
+    glUseProgram(capsule_program.id());
+    capsule_stream->draw(arrow_instances.data(), arrow_instances.size());
+    glUseProgram(glyph_program.id());
+    glyph_stream->draw(glyph_instances.data(), glyph_instances.size());
+    target->read(out);
     if (Status ok = check_gl("drawing a frame"); !ok) return ok.error();
-    return ImageView{width, height, pixels};
+    return ImageView{width, height, out.first(frame_bytes())};
 }
 
 Expected<Renderer> Renderer::create(const RendererDef& def) {
@@ -154,7 +187,14 @@ Renderer::~Renderer() = default;
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 
-Expected<ImageView> Renderer::draw(const FrameScene& frame) { return impl_->draw(frame); }
+Expected<ImageView> Renderer::draw(const FrameScene& frame) {
+    impl_->pixels.resize(impl_->frame_bytes());
+    return impl_->draw(frame, impl_->pixels);
+}
+
+Expected<ImageView> Renderer::draw_into(const FrameScene& frame, std::span<std::uint8_t> out) {
+    return impl_->draw(frame, out);
+}
 
 std::string Renderer::renderer_info() const { return impl_->info; }
 

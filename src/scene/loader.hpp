@@ -2,6 +2,7 @@
 // State shared by the section readers while one scene file is loaded. Each section reads its
 // part of the YAML into Scene and reports problems; load.cpp calls them in dependency order
 // (physics before discs: discs take their defaults from it; discs before throws).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,10 +28,13 @@ struct Loader {
     bool discs_complete = true;       // every entry expanded, so indices and ids are final
     bool disc_limit_reached = false;  // max_discs reported: later entries are not read
     bool frames_known = true;         // fps and duration read fine, so frame_count() is right
+    std::optional<Value> camera_follow;  // read with the camera, resolved once discs are known
 };
 
 void read_video(Loader& loader, const Value& value);
 void read_camera(Loader& loader, const Value& value);
+void resolve_camera_follow(Loader& loader);
+void read_style(Loader& loader, const Value& value);
 void read_physics(Loader& loader, const Value& value);
 void read_walls(Loader& loader, const Value& value);
 void read_discs(Loader& loader, const Value& value);

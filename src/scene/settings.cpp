@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "disc_ref.hpp"
 #include "loader.hpp"
 
 namespace discreel::scene {
@@ -16,6 +17,7 @@ constexpr int min_side = 16, max_width = 7680, max_height = 4320;
 constexpr int max_fps = 240;
 constexpr double max_duration = 3600;  // seconds
 constexpr int max_rate = 100'000;      // physics steps per second
+constexpr double max_follow_lag = 10;  // seconds
 
 // One side of video.size; `name` is "width" or "height".
 std::optional<int> read_side(const Value& value, std::string_view name, int max,
@@ -86,7 +88,8 @@ void read_video(Loader& loader, const Value& value) {
 }
 
 void read_camera(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 2> known{"center", "height"};
+    static constexpr std::array<std::string_view, 4> known{"center", "height", "follow",
+                                                           "follow_lag"};
     auto& d = loader.diagnostics;
     const auto fields = Fields::open(value, known, d);
     if (!fields) return;
@@ -94,6 +97,16 @@ void read_camera(Loader& loader, const Value& value) {
         loader.scene.camera.center = read_vec2(*center, "[x, y]", d);
     if (const auto height = fields->get("height"))
         loader.scene.camera.height = read_positive(*height, d);
+    loader.camera_follow = fields->get("follow");
+    if (const auto lag = fields->get("follow_lag"))
+        if (const auto v = read_between(*lag, 0, max_follow_lag, d))
+            loader.scene.camera.follow_lag = *v;
+}
+
+void resolve_camera_follow(Loader& loader) {
+    if (!loader.camera_follow) return;
+    const DiscIds ids(loader.scene.discs);
+    loader.scene.camera.follow = resolve_disc(loader, *loader.camera_follow, ids);
 }
 
 void read_physics(Loader& loader, const Value& value) {

@@ -1,53 +1,14 @@
 // `throws:` — flicks and grabs, and which disc each one moves.
 #include <array>
-#include <map>
 #include <string_view>
 
-#include "did_you_mean.hpp"
+#include "disc_ref.hpp"
 #include "loader.hpp"
 
 namespace discreel::scene::detail {
 namespace {
 
 constexpr std::array<std::string_view, 5> throw_keys{"disc", "at", "velocity", "path", "release"};
-
-// A plain whole number names a disc by index; anything else (including a quoted "3") by id.
-std::optional<std::size_t> resolve_disc(Loader& loader, const Value& value,
-                                        const std::map<std::string, std::size_t>& by_id,
-                                        const std::vector<std::string>& ids) {
-    auto& d = loader.diagnostics;
-    const std::size_t count = loader.scene.discs.size();
-    if (!value.node.IsScalar()) {
-        d.error(value.where, value.path + ": expected a disc id or index, got " +
-                                 describe(value.node));
-        return std::nullopt;
-    }
-    const std::string& text = value.node.Scalar();
-    const bool plain = value.node.Tag() != "!";
-    const bool looks_whole = !text.empty() && text.find_first_not_of("0123456789", text[0] == '-' ? 1 : 0) == std::string::npos &&
-                             text != "-";
-    if (plain && looks_whole) {
-        Diagnostics quiet;
-        const auto index = read_integer(value, quiet);
-        if (index && *index >= 0 && static_cast<unsigned long long>(*index) < count)
-            return static_cast<std::size_t>(*index);
-        if (!loader.discs_complete) return std::nullopt;  // the real cause is reported already
-        const std::string numbered =
-            count == 0   ? "the scene has no discs"
-            : count == 1 ? "the scene has 1 disc, numbered 0"
-                         : "the scene has " + std::to_string(count) + " discs, numbered 0 to " +
-                               std::to_string(count - 1);
-        d.error(value.where, value.path + ": there is no disc " + text + "; " + numbered);
-        return std::nullopt;
-    }
-    if (const auto it = by_id.find(text); it != by_id.end()) return it->second;
-    if (!loader.discs_complete) return std::nullopt;
-    std::string message = value.path + ": no disc has id '" + text + "'";
-    if (const auto suggestion = closest_match(text, ids))
-        message += "; did you mean '" + *suggestion + "'?";
-    d.error(value.where, std::move(message));
-    return std::nullopt;
-}
 
 bool read_path(Loader& loader, const Value& value, Throw& t) {
     auto& d = loader.diagnostics;
@@ -107,13 +68,7 @@ void read_throws(Loader& loader, const Value& value) {
                                  "); the limit is " + std::to_string(max_throws));
         return;
     }
-    std::map<std::string, std::size_t> by_id;
-    std::vector<std::string> ids;
-    ids.reserve(loader.scene.discs.size());
-    for (std::size_t i = 0; i < loader.scene.discs.size(); ++i) {
-        by_id.emplace(loader.scene.discs[i].id, i);
-        ids.push_back(loader.scene.discs[i].id);
-    }
+    const DiscIds ids(loader.scene.discs);
 
     for (const Value& item : *items) {
         if (d.full()) break;
@@ -122,7 +77,7 @@ void read_throws(Loader& loader, const Value& value) {
         Throw t;
         bool ok = true;
         if (const auto disc = fields->get("disc")) {
-            const auto index = resolve_disc(loader, *disc, by_id, ids);
+            const auto index = resolve_disc(loader, *disc, ids);
             if (index && loader.scene.discs[*index].is_static) {
                 d.error(disc->where, disc->path + ": disc '" + loader.scene.discs[*index].id +
                                          "' is static and cannot be thrown");

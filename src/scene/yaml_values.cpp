@@ -280,6 +280,19 @@ std::optional<bool> read_bool(const Value& value, Diagnostics& diagnostics) {
     return std::nullopt;
 }
 
+std::optional<std::size_t> read_choice(const Value& value,
+                                       std::span<const std::string_view> choices,
+                                       Diagnostics& diagnostics) {
+    if (value.node.IsScalar())
+        for (std::size_t i = 0; i < choices.size(); ++i)
+            if (value.node.Scalar() == choices[i]) return i;
+    std::string what = "one of ";
+    for (std::size_t i = 0; i < choices.size(); ++i)
+        what += (i == 0 ? "" : ", ") + std::string(choices[i]);
+    expected(value, what, diagnostics);
+    return std::nullopt;
+}
+
 std::optional<Color> read_color(const Value& value, Diagnostics& diagnostics) {
     constexpr std::string_view what = "a colour like \"#rrggbb\" or \"#rrggbbaa\"";
     if (value.is_null()) {

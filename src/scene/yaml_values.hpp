@@ -78,6 +78,10 @@ std::optional<double> read_number(const Value& value, Diagnostics& diagnostics);
 std::optional<long long> read_integer(const Value& value, Diagnostics& diagnostics);
 std::optional<std::uint64_t> read_unsigned(const Value& value, Diagnostics& diagnostics);
 std::optional<bool> read_bool(const Value& value, Diagnostics& diagnostics);
+// One of `choices` (plain text, case-sensitive); the index of the one written.
+std::optional<std::size_t> read_choice(const Value& value,
+                                       std::span<const std::string_view> choices,
+                                       Diagnostics& diagnostics);
 std::optional<Color> read_color(const Value& value, Diagnostics& diagnostics);
 std::optional<Vec2> read_vec2(const Value& value, std::string_view shape,
                               Diagnostics& diagnostics);

@@ -2,6 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <vector>
+
+#include "../render/golden_check.hpp"
+
 namespace discreel::app {
 namespace {
 
@@ -60,7 +67,7 @@ TEST(FrameSceneBuilderTest, BoxBecomesFourCapsulesOutsideTheCorners) {
     scene::Scene s = boxed_scene();
     s.walls[0].thickness = 0.2;
     FrameSceneBuilder builder(s);
-    const render::FrameScene& frame = builder.build({});
+    const render::FrameScene& frame = builder.build(0, {});
     ASSERT_EQ(frame.capsules.size(), 4u);
     // The bottom wall's centre line sits half a thickness below the floor, so its inner edge
     // is exactly where discs rest.
@@ -81,7 +88,7 @@ TEST(FrameSceneBuilderTest, DiscsFollowTheStateWithTheirLook) {
     physics::DiscState state;
     state.position = {3, 4};
     state.angle = 1.5;
-    const render::FrameScene& frame = builder.build({&state, 1});
+    const render::FrameScene& frame = builder.build(0, {&state, 1});
     ASSERT_EQ(frame.discs.size(), 1u);
     EXPECT_EQ(frame.discs[0].x, 3.0f);
     EXPECT_EQ(frame.discs[0].y, 4.0f);
@@ -90,6 +97,244 @@ TEST(FrameSceneBuilderTest, DiscsFollowTheStateWithTheirLook) {
     EXPECT_EQ(frame.discs[0].fill.r, 1.0f);
     EXPECT_EQ(frame.discs[0].fill.g, 0.0f);
     EXPECT_TRUE(frame.discs[0].is_static);
+}
+
+// A scene of `n` discs at 60 fps, 1280x720, no walls: the builder only needs looks and style.
+scene::Scene discs_scene(std::size_t n) {
+    scene::Scene s = boxed_scene();
+    for (std::size_t i = 0; i < n; ++i) {
+        scene::Disc d;
+        d.id = std::to_string(i);
+        d.id.insert(d.id.begin(), 'd');
+        d.radius = 0.5;
+        d.color = {200, 100, 50, 255};
+        s.discs.push_back(d);
+    }
+    return s;
+}
+
+physics::DiscState at(double x, double y, double vx = 0, double vy = 0) {
+    physics::DiscState d;
+    d.position = {x, y};
+    d.velocity = {vx, vy};
+    return d;
+}
+
+TEST(FollowCameraTest, WithoutLagTheDiscIsAlwaysCentred) {
+    scene::Scene s = discs_scene(2);
+    s.camera.follow = 1;
+    s.camera.follow_lag = 0;
+    FrameSceneBuilder builder(s);
+    for (int frame = 0; frame < 5; ++frame) {
+        const std::vector<physics::DiscState> states{at(0, 0), at(1.5 * frame, -frame)};
+        const render::FrameScene& f = builder.build(frame, states);
+        EXPECT_EQ(f.camera.center_x, 1.5 * frame);
+        EXPECT_EQ(f.camera.center_y, -frame);
+        EXPECT_EQ(f.camera.height, fit_camera(s).height);   // only the centre follows
+    }
+}
+
+// The disc jumps 10 m at t = 0+ and stays: the camera closes the gap as 1 - exp(-t / lag),
+// at any frame rate, and whether the frames in between are drawn or only observed.
+TEST(FollowCameraTest, SmoothingClosesAGapExponentiallyAtAnyFrameRate) {
+    for (const int fps : {30, 60, 240}) {
+        scene::Scene s = discs_scene(1);
+        s.video.fps = fps;
+        s.camera.follow = 0;
+        s.camera.follow_lag = 0.25;
+        FrameSceneBuilder builder(s);
+        const std::vector<physics::DiscState> start{at(0, 0)}, moved{at(10, 0)};
+        builder.observe(0, start);
+        const int half_second = fps / 2;
+        for (int frame = 1; frame < half_second; ++frame) builder.observe(frame, moved);
+        const render::FrameScene& f = builder.build(half_second, moved);
+        SCOPED_TRACE(fps);
+        EXPECT_NEAR(f.camera.center_x, 10 * (1 - std::exp(-0.5 / 0.25)), 1e-9);
+        EXPECT_EQ(f.camera.center_y, 0);
+    }
+}
+
+// A disc on a circle: once the start has faded, the camera trails it by the steady-state
+// error of the sampled exponential filter, r |1 - H(e^{i w dt})| with
+// H(z) = a / (1 - (1 - a) / z), a = 1 - exp(-dt / lag): within a metre, so the disc stays
+// near the middle of a 6 m view.
+TEST(FollowCameraTest, KeepsACirclingDiscNearTheCentre) {
+    const double r = 3, w = 2, lag = 0.15;
+    const int fps = 30;
+    scene::Scene s = discs_scene(1);
+    s.video.fps = fps;
+    s.camera.follow = 0;
+    s.camera.follow_lag = lag;
+    FrameSceneBuilder builder(s);
+    const double dt = 1.0 / fps;
+    const double a = 1 - std::exp(-dt / lag);
+    const std::complex<double> z = std::polar(1.0, w * dt);
+    const double expected = r * std::abs(1.0 - a / (1.0 - (1.0 - a) / z));
+    for (int frame = 0; frame <= 90; ++frame) {
+        const double t = frame * dt;
+        const std::vector<physics::DiscState> states{at(r * std::cos(w * t), r * std::sin(w * t))};
+        const render::FrameScene& f = builder.build(frame, states);
+        if (frame < 60) continue;   // 2 s = 13 lags: the start is forgotten to 1e-5
+        const double gap = std::hypot(f.camera.center_x - states[0].position.x,
+                                      f.camera.center_y - states[0].position.y);
+        EXPECT_NEAR(gap, expected, 1e-4) << "frame " << frame;
+        EXPECT_LT(gap, 1.0);
+    }
+}
+
+TEST(TrailsTest, KeepTheirLengthFadeTowardTheBackgroundAndSkipPegsAndRestingDiscs) {
+    scene::Scene s = discs_scene(3);
+    s.discs[1].is_static = true;
+    s.style.trails = {.enabled = true, .length = 0.5, .fade = true, .width = 0.4};
+    FrameSceneBuilder builder(s);
+    const render::FrameScene* f = nullptr;
+    for (int frame = 0; frame < 100; ++frame) {
+        const std::vector<physics::DiscState> states{at(0.1 * frame, 0), at(5, 5), at(-3, -3)};
+        f = &builder.build(frame, states);
+    }
+    // 0.5 s at 60 fps: 30 segments, oldest first, the newest ending at the disc.
+    ASSERT_EQ(f->trails.size(), 30u);
+    EXPECT_FLOAT_EQ(f->trails.back().bx, 9.9f);
+    EXPECT_FLOAT_EQ(f->trails.back().ax, 9.8f);
+    EXPECT_FLOAT_EQ(f->trails.front().ax, 6.9f);
+    // Fading: older segments are thinner and closer to the background colour.
+    EXPECT_LT(f->trails.front().radius, f->trails.back().radius);
+    EXPECT_LE(f->trails.back().radius, 0.4f * 0.5f);
+    const float background_r = f->background.r;
+    EXPECT_LT(std::abs(f->trails.front().color.r - background_r),
+              std::abs(f->trails.back().color.r - background_r));
+    EXPECT_EQ(f->trails.back().color.a, 1.0f);
+}
+
+TEST(TrailsTest, WithoutFadeKeepOneWidthAndColour) {
+    scene::Scene s = discs_scene(1);
+    s.style.trails = {.enabled = true, .length = 0.1, .fade = false, .width = 0.5};
+    FrameSceneBuilder builder(s);
+    const render::FrameScene* f = nullptr;
+    for (int frame = 0; frame < 20; ++frame) f = &builder.build(frame, std::vector{at(frame, 0)});
+    ASSERT_EQ(f->trails.size(), 6u);   // ceil(0.1 s * 60 fps)
+    for (const render::LineGeom& l : f->trails) {
+        EXPECT_FLOAT_EQ(l.radius, 0.25f);
+        EXPECT_EQ(l.color.r, f->trails[0].color.r);
+    }
+}
+
+TEST(TrailsTest, MemoryIsBoundedByShorteningTrails) {
+    scene::Scene s = discs_scene(max_trail_points / 4);
+    s.style.trails = {.enabled = true, .length = 10, .fade = true, .width = 0.4};
+    FrameSceneBuilder builder(s);
+    const std::vector<physics::DiscState> still(s.discs.size(), at(0, 0));
+    std::vector<physics::DiscState> moved = still;
+    moved[0] = at(1, 0);
+    builder.observe(0, still);
+    for (int frame = 1; frame < 10; ++frame) builder.observe(frame, frame % 2 ? moved : still);
+    // Four points per disc fit the budget: three segments, not 10 s worth.
+    EXPECT_EQ(builder.build(10, still).trails.size(), 3u);
+}
+
+TEST(VelocityArrowsTest, PointAlongTheVelocityScaledByTheStyle) {
+    scene::Scene s = discs_scene(2);
+    s.discs[1].is_static = true;
+    s.style.velocity_arrows = {.enabled = true, .scale = 0.5, .color = {0, 255, 0, 255},
+                               .width = 3};
+    FrameSceneBuilder builder(s);
+    const render::FrameScene& f = builder.build(0, std::vector{at(1, 2, 4, -2), at(5, 5)});
+    ASSERT_EQ(f.arrows.size(), 1u);   // pegs never move
+    EXPECT_EQ(f.arrows[0].tail_x, 1.0f);
+    EXPECT_EQ(f.arrows[0].tail_y, 2.0f);
+    EXPECT_EQ(f.arrows[0].head_x, 3.0f);
+    EXPECT_EQ(f.arrows[0].head_y, 1.0f);
+    EXPECT_EQ(f.arrows[0].width, 3.0f);
+    EXPECT_EQ(f.arrows[0].color.g, 1.0f);
+}
+
+TEST(ClockTest, ShowsTimeFrameOrBothInItsCorner) {
+    scene::Scene s = discs_scene(0);
+    s.style.clock = {.enabled = true, .corner = scene::Corner::bottom_right,
+                     .format = scene::ClockFormat::time, .color = {255, 255, 255, 255}};
+    const auto text_at = [&](scene::ClockFormat format, int frame) {
+        s.style.clock.format = format;
+        FrameSceneBuilder builder(s);
+        const render::FrameScene& f = builder.build(frame, {});
+        EXPECT_EQ(f.texts.size(), 1u);
+        EXPECT_EQ(f.texts[0].corner, render::Corner::bottom_right);
+        EXPECT_EQ(f.texts[0].dot, 4);   // 720 rows: 4 pixels a dot, 28-pixel glyphs
+        return f.texts[0].text;
+    };
+    EXPECT_EQ(text_at(scene::ClockFormat::time, 75), "t = 1.25 s");
+    EXPECT_EQ(text_at(scene::ClockFormat::frame, 75), "frame 75");
+    EXPECT_EQ(text_at(scene::ClockFormat::both, 0), "t = 0.00 s  frame 0");
+}
+
+TEST(FrameSceneBuilderTest, DefaultStyleDrawsNoOverlays) {
+    scene::Scene s = discs_scene(1);
+    FrameSceneBuilder builder(s);
+    const render::FrameScene* f = nullptr;
+    for (int frame = 0; frame < 3; ++frame)
+        f = &builder.build(frame, std::vector{at(frame, 1, 1, 1)});
+    EXPECT_TRUE(f->disc_outlines);
+    EXPECT_TRUE(f->spin_markers);
+    EXPECT_TRUE(f->trails.empty());
+    EXPECT_TRUE(f->arrows.empty());
+    EXPECT_TRUE(f->texts.empty());
+    EXPECT_EQ(f->camera.center_x, fit_camera(s).center_x);
+}
+
+// The follow camera golden: 320x180 at 30 fps, a disc circling inside a box among pegs and
+// two drifting discs, with trails, velocity arrows and the clock, after 2.5 s. The view is
+// 6 m tall and centred (with lag) on the circling disc, so the box's walls slide past.
+TEST(FrameSceneGoldenGLTest, FollowCameraWithTrailsArrowsAndClock) {
+    scene::Scene s;
+    s.video.width = 320;
+    s.video.height = 180;
+    s.video.fps = 30;
+    scene::Wall box;
+    box.shape = scene::Wall::Shape::box;
+    box.b = {16, 9};
+    box.thickness = 0.2;
+    s.walls.push_back(box);
+    const auto disc = [&](std::string id, double r, scene::Color c, bool is_static) {
+        scene::Disc d;
+        d.id = std::move(id);
+        d.radius = r;
+        d.color = c;
+        d.is_static = is_static;
+        s.discs.push_back(d);
+    };
+    disc("cue", 0.4, {0xf4, 0xd3, 0x5e, 0xff}, false);
+    disc("a", 0.3, {0xe4, 0x57, 0x2e, 0xff}, false);
+    disc("b", 0.3, {0x17, 0xbe, 0xbb, 0xff}, false);
+    for (int i = 0; i < 6; ++i)
+        disc(std::string(1, static_cast<char>('p' + i)), 0.2, {0x88, 0x99, 0xaa, 0xff}, true);
+    s.camera.height = 6;
+    s.camera.follow = 0;
+    s.camera.follow_lag = 0.15;
+    s.style.trails = {.enabled = true, .length = 0.6, .fade = true, .width = 0.4};
+    s.style.velocity_arrows = {.enabled = true, .scale = 0.15, .color = {255, 255, 255, 255},
+                               .width = 1.5};
+    s.style.clock = {.enabled = true, .corner = scene::Corner::top_left,
+                     .format = scene::ClockFormat::both, .color = {255, 255, 255, 255}};
+
+    FrameSceneBuilder builder(s);
+    const int last = 75;
+    const render::FrameScene* f = nullptr;
+    for (int frame = 0; frame <= last; ++frame) {
+        const double t = frame / 30.0, w = 2, r = 3;
+        std::vector<physics::DiscState> states{
+            at(8 + r * std::cos(w * t), 4.5 + r * std::sin(w * t), -r * w * std::sin(w * t),
+               r * w * std::cos(w * t)),
+            at(5 + 1.5 * t, 2 + 0.5 * t, 1.5, 0.5),
+            at(11 - t, 6.5 - 0.8 * t, -1, -0.8)};
+        for (int i = 0; i < 6; ++i) states.push_back(at(5 + 1.2 * i, 4.5 + (i % 2 ? 0.8 : -0.8)));
+        for (std::size_t i = 0; i < states.size(); ++i)
+            states[i].angle = i == 0 ? w * t : 0.3 * static_cast<double>(i);
+        if (frame == last)
+            f = &builder.build(frame, states);
+        else
+            builder.observe(frame, states);
+    }
+    ASSERT_NE(f, nullptr);
+    render::test::check_golden("follow_camera", *f, 320, 180);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 //     auto image = renderer->draw(frame);   // top row first
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,33 @@ struct CapsuleGeom {                // walls: segment a..b swept by a circle of 
     Rgba color;
 };
 
+// A flat line with round caps, drawn without the walls' darker rim: motion trails (one segment
+// per stretch of history, its colour already faded toward the background).
+struct LineGeom {
+    float ax = 0, ay = 0, bx = 0, by = 0;   // world metres
+    float radius = 0;               // metres (half the line width); drawn at least one pixel wide
+    Rgba color;
+};
+
+// An arrow from tail to head (classic velocity arrows): a shaft and two barbs, all of a fixed
+// pixel width so arrows read the same at every zoom.
+struct ArrowGeom {
+    float tail_x = 0, tail_y = 0, head_x = 0, head_y = 0;   // world metres
+    float width = 2;                // pixels
+    Rgba color;
+};
+
+enum class Corner { top_left, top_right, bottom_left, bottom_right };
+
+// A line of text in a corner of the frame, in a built-in 5x7 dot font with a soft shadow.
+// Glyphs exist for digits, space and . : = - / s f r a m e t; anything else shows as '?'.
+struct TextGeom {
+    std::string text;
+    Corner corner = Corner::top_left;
+    int dot = 1;                    // pixels per font dot, >= 1: glyphs are 5 x 7 dots
+    Rgba color;
+};
+
 struct Camera {
     double center_x = 0, center_y = 0;   // world metres at the image centre
     double height = 1;                    // world metres visible vertically; y points up
@@ -39,8 +67,14 @@ struct Camera {
 struct FrameScene {
     Rgba background;                      // its alpha is ignored: frames are opaque
     Camera camera;
-    std::vector<CapsuleGeom> capsules;    // drawn first
-    std::vector<DiscGeom> discs;          // drawn in order, later on top
+    bool disc_outlines = true;            // a darker rim on every disc
+    bool spin_markers = true;             // the spoke on moving discs
+    // Drawn in this order, each list in its own order, later on top.
+    std::vector<CapsuleGeom> capsules;
+    std::vector<LineGeom> trails;
+    std::vector<DiscGeom> discs;
+    std::vector<ArrowGeom> arrows;
+    std::vector<TextGeom> texts;
 };
 
 struct RendererDef {
@@ -58,6 +92,11 @@ public:
     // The view stays valid until the next draw() or until the Renderer is destroyed. Every
     // pixel has alpha 255. Fails for a camera height that is not a positive number.
     Expected<ImageView> draw(const FrameScene& frame);
+
+    // Like draw(), but reads the pixels straight into `out` (at least 4 * width * height bytes)
+    // and returns a view of it, so a caller that keeps its own pool of frame buffers needs no
+    // copy. The bytes are the same as draw()'s. Fails as draw() does, and for a smaller `out`.
+    Expected<ImageView> draw_into(const FrameScene& frame, std::span<std::uint8_t> out);
 
     std::string renderer_info() const;   // GL_RENDERER and GL_VERSION, for golden metadata
 

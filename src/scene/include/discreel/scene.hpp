@@ -21,6 +21,7 @@ inline constexpr std::size_t max_throws = 10'000;
 inline constexpr std::size_t max_waypoints = 10'000;      // per grab path
 inline constexpr std::size_t max_golden_frames = 1'000;
 inline constexpr std::uintmax_t max_file_bytes = 64u << 20;
+inline constexpr std::size_t max_alias_values = 1'000'000;  // values repeated by YAML aliases
 
 struct Color {
     std::uint8_t r = 0, g = 0, b = 0, a = 255;   // sRGB-encoded, straight alpha
@@ -42,6 +43,42 @@ struct Camera {
     // Absent: the app frames the bounding box of all walls with a 5 % margin.
     std::optional<Vec2> center;    // metres
     std::optional<double> height;  // metres visible vertically
+    // A disc the view tracks (index into Scene::discs); its centre replaces `center`.
+    std::optional<std::size_t> follow;
+    double follow_lag = 0.25;      // seconds, time constant of the smoothing, 0..10; 0: rigid
+};
+
+// How frames look beyond the scene's colours. Every overlay is off unless the file asks.
+struct VelocityArrows {
+    bool enabled = false;
+    double scale = 0.25;           // seconds: an arrow is speed * scale metres long, (0, 100]
+    Color color{0xff, 0xff, 0xff, 0xff};
+    double width = 2.0;            // pixels, line width, 0.5..20
+};
+
+struct Trails {
+    bool enabled = false;
+    double length = 0.5;           // seconds of history behind each moving disc, (0, 10]
+    bool fade = true;              // older parts fade into the background and thin out
+    double width = 0.4;            // fraction of the disc's diameter, (0, 1]
+};
+
+enum class Corner { top_left, top_right, bottom_left, bottom_right };
+enum class ClockFormat { time, frame, both };
+
+struct Clock {
+    bool enabled = false;
+    Corner corner = Corner::top_left;
+    ClockFormat format = ClockFormat::time;
+    Color color{0xff, 0xff, 0xff, 0xff};
+};
+
+struct Style {
+    bool outline = true;           // a darker rim on discs
+    bool spin_marker = true;       // a contrasting spoke on moving discs, so rotation shows
+    VelocityArrows velocity_arrows;
+    Trails trails;
+    Clock clock;
 };
 
 struct Physics {
@@ -98,6 +135,7 @@ struct Scene {
     int version = 1;
     Video video;
     Camera camera;
+    Style style;
     Physics physics;
     std::vector<Wall> walls;
     std::vector<Disc> discs;

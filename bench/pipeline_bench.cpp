@@ -1,0 +1,314 @@
+// pipeline_bench: where a render's time goes, and whether the pipeline keeps the encoder busy.
+// For 100, 1 000 and 10 000 moving discs it measures, on the same frames:
+//   render only     simulate + draw + readback, timing the draws alone (its CPU time
+//                   includes the simulation and keeping the frames)
+//   encode only     the pre-rendered RGBA frames through the mp4 sink (libswscale + libx264)
+//   render | ffmpeg drawing frames and writing raw RGBA into the ffmpeg CLI (the usual way)
+//   pipeline        the discreel binary end to end (process start and scene load included),
+//                   with its peak memory as it reports it with --verbose
+// All at libx264 veryfast, crf 23, 2 encoder threads. Prints a Markdown table.
+//     pipeline_bench [--frames 600] [--size 1280x720] [--discs 100,1000,10000] [--hd-seconds 0]
+// --hd-seconds S also renders S seconds of 1 000 discs at 1920x1080 and reports peak memory.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "build_world.hpp"
+#include "discreel/encode.hpp"
+#include "discreel/render.hpp"
+#include "discreel/scene.hpp"
+#include "frame_scene.hpp"
+#include "stepper.hpp"
+#include "timeline.hpp"
+
+extern char** environ;
+
+namespace {
+
+using namespace discreel;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// CPU seconds (user + system) used so far by this process's threads, or by its waited-for
+// children. On a shared machine wall time depends on the neighbours; CPU time much less.
+double cpu_seconds(int who) {
+    rusage usage{};
+    getrusage(who, &usage);
+    const auto seconds = [](const timeval& t) { return t.tv_sec + t.tv_usec / 1e6; };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+double all_cpu_seconds() { return cpu_seconds(RUSAGE_SELF) + cpu_seconds(RUSAGE_CHILDREN); }
+
+struct Settings {
+    int frames = 600;
+    int width = 1280;
+    int height = 720;
+    std::vector<int> disc_counts{100, 1000, 10000};
+    int hd_seconds = 0;
+};
+
+// Discs covering about a fifth of a 12.8 x 7.2 m box, moving without gravity or losses, so
+// every frame differs from the last (what makes x264 work hard).
+std::string gas_scene(int discs, int width, int height, int frames) {
+    const double radius = std::sqrt(0.2 * 12.8 * 7.2 / (M_PI * discs));
+    std::ostringstream yaml;
+    yaml << "version: 1\nvideo:\n  size: [" << width << ", " << height << "]\n  fps: 60\n"
+         << "  duration: " << frames / 60.0 << "\nphysics:\n  gravity: [0, 0]\n"
+         << "  restitution: 1.0\n  friction: 0\n  seed: 7\n"
+         << "walls:\n  - box: [[0, 0], [12.8, 7.2]]\n"
+         << "discs:\n  - random:\n      count: " << discs << "\n"
+         << "      region: [[0.1, 0.1], [12.7, 7.1]]\n"
+         << "      radius: [" << 0.7 * radius << ", " << radius << "]\n"
+         << "      speed: [0.5, 2]\n"
+         << "      colors: [\"#e4572e\", \"#76b041\", \"#17bebb\", \"#f4d35e\"]\n";
+    return yaml.str();
+}
+
+struct Rendered {
+    std::vector<std::uint8_t> frames;   // every frame, one after the other
+    double draw_seconds = 0;
+};
+
+// Simulates and draws every frame; `each` gets every image as it is drawn.
+template <class Each>
+double draw_all(const scene::Scene& scene, int frames, Each each) {
+    auto renderer = render::Renderer::create({.width = scene.video.width,
+                                              .height = scene.video.height});
+    if (!renderer) {
+        std::cerr << renderer.error().message << '\n';
+        std::exit(1);
+    }
+    const app::Timeline timeline{scene.video.fps, scene.physics.rate, frames};
+    physics::World world(app::build_world(scene));
+    app::FrameStepper stepper(world, timeline);
+    app::FrameSceneBuilder builder(scene);
+    double draw_seconds = 0;
+    for (int frame = 0; frame < frames; ++frame) {
+        stepper.advance_to(frame);
+        const auto start = Clock::now();
+        auto image = renderer->draw(builder.build(frame, world.discs()));
+        draw_seconds += seconds_since(start);
+        if (!image) {
+            std::cerr << image.error().message << '\n';
+            std::exit(1);
+        }
+        each(*image);
+    }
+    return draw_seconds;
+}
+
+encode::SinkDef mp4(const std::string& path, const scene::Scene& scene) {
+    return {.path = path, .width = scene.video.width, .height = scene.video.height,
+            .fps = scene.video.fps, .crf = 23, .preset = "veryfast", .threads = 2, .codec = "",
+            .pixel_format = "", .lossless = false, .key_colours = {}};
+}
+
+double encode_only(const std::vector<std::uint8_t>& frames, const scene::Scene& scene, int count,
+                   const std::string& path) {
+    const std::size_t bytes = std::size_t{4} * static_cast<std::size_t>(scene.video.width) *
+                              static_cast<std::size_t>(scene.video.height);
+    const auto start = Clock::now();
+    auto sink = encode::open_sink(mp4(path, scene));
+    if (!sink) {
+        std::cerr << sink.error().message << '\n';
+        std::exit(1);
+    }
+    for (int i = 0; i < count; ++i) {
+        const ImageView view{scene.video.width, scene.video.height,
+                             std::span(frames).subspan(static_cast<std::size_t>(i) * bytes, bytes)};
+        if (Status ok = (*sink)->write(view); !ok) {
+            std::cerr << ok.error().message << '\n';
+            std::exit(1);
+        }
+    }
+    if (Status ok = (*sink)->finish(); !ok) {
+        std::cerr << ok.error().message << '\n';
+        std::exit(1);
+    }
+    return seconds_since(start);
+}
+
+double render_into_ffmpeg(const scene::Scene& scene, int frames, const std::string& path) {
+    const std::string command =
+        "ffmpeg -v error -y -f rawvideo -pix_fmt rgba -s " + std::to_string(scene.video.width) +
+        "x" + std::to_string(scene.video.height) + " -r 60 -i - -c:v libx264 -preset veryfast "
+        "-crf 23 -threads 2 -pix_fmt yuv420p " + path;
+    const auto start = Clock::now();
+    FILE* pipe = popen(command.c_str(), "w");
+    if (pipe == nullptr) {
+        std::perror("popen ffmpeg");
+        std::exit(1);
+    }
+    draw_all(scene, frames, [&](const ImageView& image) {
+        std::fwrite(image.rgba.data(), 1, image.rgba.size(), pipe);
+    });
+    if (pclose(pipe) != 0) {
+        std::cerr << "ffmpeg failed\n";
+        std::exit(1);
+    }
+    return seconds_since(start);
+}
+
+struct ProcessRun {
+    double seconds = 0;
+    double peak_mib = 0;
+};
+
+// The discreel binary with --verbose; the peak memory is its own VmHWM report.
+ProcessRun run_discreel(const std::vector<std::string>& args, const std::string& err_path) {
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const auto start = Clock::now();
+    pid_t pid = -1;
+    int status = 0;
+    if (posix_spawn(&pid, DISCREEL_BIN, &actions, nullptr, argv.data(), environ) != 0 ||
+        waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::cerr << "discreel failed; see " << err_path << '\n';
+        std::exit(1);
+    }
+    ProcessRun run{.seconds = seconds_since(start)};
+    posix_spawn_file_actions_destroy(&actions);
+    std::ifstream err(err_path);
+    std::string line;
+    const std::string marker = "peak memory: ";
+    while (std::getline(err, line)) {
+        if (auto at = line.find(marker); at != std::string::npos) {
+            run.peak_mib = std::stod(line.substr(at + marker.size()));
+        }
+    }
+    return run;
+}
+
+Settings parse(int argc, char** argv) {
+    Settings s;
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string name = argv[i];
+        const std::string value = argv[i + 1];
+        if (name == "--frames") {
+            s.frames = std::stoi(value);
+        } else if (name == "--size") {
+            std::sscanf(value.c_str(), "%dx%d", &s.width, &s.height);
+        } else if (name == "--discs") {
+            s.disc_counts.clear();
+            std::istringstream list(value);
+            for (std::string n; std::getline(list, n, ',');) s.disc_counts.push_back(std::stoi(n));
+        } else if (name == "--hd-seconds") {
+            s.hd_seconds = std::stoi(value);
+        } else {
+            std::cerr << "unknown option " << name << '\n';
+            std::exit(2);
+        }
+    }
+    return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Settings settings = parse(argc, argv);
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("discreel-pipeline-bench-" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir);
+
+    double load[1] = {0};
+    getloadavg(load, 1);
+    std::printf("%d frames at %dx%d, 60 fps, libx264 veryfast crf 23, 2 encoder threads; "
+                "%u cores, load average %.1f at the start\n\n",
+                settings.frames, settings.width, settings.height,
+                std::thread::hardware_concurrency(), load[0]);
+    std::printf("fps = frames / wall seconds; in brackets: CPU ms per frame, all threads and "
+                "child processes\n\n");
+    std::printf("| discs | render only | encode only | render \\| ffmpeg | pipeline | "
+                "pipeline / encode | pipeline / ffmpeg | pipeline peak memory |\n");
+    std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const int discs : settings.disc_counts) {
+        const std::string scene_path = (dir / ("gas" + std::to_string(discs) + ".yaml")).string();
+        std::ofstream(scene_path) << gas_scene(discs, settings.width, settings.height,
+                                               settings.frames);
+        const scene::LoadResult loaded = scene::load_scene_file(scene_path);
+        if (!loaded.ok()) {
+            for (const auto& d : loaded.diagnostics) std::cerr << d.to_string() << '\n';
+            return 1;
+        }
+        const int frames = settings.frames;
+        const double fps = frames;   // frames / seconds below
+
+        double cpu = all_cpu_seconds();
+        const auto cpu_ms_per_frame = [&] {
+            const double now = all_cpu_seconds();
+            const double ms = 1000.0 * (now - cpu) / frames;
+            cpu = now;
+            return ms;
+        };
+        std::vector<std::uint8_t> stored;
+        stored.reserve(std::size_t{4} * static_cast<std::size_t>(settings.width) *
+                       static_cast<std::size_t>(settings.height) *
+                       static_cast<std::size_t>(frames));
+        const double draw_seconds = draw_all(loaded.scene, frames, [&](const ImageView& image) {
+            stored.insert(stored.end(), image.rgba.begin(), image.rgba.end());
+        });
+        const double render_cpu = cpu_ms_per_frame();
+        const double encode_seconds =
+            encode_only(stored, loaded.scene, frames, (dir / "encode.mp4").string());
+        const double encode_cpu = cpu_ms_per_frame();
+        std::vector<std::uint8_t>().swap(stored);
+        const double piped_seconds =
+            render_into_ffmpeg(loaded.scene, frames, (dir / "piped.mp4").string());
+        const double piped_cpu = cpu_ms_per_frame();
+        const ProcessRun pipeline =
+            run_discreel({DISCREEL_BIN, "render", scene_path, "-o", (dir / "pipe.mp4").string(),
+                          "--crf", "23", "--preset", "veryfast", "--verbose"},
+                         (dir / "pipe.err").string());
+        const double pipeline_cpu = cpu_ms_per_frame();
+
+        const double encode_fps = fps / encode_seconds;
+        const double piped_fps = fps / piped_seconds;
+        const double pipeline_fps = fps / pipeline.seconds;
+        std::printf("| %d | %.1f (%.1f) | %.1f (%.1f) | %.1f (%.1f) | %.1f (%.1f) | %.2f | %.2f "
+                    "| %.0f MiB |\n",
+                    discs, fps / draw_seconds, render_cpu, encode_fps, encode_cpu, piped_fps,
+                    piped_cpu, pipeline_fps, pipeline_cpu, pipeline_fps / encode_fps,
+                    pipeline_fps / piped_fps, pipeline.peak_mib);
+        std::fflush(stdout);
+    }
+
+    if (settings.hd_seconds > 0) {
+        const std::string scene_path = (dir / "hd.yaml").string();
+        std::ofstream(scene_path) << gas_scene(1000, 1920, 1080, settings.hd_seconds * 60);
+        const ProcessRun hd =
+            run_discreel({DISCREEL_BIN, "render", scene_path, "-o", (dir / "hd.mp4").string(),
+                          "--crf", "23", "--preset", "veryfast", "--verbose"},
+                         (dir / "hd.err").string());
+        std::printf("\n1920x1080, 1 000 discs, %d s (%d frames): %.1f fps, peak memory %.0f MiB\n",
+                    settings.hd_seconds, settings.hd_seconds * 60,
+                    settings.hd_seconds * 60 / hd.seconds, hd.peak_mib);
+    }
+    getloadavg(load, 1);
+    std::printf("\nload average %.1f at the end\n", load[0]);
+    std::filesystem::remove_all(dir);
+    return 0;
+}

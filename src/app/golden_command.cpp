@@ -1,0 +1,299 @@
+#include "golden_command.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "build_world.hpp"
+#include "discreel/encode.hpp"
+#include "discreel/render.hpp"
+#include "exit_codes.hpp"
+#include "frame_scene.hpp"
+#include "golden_compare.hpp"
+#include "golden_junit.hpp"
+#include "golden_metadata.hpp"
+#include "run_support.hpp"
+#include "stepper.hpp"
+#include "trace.hpp"
+
+namespace discreel::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LoadedScene {
+    std::string path;   // as the user typed it
+    scene::Scene scene;
+};
+
+std::optional<std::string> check_options(const GoldenOptions& o) {
+    if (o.dir.empty()) return "--dir is required: the directory that holds the goldens";
+    if (!(o.tolerance >= 0 && o.tolerance <= 1))
+        return "--tolerance must be between 0 (exact colours) and 1 (any colour)";
+    if (o.max_diff_pixels && *o.max_diff_pixels < 0)
+        return "--max-diff-pixels must be 0 or more";
+    if (o.max_diff_ratio && !(*o.max_diff_ratio >= 0 && *o.max_diff_ratio <= 1))
+        return "--max-diff-ratio must be between 0 and 1";
+    return std::nullopt;
+}
+
+// How many pixels of a frame may differ: the tighter of the two limits given, none by default.
+std::int64_t allowed_differences(const GoldenOptions& o, std::int64_t pixel_count) {
+    if (!o.max_diff_pixels && !o.max_diff_ratio) return 0;
+    std::int64_t allowed = std::numeric_limits<std::int64_t>::max();
+    if (o.max_diff_pixels) allowed = *o.max_diff_pixels;
+    if (o.max_diff_ratio) {
+        allowed = std::min(allowed, static_cast<std::int64_t>(
+                                        std::floor(*o.max_diff_ratio * pixel_count)));
+    }
+    return allowed;
+}
+
+std::string update_command(const GoldenOptions& o, const std::string& scene_path) {
+    std::string command = "discreel golden " + scene_path + " --dir " + o.dir;
+    if (o.video.width) {
+        command += " --size " + std::to_string(*o.video.width) + "x" +
+                   std::to_string(*o.video.height);
+    }
+    return command + " --update";
+}
+
+std::string percent(std::int64_t part, std::int64_t whole) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(2) << 100.0 * static_cast<double>(part) / whole << " %";
+    return s.str();
+}
+
+std::string fixed(double v, int digits) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(digits) << v;
+    return s.str();
+}
+
+void remove_if_present(const fs::path& path) {
+    std::error_code ignored;
+    fs::remove(path, ignored);
+}
+
+// Compares one rendered frame with its golden; writes .actual.png and .diff.png beside a
+// golden it does not match. Fails (run-time error) only when those files cannot be written.
+Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedScene& loaded,
+                                         int frame, const ImageView& actual,
+                                         const std::string& renderer) {
+    const std::string name = loaded.scene.name;
+    const fs::path scene_dir = fs::path(o.dir) / name;
+    const std::string stem = "frame_" + std::to_string(frame);
+    const fs::path golden_png = scene_dir / (stem + ".png");
+    const fs::path actual_png = scene_dir / (stem + ".actual.png");
+    const fs::path diff_png = scene_dir / (stem + ".diff.png");
+    golden::CaseResult result{.scene = name, .name = stem, .passed = true, .message = {}, .details = {}};
+
+    std::error_code exists_error;
+    if (!fs::exists(golden_png, exists_error)) {
+        result.passed = false;
+        result.message = "no golden image " + golden_png.string() + "; create it with: " +
+                         update_command(o, loaded.path);
+        return result;
+    }
+    auto golden = encode::read_png(golden_png.string());
+    if (!golden) {
+        result.passed = false;
+        result.message = golden.error().message + "; recreate it with: " +
+                         update_command(o, loaded.path);
+        return result;
+    }
+    const golden::Comparison c =
+        golden::compare_images(actual, golden->view(), {.threshold = o.tolerance});
+    const std::int64_t allowed = allowed_differences(o, c.pixel_count);
+    if (c.identical || (c.same_size && c.differing_pixels <= allowed)) {
+        // A pass clears what an earlier failing run left, so what is there is current.
+        remove_if_present(actual_png);
+        remove_if_present(diff_png);
+        result.message = c.identical ? "identical"
+                                     : std::to_string(c.differing_pixels) + " differing pixels, " +
+                                           std::to_string(allowed) + " allowed; " +
+                                           std::to_string(c.anti_aliased_pixels) +
+                                           " anti-aliased pixels ignored";
+        return result;
+    }
+
+    result.passed = false;
+    if (Status s = encode::write_png(actual_png.string(), actual); !s) return s.error();
+    std::string written = "wrote " + actual_png.string();
+    if (c.same_size) {
+        result.message = std::to_string(c.differing_pixels) + " pixels differ (" +
+                         percent(c.differing_pixels, c.pixel_count) + " of " +
+                         std::to_string(c.pixel_count) + ", " + std::to_string(allowed) +
+                         " allowed; largest colour distance " + fixed(c.max_delta, 3) + ", " +
+                         std::to_string(c.anti_aliased_pixels) + " anti-aliased pixels ignored)";
+        if (Status s = encode::write_png(diff_png.string(), c.diff.view()); !s) return s.error();
+        written += " and " + diff_png.string();
+    } else {
+        result.message = "the frame is " + std::to_string(actual.width) + "x" +
+                         std::to_string(actual.height) + " but the golden is " +
+                         std::to_string(golden->width) + "x" + std::to_string(golden->height);
+        remove_if_present(diff_png);
+    }
+    result.details = result.message + "\n" + written;
+    if (const auto stored = golden::read_metadata(scene_dir); stored && stored->renderer != renderer) {
+        const std::string note = "rendered with a different renderer (stored: " +
+                                 stored->renderer + ", now: " + renderer + ")";
+        result.message += "; " + note;
+        result.details += "\n" + note;
+    }
+    return result;
+}
+
+std::string frame_count_text(std::size_t n) {
+    return std::to_string(n) + (n == 1 ? " frame" : " frames");
+}
+
+std::string scene_count_text(std::size_t n) {
+    return std::to_string(n) + (n == 1 ? " scene" : " scenes");
+}
+
+// Every scene is loaded before any is rendered: a typo in the last one costs nothing. Prints
+// the problems and returns nothing when a scene is bad.
+std::optional<std::vector<LoadedScene>> load_scenes(const GoldenOptions& o, std::ostream& err) {
+    std::vector<LoadedScene> scenes;
+    bool all_loaded = true;
+    std::map<std::string, std::string> path_of_name;
+    for (const std::string& path : o.scene_paths) {
+        scene::LoadResult loaded = scene::load_scene_file(path);
+        if (!report_diagnostics(loaded, err)) {
+            all_loaded = false;
+            continue;
+        }
+        if (auto problem = apply_overrides(loaded.scene, o.video)) {
+            err << "discreel: " << *problem << '\n';
+            return std::nullopt;
+        }
+        const auto [earlier, fresh] = path_of_name.emplace(loaded.scene.name, path);
+        if (!fresh) {
+            err << "discreel: " << earlier->second << " and " << path << " are both named '"
+                << loaded.scene.name << "'; their goldens would share "
+                << (fs::path(o.dir) / loaded.scene.name).string() << '\n';
+            return std::nullopt;
+        }
+        scenes.push_back({path, std::move(loaded.scene)});
+    }
+    if (!all_loaded) return std::nullopt;
+    return scenes;
+}
+
+// --update for one frame: the golden, with whatever an earlier failure left beside it removed.
+Expected<golden::CaseResult> write_golden(const fs::path& scene_dir, const std::string& scene,
+                                          int frame, const ImageView& image) {
+    const std::string stem = (scene_dir / ("frame_" + std::to_string(frame))).string();
+    if (Status s = encode::write_png(stem + ".png", image); !s) return s.error();
+    remove_if_present(stem + ".actual.png");
+    remove_if_present(stem + ".diff.png");
+    return golden::CaseResult{.scene = scene,
+                              .name = "frame_" + std::to_string(frame),
+                              .passed = true,
+                              .message = "wrote " + stem + ".png",
+                              .details = {}};
+}
+
+// Renders one scene's golden frames and checks (or, with --update, writes) each, printing a
+// line per frame and appending to `results`. Fails only at run time (GL, files).
+Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream& out,
+                 std::vector<golden::CaseResult>& results) {
+    const scene::Scene& scene = loaded.scene;
+    auto renderer =
+        render::Renderer::create({.width = scene.video.width, .height = scene.video.height});
+    if (!renderer) return renderer.error();
+    const fs::path scene_dir = fs::path(o.dir) / scene.name;
+    if (o.update) {
+        std::error_code made;
+        fs::create_directories(scene_dir, made);
+        if (made) return Error{"cannot create '" + scene_dir.string() + "': " + made.message()};
+    }
+
+    std::vector<int> frames = scene.golden_frames;
+    std::sort(frames.begin(), frames.end());
+    frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+    const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
+    physics::World world(build_world(scene));
+    FrameStepper stepper(world, timeline);
+    FrameSceneBuilder frame_builder(scene);
+    int next_frame = 0;
+    for (const int frame : frames) {
+        // Trails and the follow camera remember earlier frames: show them every one.
+        for (; next_frame < frame; ++next_frame) {
+            stepper.advance_to(next_frame);
+            frame_builder.observe(next_frame, world.discs());
+        }
+        stepper.advance_to(frame);
+        next_frame = frame + 1;
+        auto image = renderer->draw(frame_builder.build(frame, world.discs()));
+        if (!image) return image.error();
+        auto result = o.update ? write_golden(scene_dir, scene.name, frame, *image)
+                               : check_frame(o, loaded, frame, *image, renderer->renderer_info());
+        if (!result) return result.error();
+        out << scene.name << " frame " << frame << ": ";
+        if (o.update) {
+            out << result->message << '\n';
+        } else if (result->passed) {
+            out << "ok (" << result->message << ")\n";
+        } else {
+            out << "FAILED: " << result->message << '\n';
+        }
+        results.push_back(std::move(*result));
+    }
+    if (!o.update) return {};
+    return golden::write_metadata(scene_dir, {.discreel_version = DISCREEL_VERSION,
+                                              .renderer = renderer->renderer_info(),
+                                              .width = scene.video.width,
+                                              .height = scene.video.height});
+}
+
+Status write_junit(const std::string& path, const std::vector<golden::CaseResult>& results) {
+    auto file = AtomicTextFile::create(path);
+    if (!file) return file.error();
+    file->write(golden::junit_xml("discreel golden", results));
+    return file->commit();
+}
+
+}  // namespace
+
+int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
+    if (auto problem = check_options(o)) {
+        err << "discreel: " << *problem << '\n';
+        return exit_bad_input;
+    }
+    const auto scenes = load_scenes(o, err);
+    if (!scenes) return exit_bad_input;
+
+    std::vector<golden::CaseResult> results;
+    for (const LoadedScene& loaded : *scenes) {
+        if (Status s = run_scene(o, loaded, out, results); !s) {
+            err << "discreel: " << s.error().message << '\n';
+            return exit_runtime_failure;
+        }
+    }
+    if (o.junit) {
+        if (Status s = write_junit(*o.junit, results); !s) {
+            err << "discreel: " << s.error().message << '\n';
+            return exit_runtime_failure;
+        }
+    }
+
+    if (o.update) {
+        out << "golden: wrote " << frame_count_text(results.size()) << " of "
+            << scene_count_text(scenes->size()) << " to " << o.dir << '\n';
+        return exit_ok;
+    }
+    const auto failed = static_cast<std::size_t>(std::count_if(
+        results.begin(), results.end(), [](const golden::CaseResult& r) { return !r.passed; }));
+    out << "golden: " << frame_count_text(results.size()) << " of "
+        << scene_count_text(scenes->size()) << ": " << results.size() - failed << " passed, "
+        << failed << " failed\n";
+    return failed == 0 ? exit_ok : exit_golden_mismatch;
+}
+
+}  // namespace discreel::app

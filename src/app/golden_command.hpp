@@ -1,0 +1,29 @@
+#pragma once
+// `discreel golden`: renders each scene's golden frames and compares them with the images in
+// D/<scene>/frame_<n>.png, or writes those images with --update. See docs/golden.md.
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "scene_source.hpp"
+
+namespace discreel::app {
+
+struct GoldenOptions {
+    std::vector<std::string> scene_paths;
+    std::string dir;                              // goldens live in dir/<scene name>/
+    bool update = false;                          // write the goldens instead of comparing
+    double tolerance = 0.1;                       // perceptual colour distance, 0..1
+    std::optional<std::int64_t> max_diff_pixels;  // per frame; none (and no ratio): 0
+    std::optional<double> max_diff_ratio;         // per frame, of all its pixels, 0..1
+    std::optional<std::string> junit;             // write a JUnit XML report here
+    VideoOverrides video;                         // --size only
+};
+
+// Exit codes: 0 every frame matched (or was written), 1 a frame differs or has no golden,
+// 2 bad command line or scene, 3 run-time failure (GL, I/O).
+int run_golden(const GoldenOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace discreel::app

@@ -1,0 +1,177 @@
+#include "pipeline.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "pipeline_queue.hpp"
+
+namespace discreel::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::size_t frame_bytes(const render::RendererDef& def) {
+    return std::size_t{4} * static_cast<std::size_t>(def.width) *
+           static_cast<std::size_t>(def.height);
+}
+
+PipelineResult run_on_one_thread(const PipelineDef& def, const PipelineStages& stages) {
+    PipelineResult result;
+    auto renderer = render::Renderer::create(def.renderer);
+    if (!renderer) {
+        result.status = renderer.error();
+        return result;
+    }
+    result.renderer_info = renderer->renderer_info();
+    std::vector<std::uint8_t> pixels(frame_bytes(def.renderer));
+    int encoded = 0;
+    for (int frame = 0; frame < def.frame_count; ++frame) {
+        if (stages.should_stop()) {
+            result.stopped = true;
+            return result;
+        }
+        auto start = Clock::now();
+        const render::FrameScene* scene = stages.simulate(frame);
+        result.busy.simulate += seconds_since(start);
+        if (scene == nullptr) continue;
+        start = Clock::now();
+        auto image = renderer->draw_into(*scene, pixels);
+        result.busy.render += seconds_since(start);
+        if (!image) {
+            result.status = image.error();
+            return result;
+        }
+        start = Clock::now();
+        Status written = stages.encode(*image);
+        result.busy.encode += seconds_since(start);
+        if (!written) {
+            result.status = written;
+            return result;
+        }
+        stages.encoded(++encoded);
+    }
+    return result;
+}
+
+// What the three threads share. Slots move free -> drawable -> encodable -> free; a slot is
+// touched only by the stage that last popped it, so the slots themselves need no lock.
+class ThreadedRun {
+public:
+    ThreadedRun(const PipelineDef& def, const PipelineStages& stages)
+        : def_(def), stages_(stages), slots_(static_cast<std::size_t>(def.slots)),
+          free_(def.slots), drawable_(def.slots), encodable_(def.slots) {
+        for (Slot& slot : slots_) slot.pixels.resize(frame_bytes(def.renderer));
+        for (int i = 0; i < def.slots; ++i) free_.push(i);
+    }
+
+    PipelineResult run() {
+        std::thread render_thread([this] { render_stage(); });
+        std::thread encode_thread([this] { encode_stage(); });
+        simulate_stage();
+        render_thread.join();
+        encode_thread.join();
+        result_.stopped = stopped_;
+        return std::move(result_);
+    }
+
+private:
+    struct Slot {
+        render::FrameScene scene;          // vectors keep their capacity from frame to frame
+        std::vector<std::uint8_t> pixels;
+        ImageView image;
+    };
+
+    void simulate_stage() {
+        for (int frame = 0; frame < def_.frame_count; ++frame) {
+            if (stages_.should_stop()) {
+                stopped_ = true;
+                cancel_all();
+                return;
+            }
+            const auto start = Clock::now();
+            const render::FrameScene* scene = stages_.simulate(frame);
+            result_.busy.simulate += seconds_since(start);
+            if (scene == nullptr) continue;
+            const std::optional<int> slot = free_.pop();
+            if (!slot) return;
+            const auto copy_start = Clock::now();
+            slots_[static_cast<std::size_t>(*slot)].scene = *scene;
+            result_.busy.simulate += seconds_since(copy_start);
+            drawable_.push(*slot);
+        }
+        drawable_.close();
+    }
+
+    void render_stage() {
+        auto renderer = render::Renderer::create(def_.renderer);
+        if (!renderer) return fail(renderer.error());
+        result_.renderer_info = renderer->renderer_info();
+        double busy = 0;
+        while (const std::optional<int> index = drawable_.pop()) {
+            Slot& slot = slots_[static_cast<std::size_t>(*index)];
+            const auto start = Clock::now();
+            auto image = renderer->draw_into(slot.scene, slot.pixels);
+            busy += seconds_since(start);
+            if (!image) return fail(image.error());
+            slot.image = *image;
+            encodable_.push(*index);
+        }
+        encodable_.close();
+        result_.busy.render = busy;
+    }
+
+    void encode_stage() {
+        int encoded = 0;
+        double busy = 0;
+        while (const std::optional<int> index = encodable_.pop()) {
+            const auto start = Clock::now();
+            Status written = stages_.encode(slots_[static_cast<std::size_t>(*index)].image);
+            busy += seconds_since(start);
+            if (!written) return fail(written.error());
+            stages_.encoded(++encoded);
+            free_.push(*index);
+        }
+        result_.busy.encode = busy;
+    }
+
+    void fail(Error error) {
+        {
+            std::lock_guard lock(failure_mutex_);
+            if (result_.status) result_.status = std::move(error);
+        }
+        cancel_all();
+    }
+
+    void cancel_all() {
+        free_.cancel();
+        drawable_.cancel();
+        encodable_.cancel();
+    }
+
+    const PipelineDef& def_;
+    const PipelineStages& stages_;
+    std::vector<Slot> slots_;
+    SlotQueue free_;
+    SlotQueue drawable_;
+    SlotQueue encodable_;
+    std::mutex failure_mutex_;
+    PipelineResult result_;
+    bool stopped_ = false;   // written and read by the simulating (calling) thread only
+};
+
+}  // namespace
+
+PipelineResult run_pipeline(const PipelineDef& def, const PipelineStages& stages) {
+    if (!def.threaded) return run_on_one_thread(def, stages);
+    return ThreadedRun(def, stages).run();
+}
+
+}  // namespace discreel::app

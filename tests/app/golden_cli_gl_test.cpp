@@ -1,0 +1,240 @@
+// `discreel golden` end to end through the binary: write goldens, pass, change a colour and
+// fail with .actual.png and .diff.png, a JUnit report, a missing golden, another renderer.
+// Also runs the project's own rendering regression check: every configs/ scene against its
+// goldens in tests/golden/configs. "GL" in the suite names: these need an OSMesa context.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <regex>
+#include <sstream>
+
+#include "discreel/encode.hpp"
+#include "golden_compare.hpp"
+#include "test_support.hpp"
+
+namespace discreel {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::read_file;
+using testing::run_command;
+using testing::TempDir;
+using testing::write_file;
+
+const std::string bin = DISCREEL_BIN;
+const fs::path source_dir = DISCREEL_SOURCE_DIR;
+
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+    for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+        text.replace(at, from.size(), to);
+    return text;
+}
+
+// A copy of the short test scene named ball.yaml; 30 frames, so goldens 0, 15 and 29.
+class GoldenCliGLTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        scene_text_ = read_file(source_dir / "tests/data/scenes/short.yaml");
+        write_file(scene_, scene_text_);
+    }
+    testing::CommandResult golden(std::vector<std::string> extra) {
+        std::vector<std::string> argv{bin, "golden", scene_, "--dir", goldens_};
+        argv.insert(argv.end(), extra.begin(), extra.end());
+        return run_command(argv);
+    }
+    TempDir dir_;
+    const std::string scene_ = dir_ / "ball.yaml";
+    const std::string goldens_ = dir_ / "goldens";
+    std::string scene_text_;
+};
+
+TEST_F(GoldenCliGLTest, UpdateThenPass) {
+    const auto update = golden({"--update"});
+    ASSERT_EQ(update.exit_code, 0) << update.err;
+    EXPECT_EQ(update.err, "");
+    const std::string g = goldens_ + "/ball/";
+    EXPECT_EQ(update.out, "ball frame 0: wrote " + g + "frame_0.png\n"
+                          "ball frame 15: wrote " + g + "frame_15.png\n"
+                          "ball frame 29: wrote " + g + "frame_29.png\n"
+                          "golden: wrote 3 frames of 1 scene to " + goldens_ + "\n");
+    const std::string metadata = read_file(g + "golden.txt");
+    EXPECT_NE(metadata.find("\ndiscreel: 0.1.0\n"), std::string::npos) << metadata;
+    EXPECT_NE(metadata.find("\nrenderer: llvmpipe"), std::string::npos) << metadata;
+    EXPECT_NE(metadata.find("\nsize: 160x120\n"), std::string::npos) << metadata;
+
+    const auto check = golden({});
+    ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
+    EXPECT_EQ(check.out, "ball frame 0: ok (identical)\n"
+                         "ball frame 15: ok (identical)\n"
+                         "ball frame 29: ok (identical)\n"
+                         "golden: 3 frames of 1 scene: 3 passed, 0 failed\n");
+    EXPECT_FALSE(fs::exists(g + "frame_0.actual.png"));
+}
+
+TEST_F(GoldenCliGLTest, AChangedColourFailsWithActualAndDiffImagesAndAJunitReport) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    // The red disc turns blue; frame 0's report is checked in full, frames 15 and 29 in part.
+    write_file(scene_, replace_all(scene_text_, "\"#e4572e\"", "\"#2040ff\""));
+    const auto check = golden({"--junit", dir_ / "report.xml"});
+    ASSERT_EQ(check.exit_code, 1) << check.out << check.err;
+    EXPECT_EQ(check.err, "");
+
+    const std::string g = goldens_ + "/ball/";
+    auto expected = encode::read_png(g + "frame_0.png");
+    auto actual = encode::read_png(g + "frame_0.actual.png");
+    auto diff = encode::read_png(g + "frame_0.diff.png");
+    ASSERT_TRUE(expected.ok() && actual.ok() && diff.ok());
+    const golden::Comparison c = golden::compare_images(actual->view(), expected->view(), {});
+    // The camera fits the 4 x 3 m box with a 5 % margin: 120 / 3.3 = 36 pixels per metre, so
+    // the disc of radius 0.3 m covers about 370 pixels; its rim may pass for anti-aliasing,
+    // its inside may not.
+    EXPECT_GT(c.differing_pixels, 200);
+    EXPECT_LT(c.differing_pixels + c.anti_aliased_pixels, 450);
+    std::ostringstream percent;
+    percent.precision(2);
+    percent << std::fixed << 100.0 * c.differing_pixels / 19200;
+    const std::string message =
+        std::to_string(c.differing_pixels) + " pixels differ (" + percent.str() +
+        " % of 19200, 0 allowed; largest colour distance " +
+        [&] { std::ostringstream s; s.precision(3); s << std::fixed << c.max_delta; return s.str(); }() +
+        ", " + std::to_string(c.anti_aliased_pixels) + " anti-aliased pixels ignored)";
+    std::istringstream lines(check.out);
+    std::string first;
+    std::getline(lines, first);
+    EXPECT_EQ(first, "ball frame 0: FAILED: " + message);
+    EXPECT_NE(check.out.find("\nball frame 15: FAILED: "), std::string::npos) << check.out;
+    EXPECT_NE(check.out.find("\nball frame 29: FAILED: "), std::string::npos) << check.out;
+    EXPECT_NE(check.out.find("\ngolden: 3 frames of 1 scene: 0 passed, 3 failed\n"),
+              std::string::npos) << check.out;
+    // The diff marks the changed pixels red over the faded golden.
+    const auto red = [&] {
+        int n = 0;
+        for (std::size_t i = 0; i < diff->rgba.size(); i += 4)
+            n += diff->rgba[i] == 255 && diff->rgba[i + 1] == 0 && diff->rgba[i + 2] == 0;
+        return n;
+    }();
+    EXPECT_EQ(red, c.differing_pixels);
+
+    const std::string xml = read_file(dir_ / "report.xml");
+    EXPECT_EQ(xml.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                        "<testsuites name=\"discreel golden\" tests=\"3\" failures=\"3\" errors=\"0\">\n"
+                        "  <testsuite name=\"discreel golden\" tests=\"3\" failures=\"3\" errors=\"0\">\n"
+                        "    <testcase classname=\"ball\" name=\"frame_0\">\n"
+                        "      <failure message=\"" + message + "\" type=\"golden mismatch\">" +
+                        message + "\nwrote " + g + "frame_0.actual.png and " + g +
+                        "frame_0.diff.png</failure>\n    </testcase>\n", 0), 0u) << xml;
+    EXPECT_NE(xml.find("<testcase classname=\"ball\" name=\"frame_29\">"), std::string::npos);
+
+    // Put back, the scene passes again, and the leftovers of the failure are gone.
+    write_file(scene_, scene_text_);
+    ASSERT_EQ(golden({}).exit_code, 0);
+    EXPECT_FALSE(fs::exists(g + "frame_0.actual.png"));
+    EXPECT_FALSE(fs::exists(g + "frame_0.diff.png"));
+}
+
+TEST_F(GoldenCliGLTest, TolerancesLetAChangeThrough) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    write_file(scene_, replace_all(scene_text_, "\"#e4572e\"", "\"#2040ff\""));
+    EXPECT_EQ(golden({"--max-diff-pixels", "2000"}).exit_code, 0);
+    EXPECT_EQ(golden({"--max-diff-ratio", "0.1"}).exit_code, 0);
+    // Both given: the tighter one decides.
+    EXPECT_EQ(golden({"--max-diff-ratio", "0.1", "--max-diff-pixels", "10"}).exit_code, 1);
+    EXPECT_EQ(golden({"--tolerance", "1"}).exit_code, 0);
+}
+
+TEST_F(GoldenCliGLTest, AMissingGoldenSaysHowToCreateIt) {
+    const auto check = golden({"--size", "64x48"});
+    EXPECT_EQ(check.exit_code, 1);
+    EXPECT_EQ(check.out.substr(0, check.out.find('\n')),
+              "ball frame 0: FAILED: no golden image " + goldens_ +
+                  "/ball/frame_0.png; create it with: discreel golden " + scene_ + " --dir " +
+                  goldens_ + " --size 64x48 --update");
+}
+
+TEST_F(GoldenCliGLTest, AMismatchOnAnotherRendererSaysSo) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    const std::string metadata_path = goldens_ + "/ball/golden.txt";
+    std::string metadata = read_file(metadata_path);
+    const auto renderer_at = metadata.find("renderer: ") + 10;
+    const auto renderer_end = metadata.find('\n', renderer_at);
+    const std::string now = metadata.substr(renderer_at, renderer_end - renderer_at);
+    write_file(metadata_path, metadata.replace(renderer_at, renderer_end - renderer_at,
+                                               "Imaginary GPU, 9.9 (Core Profile) Mesa 99.0"));
+    // Same pixels: the renderer note is not a failure by itself.
+    ASSERT_EQ(golden({}).exit_code, 0);
+
+    write_file(scene_, replace_all(scene_text_, "\"#e4572e\"", "\"#2040ff\""));
+    const auto check = golden({});
+    EXPECT_EQ(check.exit_code, 1);
+    const std::string first = check.out.substr(0, check.out.find('\n'));
+    const std::string note = "; rendered with a different renderer (stored: Imaginary GPU, 9.9 "
+                             "(Core Profile) Mesa 99.0, now: " + now + ")";
+    ASSERT_GE(first.size(), note.size());
+    EXPECT_EQ(first.substr(first.size() - note.size()), note) << first;
+}
+
+TEST_F(GoldenCliGLTest, ASizeMismatchIsAFailureWithTheActualFrame) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    const auto check = golden({"--size", "320x240"});
+    EXPECT_EQ(check.exit_code, 1);
+    EXPECT_EQ(check.out.substr(0, check.out.find('\n')),
+              "ball frame 0: FAILED: the frame is 320x240 but the golden is 160x120");
+    EXPECT_TRUE(fs::exists(goldens_ + "/ball/frame_0.actual.png"));
+    EXPECT_FALSE(fs::exists(goldens_ + "/ball/frame_0.diff.png"));
+}
+
+TEST_F(GoldenCliGLTest, BadOptionsAndScenesAreExit2BeforeAnyWork) {
+    auto bad = golden({"--tolerance", "1.5"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_EQ(bad.err, "discreel: --tolerance must be between 0 (exact colours) and 1 (any colour)\n");
+    bad = golden({"--max-diff-ratio", "-0.5"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_EQ(bad.err, "discreel: --max-diff-ratio must be between 0 and 1\n");
+
+    write_file(dir_ / "broken.yaml", "version: 1\nvideo: {fps: 0}\n");
+    bad = run_command({bin, "golden", scene_, dir_ / "broken.yaml", "--dir", goldens_, "--update"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_EQ(bad.out, "");
+    EXPECT_FALSE(fs::exists(goldens_));   // the good scene was not rendered either
+
+    fs::create_directories(dir_ / "other");
+    write_file(dir_ / "other/ball.yaml", scene_text_);
+    bad = run_command({bin, "golden", scene_, dir_ / "other/ball.yaml", "--dir", goldens_});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_EQ(bad.err, "discreel: " + scene_ + " and " + (dir_ / "other/ball.yaml") +
+                           " are both named 'ball'; their goldens would share " + goldens_ +
+                           "/ball\n");
+}
+
+// The project's own rendering regressions: every shipped scene, at 320x180 to keep the goldens
+// small. Tolerance: the defaults (colour distance 0.1, no differing pixel beyond anti-aliasing),
+// since llvmpipe renders bit-identically run to run; the anti-aliasing allowance absorbs edge
+// shading of another Mesa/LLVM. Refresh with the command in docs/golden.md.
+TEST(GoldenConfigsGLTest, EveryShippedSceneMatchesItsGoldens) {
+    std::vector<std::string> argv{bin, "golden"};
+    for (const auto& entry : fs::directory_iterator(source_dir / "configs"))
+        if (entry.path().extension() == ".yaml") argv.push_back(entry.path().string());
+    std::sort(argv.begin() + 2, argv.end());
+    ASSERT_GE(argv.size(), 8u);   // the demo and the gallery
+    TempDir dir;
+    // The goldens are copied so that a failure's .actual.png and .diff.png land in the build's
+    // temporary directory, not in the source tree; the output names them.
+    fs::copy(source_dir / "tests/golden/configs", dir.path() / "configs",
+             fs::copy_options::recursive);
+    const std::string goldens = dir / "configs";
+    argv.insert(argv.end(), {"--dir", goldens, "--size", "320x180"});
+    const auto run = run_command(argv);
+    EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+    EXPECT_EQ(run.err, "");
+    if (run.exit_code != 0) {
+        // Keep the evidence: the temporary directory is removed when the test ends.
+        const fs::path keep = fs::path(DISCREEL_BINARY_DIR) / "golden-configs-mismatch";
+        fs::remove_all(keep);
+        fs::copy(goldens, keep, fs::copy_options::recursive);
+        ADD_FAILURE() << "goldens, .actual.png and .diff.png kept in " << keep;
+    }
+}
+
+}  // namespace
+}  // namespace discreel
