@@ -1,5 +1,9 @@
 #include "golden_command.hpp"
 
+#include <unistd.h>
+
+#include <chrono>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -16,6 +20,7 @@
 #include "golden_compare.hpp"
 #include "golden_junit.hpp"
 #include "golden_metadata.hpp"
+#include "progress.hpp"
 #include "run_support.hpp"
 #include "stepper.hpp"
 #include "trace.hpp"
@@ -201,8 +206,27 @@ Expected<golden::CaseResult> write_golden(const fs::path& scene_dir, const std::
 
 // Renders one scene's golden frames and checks (or, with --update, writes) each, printing a
 // line per frame and appending to `results`. Fails only at run time (GL, files).
+// Frames are simulated up to each scene's last golden frame; that is where the time goes, so
+// progress counts simulated frames over all scenes.
+struct GoldenProgress {
+    ProgressMeter meter;
+    std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+    int done = 0;
+
+    void frame_done() {
+        ++done;
+        meter.update(done, std::chrono::duration<double>(std::chrono::steady_clock::now() - started)
+                               .count());
+    }
+};
+
+int frames_to_simulate(const LoadedScene& loaded) {
+    const std::vector<int>& frames = loaded.scene.golden_frames;
+    return frames.empty() ? 0 : *std::max_element(frames.begin(), frames.end()) + 1;
+}
+
 Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream& out,
-                 std::vector<golden::CaseResult>& results) {
+                 std::vector<golden::CaseResult>& results, GoldenProgress& progress) {
     const scene::Scene& scene = loaded.scene;
     auto renderer =
         render::Renderer::create({.width = scene.video.width, .height = scene.video.height});
@@ -227,14 +251,17 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
         for (; next_frame < frame; ++next_frame) {
             stepper.advance_to(next_frame);
             frame_builder.observe(next_frame, world.discs());
+            progress.frame_done();
         }
         stepper.advance_to(frame);
         next_frame = frame + 1;
+        progress.frame_done();
         auto image = renderer->draw(frame_builder.build(frame, world.discs()));
         if (!image) return image.error();
         auto result = o.update ? write_golden(scene_dir, scene.name, frame, *image)
                                : check_frame(o, loaded, frame, *image, renderer->renderer_info());
         if (!result) return result.error();
+        progress.meter.finish();   // a result line must not land in the middle of the bar
         out << scene.name << " frame " << frame << ": ";
         if (o.update) {
             out << result->message << '\n';
@@ -269,13 +296,20 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
     const auto scenes = load_scenes(o, err);
     if (!scenes) return exit_bad_input;
 
+    int total_frames = 0;
+    for (const LoadedScene& loaded : *scenes) total_frames += frames_to_simulate(loaded);
+    GoldenProgress progress{
+        .meter = ProgressMeter(err, pick_progress_style(false, o.progress, isatty(STDERR_FILENO) == 1),
+                               total_frames)};
     std::vector<golden::CaseResult> results;
     for (const LoadedScene& loaded : *scenes) {
-        if (Status s = run_scene(o, loaded, out, results); !s) {
+        if (Status s = run_scene(o, loaded, out, results, progress); !s) {
+            progress.meter.finish();
             err << "discreel: " << s.error().message << '\n';
             return exit_runtime_failure;
         }
     }
+    progress.meter.finish();
     if (o.junit) {
         if (Status s = write_junit(*o.junit, results); !s) {
             err << "discreel: " << s.error().message << '\n';

@@ -20,6 +20,7 @@ struct GoldenOptions {
     std::optional<double> max_diff_ratio;         // per frame, of all its pixels, 0..1
     std::optional<std::string> junit;             // write a JUnit XML report here
     VideoOverrides video;                         // --size only
+    bool progress = false;                        // report progress even when not on a TTY
 };
 
 // Exit codes: 0 every frame matched (or was written), 1 a frame differs or has no golden,

@@ -127,6 +127,8 @@ int main(int argc, char** argv) {
     golden_cmd->add_option("--dir", golden.dir, "Directory of the goldens, one folder per scene")
         ->required();
     golden_cmd->add_flag("--update", golden.update, "Write (or refresh) the goldens instead");
+    golden_cmd->add_flag("--progress", golden.progress,
+                         "Report progress on standard error even when it is not a terminal");
     golden_cmd->add_option("--tolerance", golden.tolerance,
                            "Perceptual colour distance still counted as equal, 0..1 (default 0.1)");
     golden_cmd->add_option("--max-diff-pixels", golden.max_diff_pixels,

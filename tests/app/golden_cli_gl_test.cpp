@@ -72,6 +72,21 @@ TEST_F(GoldenCliGLTest, UpdateThenPass) {
     EXPECT_FALSE(fs::exists(g + "frame_0.actual.png"));
 }
 
+// Not on a terminal the progress stays off unless asked for; asked for, it comes as plain lines
+// on stderr (simulated frames over all scenes) and leaves stdout's report as it is.
+TEST_F(GoldenCliGLTest, ProgressOnRequestGoesToStderr) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    const auto check = golden({"--progress"});
+    ASSERT_EQ(check.exit_code, 0) << check.err;
+    EXPECT_EQ(check.out, "ball frame 0: ok (identical)\n"
+                         "ball frame 15: ok (identical)\n"
+                         "ball frame 29: ok (identical)\n"
+                         "golden: 3 frames of 1 scene: 3 passed, 0 failed\n");
+    EXPECT_EQ(check.err.rfind("frame 1/30 (3%), ", 0), 0u) << check.err;
+    EXPECT_NE(check.err.find("frame 30/30 (100%), "), std::string::npos) << check.err;
+    EXPECT_EQ(check.err.find('\r'), std::string::npos);
+}
+
 TEST_F(GoldenCliGLTest, AChangedColourFailsWithActualAndDiffImagesAndAJunitReport) {
     ASSERT_EQ(golden({"--update"}).exit_code, 0);
     // The red disc turns blue; frame 0's report is checked in full, frames 15 and 29 in part.
