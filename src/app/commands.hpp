@@ -19,6 +19,7 @@ struct RenderOptions {
     std::string output;                      // extension picks the format; "-": stdout
     std::optional<int> frame;                // for a .png still
     std::optional<double> at;                // seconds, for a .png still
+    scene::Limits limits;                    // --max-discs, --max-duration, --max-scene-bytes
     VideoOverrides video;
     std::optional<int> crf;                  // none: the codec's default
     std::string preset;                      // x264 preset; empty: veryfast
@@ -34,6 +35,7 @@ struct RenderOptions {
 
 struct SimulateOptions {
     std::string scene_path;
+    scene::Limits limits;
     std::optional<double> duration;
     OutputFiles files;
 };

@@ -168,12 +168,12 @@ std::optional<std::vector<LoadedScene>> load_scenes(const GoldenOptions& o, std:
     bool all_loaded = true;
     std::map<std::string, std::string> path_of_name;
     for (const std::string& path : o.scene_paths) {
-        scene::LoadResult loaded = scene::load_scene_file(path);
+        scene::LoadResult loaded = scene::load_scene_file(path, o.limits);
         if (!report_diagnostics(loaded, err)) {
             all_loaded = false;
             continue;
         }
-        if (auto problem = apply_overrides(loaded.scene, o.video)) {
+        if (auto problem = apply_overrides(loaded.scene, o.video, o.limits)) {
             err << "discreel: " << *problem << '\n';
             return std::nullopt;
         }

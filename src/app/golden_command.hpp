@@ -21,6 +21,7 @@ struct GoldenOptions {
     std::optional<std::string> junit;             // write a JUnit XML report here
     VideoOverrides video;                         // --size only
     bool progress = false;                        // report progress even when not on a TTY
+    scene::Limits limits;                         // --max-discs, --max-duration, ...
 };
 
 // Exit codes: 0 every frame matched (or was written), 1 a frame differs or has no golden,

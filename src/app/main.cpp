@@ -39,10 +39,26 @@ void add_output_files(CLI::App& cmd, OutputFiles& files) {
         ->option_text("FILE");
 }
 
-int run_validate(const std::vector<std::string>& paths) {
+// The protective limits of docs/scene-format.md, raised (or lowered) per run.
+void add_limit_options(CLI::App& cmd, discreel::scene::Limits& limits) {
+    cmd.add_option("--max-discs", limits.discs, "Most discs a scene may have")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str()
+        ->group("Limits");
+    cmd.add_option("--max-duration", limits.duration, "Longest video.duration, seconds")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str()
+        ->group("Limits");
+    cmd.add_option("--max-scene-bytes", limits.file_bytes, "Largest scene file, bytes")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str()
+        ->group("Limits");
+}
+
+int run_validate(const std::vector<std::string>& paths, const discreel::scene::Limits& limits) {
     bool all_ok = true;
     for (const std::string& path : paths) {
-        const auto loaded = discreel::scene::load_scene_file(path);
+        const auto loaded = discreel::scene::load_scene_file(path, limits);
         if (report_diagnostics(loaded, std::cerr)) {
             std::cout << path << ": ok (" << loaded.scene.discs.size() << " discs, "
                       << loaded.scene.video.frame_count() << " frames)\n";
@@ -96,6 +112,7 @@ int main(int argc, char** argv) {
     render_cmd->add_flag("--lossless", render.lossless,
                          "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);
+    add_limit_options(*render_cmd, render.limits);
     render_cmd->add_flag("--progress", render.progress,
                          "Report progress on standard error even when it is not a terminal "
                          "(one line per second)");
@@ -114,11 +131,14 @@ int main(int argc, char** argv) {
     simulate_cmd->add_option("scene", simulate.scene_path, "Scene file (YAML)")->required();
     simulate_cmd->add_option("--duration", simulate.duration, "Override duration in seconds");
     add_output_files(*simulate_cmd, simulate.files);
+    add_limit_options(*simulate_cmd, simulate.limits);
 
     std::vector<std::string> validate_paths;
     CLI::App* validate_cmd = app.add_subcommand(
         "validate", "Check scene files and print every problem; exit 2 if any");
     validate_cmd->add_option("scenes", validate_paths, "Scene files (YAML)")->required();
+    discreel::scene::Limits validate_limits;
+    add_limit_options(*validate_cmd, validate_limits);
 
     GoldenOptions golden;
     CLI::App* golden_cmd = app.add_subcommand(
@@ -127,6 +147,7 @@ int main(int argc, char** argv) {
     golden_cmd->add_option("--dir", golden.dir, "Directory of the goldens, one folder per scene")
         ->required();
     golden_cmd->add_flag("--update", golden.update, "Write (or refresh) the goldens instead");
+    add_limit_options(*golden_cmd, golden.limits);
     golden_cmd->add_flag("--progress", golden.progress,
                          "Report progress on standard error even when it is not a terminal");
     golden_cmd->add_option("--tolerance", golden.tolerance,
@@ -165,7 +186,7 @@ int main(int argc, char** argv) {
         return run_render(render, std::cout, std::cerr);
     }
     if (simulate_cmd->parsed()) return run_simulate(simulate, std::cout, std::cerr);
-    if (validate_cmd->parsed()) return run_validate(validate_paths);
+    if (validate_cmd->parsed()) return run_validate(validate_paths, validate_limits);
     if (golden_cmd->parsed()) return run_golden(golden, std::cout, std::cerr);
     return exit_bad_input;
 }

@@ -114,10 +114,10 @@ void report_details(const PipelineResult& run, int frames, std::ostream& err) {
 
 int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = Clock::now();
-    scene::LoadResult loaded = load_scene_or_demo(o.scene_path);
+    scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
-    if (auto problem = apply_overrides(scene, o.video)) {
+    if (auto problem = apply_overrides(scene, o.video, o.limits)) {
         err << "discreel: " << *problem << '\n';
         return exit_bad_input;
     }

@@ -1,19 +1,23 @@
 #include "scene_source.hpp"
 
 #include "discreel_configs.hpp"
+#include "trace.hpp"
 
 namespace discreel::app {
 
 std::string_view builtin_demo_yaml() { return discreel_configs::demo_yaml; }
 
-scene::LoadResult load_scene_or_demo(const std::optional<std::string>& path) {
-    if (path) return scene::load_scene_file(*path);
-    scene::LoadResult result = scene::load_scene_text(builtin_demo_yaml(), "<built-in demo>");
+scene::LoadResult load_scene_or_demo(const std::optional<std::string>& path,
+                                     const scene::Limits& limits) {
+    if (path) return scene::load_scene_file(*path, limits);
+    scene::LoadResult result =
+        scene::load_scene_text(builtin_demo_yaml(), "<built-in demo>", limits);
     result.scene.name = "demo";
     return result;
 }
 
-std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverrides& o) {
+std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverrides& o,
+                                           const scene::Limits& limits) {
     if (o.width) {
         if (*o.width < 16 || *o.width > 7680 || *o.height < 16 || *o.height > 4320) {
             return "--size must be between 16x16 and 7680x4320";
@@ -30,8 +34,11 @@ std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverr
         scene.video.fps = *o.fps;
     }
     if (o.duration) {
-        if (!(*o.duration > 0 && *o.duration <= 3600)) {
-            return "--duration must be greater than 0 and at most 3600 seconds";
+        if (!(*o.duration > 0 && *o.duration <= limits.duration)) {
+            std::string limit;
+            append_number(limit, limits.duration);
+            return "--duration must be greater than 0 and at most " + limit +
+                   " seconds (raise the limit with --max-duration)";
         }
         scene.video.duration = *o.duration;
     }

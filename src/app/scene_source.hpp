@@ -11,7 +11,8 @@ namespace discreel::app {
 std::string_view builtin_demo_yaml();
 
 // Loads `path`, or the built-in demo when no path is given.
-scene::LoadResult load_scene_or_demo(const std::optional<std::string>& path);
+scene::LoadResult load_scene_or_demo(const std::optional<std::string>& path,
+                                     const scene::Limits& limits);
 
 // Overrides from the command line, applied after loading. Returns the problems, in words.
 struct VideoOverrides {
@@ -19,6 +20,8 @@ struct VideoOverrides {
     std::optional<int> fps;
     std::optional<double> duration;     // seconds
 };
-std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverrides& o);
+// `limits` bound --duration as they bound video.duration in the file.
+std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverrides& o,
+                                           const scene::Limits& limits);
 
 }  // namespace discreel::app

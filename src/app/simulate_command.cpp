@@ -18,12 +18,12 @@ std::string count_of(std::size_t n, const char* singular, const char* plural) {
 
 int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = std::chrono::steady_clock::now();
-    scene::LoadResult loaded = scene::load_scene_file(o.scene_path);
+    scene::LoadResult loaded = scene::load_scene_file(o.scene_path, o.limits);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
     VideoOverrides overrides;
     overrides.duration = o.duration;
-    if (auto problem = apply_overrides(scene, overrides)) {
+    if (auto problem = apply_overrides(scene, overrides, o.limits)) {
         err << "discreel: " << *problem << '\n';
         return exit_bad_input;
     }

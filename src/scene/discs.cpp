@@ -126,10 +126,11 @@ bool check_mass(const Disc& disc, const Value& item, Diagnostics& d) {
 // Whether `count` more discs still fit under the limit; reports the entry that breaks it.
 bool room_for(Loader& loader, const Value& item, std::size_t count) {
     const std::size_t total = loader.scene.discs.size() + count;
-    if (total <= max_discs) return true;
+    if (total <= loader.limits.discs) return true;
     loader.diagnostics.error(item.where, item.path + ": this entry brings the scene to " +
                                              std::to_string(total) + " discs; the limit is " +
-                                             std::to_string(max_discs));
+                                             std::to_string(loader.limits.discs) +
+                                             " (raise it with --max-discs)");
     loader.discs_complete = false;
     loader.disc_limit_reached = true;
     return false;
@@ -219,6 +220,8 @@ std::optional<std::vector<Color>> read_colors(const Value& value, Diagnostics& d
     return colors;
 }
 
+double max_discs_of(const Loader& loader) { return static_cast<double>(loader.limits.discs); }
+
 std::optional<Value> required(const Fields& fields, std::string_view key, Diagnostics& d) {
     auto value = fields.get(key);
     if (!value)
@@ -285,13 +288,15 @@ std::optional<Generated> read_grid(Loader& loader, const Fields& fields, Rng& rn
         if (const auto items = read_tuple(*count_value, 2, "[columns, rows]", d)) {
             const auto columns = read_integer((*items)[0], d);
             const auto rows = read_integer((*items)[1], d);
-            const bool columns_ok = columns && check_between((*items)[0], static_cast<double>(*columns), 1, max_discs, d);
-            const bool rows_ok = rows && check_between((*items)[1], static_cast<double>(*rows), 1, max_discs, d);
-            if (columns_ok && rows_ok && *columns * *rows > static_cast<long long>(max_discs)) {
+            const bool columns_ok = columns && check_between((*items)[0], static_cast<double>(*columns), 1, max_discs_of(loader), d);
+            const bool rows_ok = rows && check_between((*items)[1], static_cast<double>(*rows), 1, max_discs_of(loader), d);
+            if (columns_ok && rows_ok &&
+                *columns * *rows > static_cast<long long>(loader.limits.discs)) {
                 d.error(count_value->where,
                         count_value->path + ": " + std::to_string(*columns) + " x " +
                             std::to_string(*rows) + " = " + std::to_string(*columns * *rows) +
-                            " discs is more than the limit of " + std::to_string(max_discs));
+                            " discs is more than the limit of " +
+                            std::to_string(loader.limits.discs) + " (raise it with --max-discs)");
                 ok = false;
             }
             ok = ok && columns_ok && rows_ok;
@@ -326,7 +331,7 @@ std::optional<Generated> read_random(Loader& loader, const Fields& fields, const
     RandomSpec spec;
     if (count_value) {
         const auto count = read_integer(*count_value, d);
-        const bool count_ok = count && check_between(*count_value, static_cast<double>(*count), 1, max_discs, d);
+        const bool count_ok = count && check_between(*count_value, static_cast<double>(*count), 1, max_discs_of(loader), d);
         ok = ok && count_ok;
         if (count_ok) spec.count = static_cast<std::size_t>(*count);
     }

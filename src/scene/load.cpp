@@ -37,6 +37,11 @@ LoadResult whole_file_problem(std::string_view file, std::string message) {
     return result;
 }
 
+std::string too_large(std::uintmax_t bytes, const Limits& limits) {
+    return "the file is too large (" + std::to_string(bytes) + " bytes); the limit is " +
+           std::to_string(limits.file_bytes) + " bytes (raise it with --max-scene-bytes)";
+}
+
 // A file written for a later format: its other keys may mean something this build does not
 // know, so only the version is reported. Returns false when it is such a file.
 bool version_supported(const Value& root, Diagnostics& d) {
@@ -200,12 +205,10 @@ void read_scene(const Value& root, detail::Loader& loader) {
 
 }  // namespace
 
-LoadResult load_scene_text(std::string_view text, std::string_view display_name) {
-    if (text.size() > max_file_bytes)
-        return whole_file_problem(display_name, "the file is too large (" +
-                                                    std::to_string(text.size()) +
-                                                    " bytes); the limit is " +
-                                                    std::to_string(max_file_bytes) + " bytes");
+LoadResult load_scene_text(std::string_view text, std::string_view display_name,
+                           const Limits& limits) {
+    if (text.size() > limits.file_bytes)
+        return whole_file_problem(display_name, too_large(text.size(), limits));
     LoadResult result;
     result.scene.name = std::filesystem::path(display_name).stem().string();
     Diagnostics d;
@@ -242,7 +245,7 @@ LoadResult load_scene_text(std::string_view text, std::string_view display_name)
                 d.error(root.where, "a scene is a mapping of keys like 'version: 1' and 'discs:', "
                                     "got " + detail::describe(root.node));
             } else {
-                detail::Loader loader{d, result.scene, {}, true, false, true, {}};
+                detail::Loader loader{d, result.scene, {}, true, false, true, {}, limits};
                 read_scene(root, loader);
             }
         }
@@ -251,22 +254,19 @@ LoadResult load_scene_text(std::string_view text, std::string_view display_name)
     return result;
 }
 
-LoadResult load_scene_file(const std::filesystem::path& path) {
+LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limits) {
     const std::string display = path.string();
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         return whole_file_problem(display, "this is a directory, not a scene file");
     if (!std::filesystem::exists(path, ec)) return whole_file_problem(display, "no such file");
     const auto size = std::filesystem::file_size(path, ec);
-    if (!ec && size > max_file_bytes)
-        return whole_file_problem(display, "the file is too large (" + std::to_string(size) +
-                                               " bytes); the limit is " +
-                                               std::to_string(max_file_bytes) + " bytes");
+    if (!ec && size > limits.file_bytes) return whole_file_problem(display, too_large(size, limits));
     std::ifstream in(path, std::ios::binary);
     if (!in) return whole_file_problem(display, "cannot open the file for reading");
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     if (in.bad()) return whole_file_problem(display, "cannot read the file");
-    return load_scene_text(text, display);
+    return load_scene_text(text, display, limits);
 }
 
 }  // namespace discreel::scene

@@ -26,9 +26,10 @@ struct Loader {
     Scene& scene;
     std::vector<DiscSource> sources;  // parallel to scene.discs
     bool discs_complete = true;       // every entry expanded, so indices and ids are final
-    bool disc_limit_reached = false;  // max_discs reported: later entries are not read
+    bool disc_limit_reached = false;  // limits.discs reported: later entries are not read
     bool frames_known = true;         // fps and duration read fine, so frame_count() is right
     std::optional<Value> camera_follow;  // read with the camera, resolved once discs are known
+    Limits limits;
 };
 
 void read_video(Loader& loader, const Value& value);

@@ -15,7 +15,6 @@ namespace {
 
 constexpr int min_side = 16, max_width = 7680, max_height = 4320;
 constexpr int max_fps = 240;
-constexpr double max_duration = 3600;  // seconds
 constexpr int max_rate = 100'000;      // physics steps per second
 constexpr double max_follow_lag = 10;  // seconds
 
@@ -67,10 +66,11 @@ void read_video(Loader& loader, const Value& value) {
     }
     if (const auto duration = fields->get("duration")) {
         const auto v = read_number(*duration, d);
-        if (v && (*v <= 0 || *v > max_duration)) {
+        if (v && (*v <= 0 || *v > loader.limits.duration)) {
             d.error(duration->where, duration->path + ": must be greater than 0 and at most " +
-                                         format_number(max_duration) + " seconds, got " +
-                                         format_number(*v));
+                                         format_number(loader.limits.duration) + " seconds, got " +
+                                         format_number(*v) +
+                                         (*v > 0 ? " (raise the limit with --max-duration)" : ""));
             loader.frames_known = false;
         } else if (v) {
             video.duration = *v;

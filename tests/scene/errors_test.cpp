@@ -55,7 +55,7 @@ TEST(Errors, ValuesOutOfRangeStateTheRange) {
                        "physics: {rate: 200000, restitution: -0.5, friction: -1}\n"),
               (Lines{"s.yaml:2:14: video.fps: must be between 1 and 240, got 0",
                      "s.yaml:2:27: video.duration: must be greater than 0 and at most 3600 "
-                     "seconds, got 4000",
+                     "seconds, got 4000 (raise the limit with --max-duration)",
                      "s.yaml:3:17: physics.rate: must be between 1 and 100000, got 200000",
                      "s.yaml:3:38: physics.restitution: must be between 0 and 1, got -0.5",
                      "s.yaml:3:54: physics.friction: must be at least 0, got -1"}));
@@ -170,6 +170,31 @@ TEST(Errors, AFloodOfProblemsIsCutShortWithACount) {
     ASSERT_EQ(lines.size(), 101u);
     EXPECT_EQ(lines[0], "s.yaml:3:32: discs[0].radius: must be greater than 0, got -1");
     EXPECT_EQ(lines[100], "s.yaml:103:32: too many problems; 50 more not shown");
+}
+
+// The protective limits are the caller's to set: the CLI's --max-discs and friends.
+TEST(Errors, LimitsAreTheCallersToRaise) {
+    const std::string text = "version: 1\nvideo: {duration: 5000}\n"
+                             "discs:\n  - grid: {count: [400, 300], radius: 0.01, spacing: [0.03, 0.03]}\n";
+    const LoadResult strict = load_scene_text(text, "s.yaml");
+    ASSERT_EQ(strict.diagnostics.size(), 2u);
+    EXPECT_EQ(strict.diagnostics[0].to_string(),
+              "s.yaml:2:19: video.duration: must be greater than 0 and at most 3600 seconds, got "
+              "5000 (raise the limit with --max-duration)");
+    EXPECT_EQ(strict.diagnostics[1].to_string(),
+              "s.yaml:4:19: discs[0].grid.count: 400 x 300 = 120000 discs is more than the limit "
+              "of 100000 (raise it with --max-discs)");
+
+    const LoadResult raised =
+        load_scene_text(text, "s.yaml", Limits{.discs = 200'000, .duration = 6000});
+    EXPECT_TRUE(raised.ok()) << raised.diagnostics.front().to_string();
+    EXPECT_EQ(raised.scene.discs.size(), 120'000u);
+
+    const LoadResult tiny = load_scene_text(text, "s.yaml", Limits{.file_bytes = 10});
+    ASSERT_EQ(tiny.diagnostics.size(), 1u);
+    EXPECT_EQ(tiny.diagnostics[0].to_string(),
+              "s.yaml: the file is too large (" + std::to_string(text.size()) +
+                  " bytes); the limit is 10 bytes (raise it with --max-scene-bytes)");
 }
 
 }  // namespace

@@ -14,13 +14,20 @@
 
 namespace discreel::scene {
 
-// Protective limits: a scene beyond them is rejected with a message that states the limit.
-inline constexpr std::size_t max_discs = 100'000;
+// Limits that protect the machine from a scene that asks too much (memory, time, disk). A scene
+// beyond one is rejected with a message that states the limit and the command-line option that
+// raises it; the CLI fills this from --max-discs, --max-duration and --max-scene-bytes.
+struct Limits {
+    std::size_t discs = 100'000;
+    double duration = 3600;                   // seconds of video
+    std::uintmax_t file_bytes = 64u << 20;    // size of the scene file
+};
+
+// Fixed limits on the shape of a file: beyond them it is malformed rather than ambitious.
 inline constexpr std::size_t max_walls = 10'000;
 inline constexpr std::size_t max_throws = 10'000;
 inline constexpr std::size_t max_waypoints = 10'000;      // per grab path
 inline constexpr std::size_t max_golden_frames = 1'000;
-inline constexpr std::uintmax_t max_file_bytes = 64u << 20;
 inline constexpr std::size_t max_alias_values = 1'000'000;  // values repeated by YAML aliases
 
 struct Color {
@@ -160,7 +167,8 @@ struct LoadResult {
 };
 
 // `display_name` is what diagnostics print as the file (usually the path as the user typed it).
-LoadResult load_scene_text(std::string_view text, std::string_view display_name);
-LoadResult load_scene_file(const std::filesystem::path& path);
+LoadResult load_scene_text(std::string_view text, std::string_view display_name,
+                           const Limits& limits = {});
+LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limits = {});
 
 }  // namespace discreel::scene
