@@ -2,17 +2,21 @@
 # Set up a Debian bookworm machine for discreel, build it, and render the demo or run the tests.
 #
 #   bash setup.sh demo          install packages, build, render the demo to out/demo.mp4
-#   bash setup.sh test [ARGS]   install packages (with the container tools), build, run ctest;
-#                               ARGS go to ctest, e.g. `bash setup.sh test -LE container`
+#   bash setup.sh test [ARGS]   install packages (with the container tools and clang), build,
+#                               run ctest (the fuzzer for 60 s included); then build again with
+#                               ASan + UBSan and run the suite once more under them.
+#                               ARGS go to both ctest runs, e.g. `bash setup.sh test -LE container`
 #   bash setup.sh build         install packages, build (what the Dockerfile runs)
 #   bash setup.sh deps          install packages only
 #
-# Environment: BUILD_DIR (default: build, relative to this file), JOBS (default: all cores).
+# Environment: BUILD_DIR (default: build, relative to this file), SANITIZE_BUILD_DIR (default:
+# build-asan), JOBS (default: all cores).
 # Only missing packages are installed; a machine that has them all is never touched by apt.
 set -euo pipefail
 
 readonly SOURCE_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 readonly BUILD_DIR="${BUILD_DIR:-$SOURCE_DIR/build}"
+readonly SANITIZE_BUILD_DIR="${SANITIZE_BUILD_DIR:-$SOURCE_DIR/build-asan}"
 readonly JOBS="${JOBS:-$(nproc)}"
 
 # What the top-level CMakeLists.txt finds, plus ffprobe/ffmpeg, which the tests call.
@@ -25,9 +29,12 @@ readonly BUILD_PACKAGES=(
 )
 # Only the container test (ctest label `container`) needs these; see docs/container.md.
 readonly CONTAINER_TEST_PACKAGES=(buildah podman debootstrap debian-archive-keyring)
+# The scene fuzzer (ctest label `fuzz`) needs clang and its libFuzzer runtime; see
+# docs/reliability.md.
+readonly CHECK_PACKAGES=(clang libclang-rt-14-dev clang-tidy)
 
 usage() {
-  sed -n '2,11s/^# \{0,1\}//p' "${BASH_SOURCE[0]}" >&2
+  sed -n '2,13s/^# \{0,1\}//p' "${BASH_SOURCE[0]}" >&2
   exit 2
 }
 
@@ -93,10 +100,21 @@ case "$command" in
     log "Done: $SOURCE_DIR/out/demo.mp4"
     ;;
   test)
-    install_packages "${BUILD_PACKAGES[@]}" "${CONTAINER_TEST_PACKAGES[@]}"
+    install_packages "${BUILD_PACKAGES[@]}" "${CONTAINER_TEST_PACKAGES[@]}" "${CHECK_PACKAGES[@]}"
     build
     log "Running the tests"
     ctest --test-dir "$BUILD_DIR" --output-on-failure --parallel "$JOBS" "$@"
+    # The same suite again, where a memory error or undefined behaviour stops the test that
+    # hit it; without the container test (it builds the Release image) and the benchmarks.
+    # A sanitizer build registers no fuzzer test: the fuzzer runs under them already. Peak
+    # memory is not measured there: ASan's shadow memory and quarantine are most of it.
+    log "Configuring (ASan + UBSan) in $SANITIZE_BUILD_DIR"
+    cmake -S "$SOURCE_DIR" -B "$SANITIZE_BUILD_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DDISCREEL_SANITIZE=ON -DDISCREEL_BUILD_BENCH=OFF
+    cmake --build "$SANITIZE_BUILD_DIR" --parallel "$JOBS"
+    log "Running the tests under the sanitizers"
+    ctest --test-dir "$SANITIZE_BUILD_DIR" --output-on-failure --parallel "$JOBS" \
+      -LE container -E PeakMemory "$@"
     ;;
   *)
     usage

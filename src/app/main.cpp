@@ -181,6 +181,7 @@ int main(int argc, char** argv) {
         return exit_bad_input;
     }
 
+    ignore_file_size_signal();
     if (render_cmd->parsed()) {
         install_stop_handlers();
         return run_render(render, std::cout, std::cerr);

@@ -25,6 +25,13 @@ void install_stop_handlers() {
     sigaction(SIGTERM, &action, nullptr);
 }
 
+void ignore_file_size_signal() {
+    // Past a file-size limit (ulimit -f, a quota) the default SIGXFSZ kills the process and
+    // leaves its temporary file behind; ignored, the write fails with EFBIG and the usual
+    // clean-up runs: an error, exit 3, nothing written.
+    std::signal(SIGXFSZ, SIG_IGN);
+}
+
 int stop_signal() { return received.load(std::memory_order_relaxed); }
 
 }  // namespace discreel::app

@@ -9,6 +9,9 @@ namespace discreel::app {
 void install_stop_handlers();
 
 // The signal that asked to stop (SIGINT, SIGTERM), or 0 while none has arrived.
+// Makes writes past a file-size limit fail (EFBIG) instead of killing the process.
+void ignore_file_size_signal();
+
 int stop_signal();
 
 }  // namespace discreel::app

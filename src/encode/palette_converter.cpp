@@ -10,6 +10,7 @@ constexpr std::size_t palette_size = 256;   // GIF's limit
 // Levels per channel of the fallback cube: 5^3 = 125 entries, at most 32 units from any
 // colour per channel, which leaves 131 entries for the scene's own colours.
 constexpr int cube_levels = 5;
+constexpr std::size_t cube_entries = std::size_t{cube_levels} * cube_levels * cube_levels;
 
 std::uint32_t pack(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
     return (std::uint32_t{r} << 16) | (std::uint32_t{g} << 8) | std::uint32_t{b};
@@ -64,7 +65,7 @@ void PaletteConverter::build_palette(const ImageView& first_frame) {
         // Too many colours: the most frequent ones (flat areas, common edge blends) first, then
         // a coarse colour cube so that no colour is far from an entry, then more frequent ones.
         for (const auto& entry : counted) {
-            if (present.size() >= palette_size - cube_levels * cube_levels * cube_levels) break;
+            if (present.size() >= palette_size - cube_entries) break;
             add(entry.second);
         }
         for (int r = 0; r < cube_levels; ++r) {

@@ -1,0 +1,48 @@
+// libFuzzer target: arbitrary bytes through the scene loader and validator.
+// Whatever the input, load_scene_text must return (no crash, no hang, no unbounded memory,
+// no sanitizer report) and its result must be self-consistent; a violation aborts so that
+// libFuzzer records the input. Built only by DISCREEL_FUZZ=ON (see tests/fuzz/run.sh).
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+
+#include "discreel/scene.hpp"
+
+namespace {
+
+void require(bool holds) {
+    if (!holds) std::abort();
+}
+
+void check_scene(const discreel::scene::Scene& scene) {
+    using namespace discreel::scene;
+    require(scene.discs.size() <= Limits{}.discs);
+    require(scene.walls.size() <= max_walls);
+    require(scene.throws.size() <= max_throws);
+    require(scene.golden_frames.size() <= max_golden_frames);
+    require(scene.video.frame_count() > 0);
+    for (const Disc& disc : scene.discs) require(disc.radius > 0.0 && disc.mass > 0.0);
+    for (const Throw& t : scene.throws) {
+        require(t.disc < scene.discs.size());
+        require(t.velocity.has_value() != !t.path.empty());
+    }
+    for (const int frame : scene.golden_frames)
+        require(frame >= 0 && frame < scene.video.frame_count());
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string_view text(reinterpret_cast<const char*>(data), size);
+    const auto result = discreel::scene::load_scene_text(text, "fuzz.yaml");
+    if (result.ok()) {
+        check_scene(result.scene);
+    } else {
+        for (const auto& diagnostic : result.diagnostics) {
+            require(!diagnostic.message.empty());
+            require(diagnostic.line >= 0 && diagnostic.column >= 0);
+        }
+    }
+    return 0;
+}
