@@ -19,20 +19,13 @@
 namespace discreel {
 namespace {
 
+using testing::directory_entries;
 using testing::read_file;
 using testing::run_command;
 using testing::TempDir;
 
 const std::string bin = DISCREEL_BIN;
 const std::string short_scene = std::string(DISCREEL_SOURCE_DIR) + "/tests/data/scenes/short.yaml";
-
-std::vector<std::string> entries(const std::filesystem::path& dir) {
-    std::vector<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(dir))
-        names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
 
 TEST(FaultsGLTest, MissingOutputDirectoryIsNamedAndNothingIsCreated) {
     TempDir dir;
@@ -41,7 +34,7 @@ TEST(FaultsGLTest, MissingOutputDirectoryIsNamedAndNothingIsCreated) {
     EXPECT_EQ(run.exit_code, 3);
     EXPECT_EQ(run.err, "discreel: cannot write '" + out + "': directory '" + (dir / "nowhere") +
                            "' does not exist\n");
-    EXPECT_TRUE(entries(dir.path()).empty());
+    EXPECT_TRUE(directory_entries(dir.path()).empty());
 }
 
 // The tests run as root in CI, where a chmod'ed directory stops nothing. sysfs refuses to create
@@ -65,7 +58,7 @@ TEST(FaultsGLTest, UnwritableOutputDirectoryIsARunTimeFailure) {
     EXPECT_EQ(run.err, "discreel: cannot write '" + out + "': '" + (dir / "file") +
                            "' is not a directory\n");
     EXPECT_EQ(read_file(dir / "file"), "precious");
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"file"});
+    EXPECT_EQ(directory_entries(dir.path()), std::vector<std::string>{"file"});
 }
 
 // A full disk, made small and private: a file-size limit (RLIMIT_FSIZE, set by prlimit for the
@@ -93,7 +86,7 @@ TEST(FaultsGLTest, DiskFullMidClipLeavesNoPartialFileAndTheOldOneStays) {
     EXPECT_EQ(run.err, "discreel: cannot write '" + (dir / "clip.mp4") +
                            "': writing the trailer failed: File too large\n");
     EXPECT_EQ(read_file(dir / "clip.mp4"), "precious");
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"clip.mp4"});
+    EXPECT_EQ(directory_entries(dir.path()), std::vector<std::string>{"clip.mp4"});
 }
 
 // Mesa reads MESA_GL_VERSION_OVERRIDE; capped below 3.3 it cannot give the core-profile context
@@ -106,7 +99,7 @@ TEST(FaultsGLTest, NoGlContextIsARunTimeFailureAndTheOldFileStays) {
     EXPECT_EQ(run.exit_code, 3);
     EXPECT_EQ(run.err, "discreel: cannot create an OSMesa GL 3.3 core-profile context\n");
     EXPECT_EQ(read_file(dir / "clip.mp4"), "precious");
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"clip.mp4"});
+    EXPECT_EQ(directory_entries(dir.path()), std::vector<std::string>{"clip.mp4"});
 }
 
 // Every encoder option the CLI accepts is checked before anything is opened (a bad one is exit
@@ -128,7 +121,7 @@ TEST(EncoderFaultTest, EncoderThatFailsToOpenLeavesNoFileAndTheOldOneStays) {
     const std::string expected = "cannot write '" + def.path + "': cannot open the libx264 encoder: ";
     EXPECT_EQ(sink.error().message.rfind(expected, 0), 0u) << sink.error().message;
     EXPECT_EQ(read_file(dir / "clip.mp4"), "precious");
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"clip.mp4"});
+    EXPECT_EQ(directory_entries(dir.path()), std::vector<std::string>{"clip.mp4"});
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 
 namespace discreel::encode::test {
 
+using discreel::testing::directory_entries;
 using discreel::testing::write_file;
 
 // A directory named after the running test, emptied before the test starts.
@@ -26,15 +27,6 @@ inline std::filesystem::path scratch_directory() {
     std::filesystem::remove_all(directory);
     std::filesystem::create_directories(directory);
     return directory;
-}
-
-inline std::vector<std::string> directory_entries(const std::filesystem::path& directory) {
-    std::vector<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(directory)) {
-        names.push_back(entry.path().filename().string());
-    }
-    std::sort(names.begin(), names.end());
-    return names;
 }
 
 inline std::vector<std::uint8_t> file_bytes(const std::filesystem::path& path) {

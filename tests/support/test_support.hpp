@@ -36,6 +36,9 @@ CommandResult run_command(const std::vector<std::string>& argv,
                           const std::map<std::string, std::string>& environment);
 
 std::string read_file(const std::filesystem::path& path);
+
+// The names in `dir`, sorted: what a test expects to find (or not) after a run.
+std::vector<std::string> directory_entries(const std::filesystem::path& dir);
 void write_file(const std::filesystem::path& path, const std::string& content);
 
 // ffprobe's view of the first video stream: codec_name, profile, pix_fmt, width, height,
