@@ -98,11 +98,14 @@ double draw_all(const scene::Scene& scene, int frames, Each each) {
     }
     const app::Timeline timeline{scene.video.fps, scene.physics.rate, frames};
     physics::World world(app::build_world(scene));
-    app::FrameStepper stepper(world, timeline);
+    app::FrameStepper stepper(world, timeline, scene);
     app::FrameSceneBuilder builder(scene);
     double draw_seconds = 0;
     for (int frame = 0; frame < frames; ++frame) {
-        stepper.advance_to(frame);
+        if (Status stepped = stepper.advance_to(frame); !stepped) {
+            std::cerr << stepped.error().message << '\n';
+            std::exit(1);
+        }
         const auto start = Clock::now();
         auto image = renderer->draw(builder.build(frame, world.discs()));
         draw_seconds += seconds_since(start);

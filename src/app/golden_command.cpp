@@ -243,17 +243,17 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
     frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
     const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
     physics::World world(build_world(scene));
-    FrameStepper stepper(world, timeline);
+    FrameStepper stepper(world, timeline, scene);
     FrameSceneBuilder frame_builder(scene);
     int next_frame = 0;
     for (const int frame : frames) {
         // Trails and the follow camera remember earlier frames: show them every one.
         for (; next_frame < frame; ++next_frame) {
-            stepper.advance_to(next_frame);
+            if (Status stepped = stepper.advance_to(next_frame); !stepped) return stepped.error();
             frame_builder.observe(next_frame, world.discs());
             progress.frame_done();
         }
-        stepper.advance_to(frame);
+        if (Status stepped = stepper.advance_to(frame); !stepped) return stepped.error();
         next_frame = frame + 1;
         progress.frame_done();
         auto image = renderer->draw(frame_builder.build(frame, world.discs()));

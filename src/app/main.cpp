@@ -4,8 +4,10 @@
 
 #include <charconv>
 #include <iostream>
+#include <new>
 
 #include "commands.hpp"
+#include "discreel/temporary_files.hpp"
 #include "exit_codes.hpp"
 #include "golden_command.hpp"
 #include "run_support.hpp"
@@ -71,7 +73,7 @@ int run_validate(const std::vector<std::string>& paths, const discreel::scene::L
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run_command_line(int argc, char** argv) {
     CLI::App app{"discreel: renders 2-D disc physics scenes to video, headless and deterministic",
                  "discreel"};
     app.set_version_flag("--version", std::string("discreel ") + DISCREEL_VERSION);
@@ -190,4 +192,22 @@ int main(int argc, char** argv) {
     if (validate_cmd->parsed()) return run_validate(validate_paths, validate_limits);
     if (golden_cmd->parsed()) return run_golden(golden, std::cout, std::cerr);
     return exit_bad_input;
+}
+
+// Library code returns its errors; what can still be thrown is the standard library running out
+// of memory (a scene within the limits on a machine without that much) or a bug. Either way the
+// process reports it and exits 3 rather than aborting without a word; the sinks and side files
+// are destroyed on the way out, which deletes their temporary files.
+int main(int argc, char** argv) {
+    discreel::delete_temporary_files_on_crash();
+    try {
+        return run_command_line(argc, argv);
+    } catch (const std::bad_alloc&) {
+        std::cerr << "discreel: out of memory\n";
+    } catch (const std::exception& e) {
+        std::cerr << "discreel: internal error: " << e.what() << '\n';
+    } catch (...) {
+        std::cerr << "discreel: internal error\n";
+    }
+    return exit_runtime_failure;
 }

@@ -171,14 +171,16 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
 
     const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
     physics::World world(build_world(scene));
-    FrameStepper stepper(world, timeline);
+    FrameStepper stepper(world, timeline, scene);
     FrameSceneBuilder frame_builder(scene);
     ProgressMeter progress(err,
                            pick_progress_style(o.quiet, o.progress, isatty(STDERR_FILENO) == 1),
                            to_write);
+    Status simulated;   // the physics' failure, which stops the run like a signal
     const PipelineStages stages{
         .simulate = [&](int frame) -> const render::FrameScene* {
-            stepper.advance_to(frame);
+            simulated = stepper.advance_to(frame);
+            if (!simulated) return nullptr;
             outputs->record(frame, timeline.time_of_frame(frame), world.discs(),
                             stepper.take_events());
             if (frame < frames->first) {
@@ -189,7 +191,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         },
         .encode = [&](const ImageView& image) { return (*sink)->write(image); },
         .encoded = [&](int done) { progress.update(done, seconds_since(started)); },
-        .should_stop = [] { return stop_signal() != 0; },
+        .should_stop = [&] { return !simulated || stop_signal() != 0; },
     };
     const PipelineResult run = run_pipeline(
         {.frame_count = frames->last + 1,
@@ -197,6 +199,10 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
          .threaded = !o.sequential},
         stages);
     progress.finish();
+    if (!simulated) {
+        err << "discreel: " << simulated.error().message << '\n';
+        return exit_runtime_failure;
+    }
     if (!run.status) {
         err << "discreel: " << run.status.error().message << '\n';
         return exit_runtime_failure;

@@ -32,12 +32,15 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
 
     const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
     physics::World world(build_world(scene));
-    FrameStepper stepper(world, timeline);
+    FrameStepper stepper(world, timeline, scene);
     const double energy_start = world.energy();
     std::size_t contacts = 0;
     physics::WorldStats deepest;   // the frame with the deepest overlap
     for (int frame = 0; frame < timeline.frame_count; ++frame) {
-        stepper.advance_to(frame);
+        if (Status stepped = stepper.advance_to(frame); !stepped) {
+            err << "discreel: " << stepped.error().message << '\n';
+            return exit_runtime_failure;
+        }
         const std::vector<physics::ContactEvent> events = stepper.take_events();
         contacts += events.size();
         outputs->record(frame, timeline.time_of_frame(frame), world.discs(), events);

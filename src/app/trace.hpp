@@ -1,37 +1,17 @@
 #pragma once
 // The CSV trace and contact-event files of SCENE_FORMAT.md. Numbers are written in the shortest
 // form that reads back to the same double, so a trace can be compared bit for bit.
-#include <cstdio>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "atomic_text_file.hpp"
 #include "discreel/expected.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/scene.hpp"
 
 namespace discreel::app {
-
-// A text file written under a temporary name and renamed onto its path by commit(); dropped
-// without commit(), it removes the temporary file and leaves any existing file untouched.
-class AtomicTextFile {
-public:
-    static Expected<AtomicTextFile> create(const std::string& path);
-    AtomicTextFile(AtomicTextFile&&) noexcept;
-    AtomicTextFile& operator=(AtomicTextFile&&) = delete;
-    ~AtomicTextFile();
-
-    void write(std::string_view text);
-    Status commit();
-
-private:
-    AtomicTextFile(std::string path, std::string temp_path, std::FILE* file);
-    std::string path_;
-    std::string temp_path_;
-    std::FILE* file_ = nullptr;
-    bool failed_ = false;
-};
 
 class TraceWriter {
 public:

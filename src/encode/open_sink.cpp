@@ -7,7 +7,7 @@
 
 #include "discreel/encode.hpp"
 #include "frame_pattern.hpp"
-#include "output_file.hpp"
+#include "discreel/output_file.hpp"
 #include "png_sequence_sink.hpp"
 #include "png_still_sink.hpp"
 #include "video_format.hpp"

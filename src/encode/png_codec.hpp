@@ -8,7 +8,7 @@
 
 #include "discreel/expected.hpp"
 #include "discreel/image.hpp"
-#include "output_file.hpp"
+#include "discreel/output_file.hpp"
 
 namespace discreel::encode {
 

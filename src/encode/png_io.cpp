@@ -5,7 +5,7 @@
 #include <iterator>
 
 #include "discreel/encode.hpp"
-#include "output_file.hpp"
+#include "discreel/output_file.hpp"
 #include "png_codec.hpp"
 
 namespace discreel::encode {

@@ -3,7 +3,7 @@
 #include <string>
 #include <utility>
 
-#include "output_file.hpp"
+#include "discreel/output_file.hpp"
 #include "png_codec.hpp"
 
 namespace discreel::encode {

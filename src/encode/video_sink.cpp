@@ -13,7 +13,7 @@ extern "C" {
 #include "frame_converter.hpp"
 #include "image_check.hpp"
 #include "libav_log.hpp"
-#include "output_file.hpp"
+#include "discreel/output_file.hpp"
 
 namespace discreel::encode {
 namespace {

@@ -94,9 +94,12 @@ struct World::Impl {
     std::vector<ContactEvent> events;
     std::int64_t steps = 0;
     std::size_t contacts_last_step = 0;
+    std::optional<NonFiniteState> failure;
 };
 
 void World::Impl::step() {
+    // A NaN would reach the broad phase's grid, where converting it to a cell is undefined.
+    if (failure) return;
     const double t0 = static_cast<double>(steps) / rate;
     const double t1 = static_cast<double>(steps + 1) / rate;
     const double dt = 1.0 / rate;
@@ -191,6 +194,12 @@ void World::Impl::publish() {
     for (std::size_t i = 0; i < disc_count; ++i) {
         const Body& b = bodies[i];
         states[i] = DiscState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
+        // One check per disc per step, on values already in a register.
+        if (!failure && !(std::isfinite(b.x.x()) && std::isfinite(b.x.y()) &&
+                          std::isfinite(b.v.x()) && std::isfinite(b.v.y()) &&
+                          std::isfinite(b.angle) && std::isfinite(b.omega))) {
+            failure = NonFiniteState{i, static_cast<double>(steps) / rate};
+        }
     }
 }
 
@@ -204,6 +213,7 @@ std::int64_t World::step_count() const { return impl_->steps; }
 double World::time() const { return static_cast<double>(impl_->steps) / impl_->rate; }
 std::span<const DiscState> World::discs() const { return impl_->states; }
 std::vector<ContactEvent> World::take_events() { return std::exchange(impl_->events, {}); }
+std::optional<NonFiniteState> World::failure() const { return impl_->failure; }
 
 WorldStats World::stats() const {
     const Impl& w = *impl_;

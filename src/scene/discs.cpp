@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -480,6 +481,35 @@ void read_discs(Loader& loader, const Value& value) {
     }
 }
 
+// A coordinate x carries a rounding error of about 1e-16 |x|; a disc must be large against the
+// error of the positions around it, or rounding decides its contacts.
+static void check_radii_against_reach(Loader& loader) {
+    constexpr double min_radius_per_reach = 1e-9;
+    auto& d = loader.diagnostics;
+    const auto& discs = loader.scene.discs;
+    double reach = 0;   // metres from the origin to the farthest coordinate
+    const auto extend = [&](Vec2 p) { reach = std::max({reach, std::abs(p.x), std::abs(p.y)}); };
+    for (const Disc& disc : discs) extend(disc.position);
+    for (const Wall& wall : loader.scene.walls) {
+        extend(wall.a);
+        extend(wall.b);
+    }
+    const double smallest = min_radius_per_reach * reach;
+    std::optional<Location> reported;   // once per entry: a generator makes many alike
+    for (std::size_t i = 0; i < discs.size() && !d.full(); ++i) {
+        const DiscSource& source = loader.sources[i];
+        if (!source.usable || discs[i].radius >= smallest) continue;
+        if (reported && reported->line == source.entry.line &&
+            reported->column == source.entry.column)
+            continue;
+        reported = source.entry;
+        d.error(source.entry, source.where + ": a radius of " + format_number(discs[i].radius) +
+                                  " m is too small for a scene reaching " + format_number(reach) +
+                                  " m from the origin; radii must be at least 1e-9 of that (" +
+                                  format_number(smallest) + " m) for positions to stay precise");
+    }
+}
+
 void check_discs(Loader& loader) {
     auto& d = loader.diagnostics;
     const auto& discs = loader.scene.discs;
@@ -514,6 +544,7 @@ void check_discs(Loader& loader) {
                     "' (line " + std::to_string(sources[earlier].entry.line) + ") by " +
                     format_short(depth) + " m at t = 0");
     }
+    check_radii_against_reach(loader);
 }
 
 }  // namespace discreel::scene::detail

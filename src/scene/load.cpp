@@ -200,6 +200,7 @@ void read_scene(const Value& root, detail::Loader& loader) {
     detail::resolve_camera_follow(loader);
     if (const auto v = fields->get("style")) detail::read_style(loader, *v);
     if (const auto v = fields->get("throws")) detail::read_throws(loader, *v);
+    if (d.empty()) detail::check_envelope(loader);
     detail::read_golden(loader, fields->get("golden"));
 }
 
@@ -245,7 +246,7 @@ LoadResult load_scene_text(std::string_view text, std::string_view display_name,
                 d.error(root.where, "a scene is a mapping of keys like 'version: 1' and 'discs:', "
                                     "got " + detail::describe(root.node));
             } else {
-                detail::Loader loader{d, result.scene, {}, true, false, true, {}, limits};
+                detail::Loader loader{d, result.scene, {}, true, false, true, {}, {}, limits};
                 read_scene(root, loader);
             }
         }

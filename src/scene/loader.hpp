@@ -21,6 +21,14 @@ struct DiscSource {
     bool usable = true;      // position and radius read fine: takes part in overlap checks
 };
 
+// Where a throw's speeds were written, for the speed check once all throws are read.
+struct ThrowSource {
+    Location velocity_where;   // `velocity` of a flick, `release` of a grab, or the item
+    std::string velocity_path; // "throws[0].velocity"
+    Location path_where;       // `path` of a grab
+    std::string path_path;     // "throws[0].path"
+};
+
 struct Loader {
     Diagnostics& diagnostics;
     Scene& scene;
@@ -29,6 +37,7 @@ struct Loader {
     bool disc_limit_reached = false;  // limits.discs reported: later entries are not read
     bool frames_known = true;         // fps and duration read fine, so frame_count() is right
     std::optional<Value> camera_follow;  // read with the camera, resolved once discs are known
+    std::vector<ThrowSource> throw_sources;  // parallel to scene.throws, filled by read_throws
     Limits limits;
 };
 
@@ -42,5 +51,6 @@ void read_discs(Loader& loader, const Value& value);
 void check_discs(Loader& loader);   // ids, overlaps at t = 0
 void read_throws(Loader& loader, const Value& value);
 void read_golden(Loader& loader, const std::optional<Value>& value);
+void check_envelope(Loader& loader);   // mass ratios and speeds the solver is known to handle
 
 }  // namespace discreel::scene::detail

@@ -125,7 +125,19 @@ void read_throws(Loader& loader, const Value& value) {
             t.release = read_vec2(*release, "[x, y]", d);
             ok = ok && t.release;
         }
-        if (ok) loader.scene.throws.push_back(std::move(t));
+        if (ok) {
+            ThrowSource source{item.where, item.path, item.where, item.path};
+            if (const auto v = fields->get(is_grab ? "release" : "velocity")) {
+                source.velocity_where = v->where;
+                source.velocity_path = v->path;
+            }
+            if (const auto v = fields->get("path")) {
+                source.path_where = v->where;
+                source.path_path = v->path;
+            }
+            loader.throw_sources.push_back(std::move(source));
+            loader.scene.throws.push_back(std::move(t));
+        }
     }
 }
 

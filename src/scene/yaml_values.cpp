@@ -230,6 +230,15 @@ std::optional<double> read_number(const Value& value, Diagnostics& diagnostics) 
         expected(value, "a number", diagnostics);
         return std::nullopt;
     }
+    // Nothing a scene describes needs more, and squares of these (energies, distances) stay
+    // far from overflowing a double.
+    if (std::abs(number) > max_scene_number) {
+        diagnostics.error(value.where, value.path + ": " + format_number(number) +
+                                           " is out of range; numbers in a scene lie within -" +
+                                           format_number(max_scene_number) + ".." +
+                                           format_number(max_scene_number));
+        return std::nullopt;
+    }
     return number;
 }
 

@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -17,6 +18,9 @@
 
 namespace discreel::scene::detail {
 
+// The largest magnitude read_number accepts.
+inline constexpr double max_scene_number = 1e15;
+
 // A node and how to talk about it.
 struct Value {
     YAML::Node node;
@@ -24,6 +28,18 @@ struct Value {
     std::string path;    // how messages name it: "discs[3].radius"
 
     bool is_null() const { return node.IsNull(); }
+
+    // Copies share the node, as YAML::Node copies do. Assignment rebinds `node`: YAML::Node's
+    // own assignment would write into the node it refers to.
+    Value(const YAML::Node& node_, Location where_, std::string path_)
+        : node(node_), where(where_), path(std::move(path_)) {}
+    Value(const Value&) = default;
+    Value& operator=(const Value& other) {
+        node.reset(other.node);
+        where = other.where;
+        path = other.path;
+        return *this;
+    }
 };
 
 // yaml-cpp marks are 0-based and absent (-1) for empty nodes.

@@ -102,6 +102,20 @@ TEST(FaultsGLTest, NoGlContextIsARunTimeFailureAndTheOldFileStays) {
     EXPECT_EQ(directory_entries(dir.path()), std::vector<std::string>{"clip.mp4"});
 }
 
+// Mesa crashes (SIGSEGV inside OSMesaCreateContextAttribs) when GALLIUM_DRIVER names no
+// driver. The output's temporary file already exists by then; the crash handler deletes it.
+// In a sanitizer build AddressSanitizer reports the crash and exits 1 instead of dying of the
+// signal, after the handler has run.
+TEST(FaultsGLTest, ACrashInMesaLeavesNoTemporaryFileAndTheOldFileStays) {
+    TempDir dir;
+    testing::write_file(dir / "clip.mp4", "precious");
+    const auto run = run_command({bin, "render", short_scene, "-o", dir / "clip.mp4"},
+                                 {{"GALLIUM_DRIVER", "no-such-driver"}});
+    EXPECT_TRUE(run.exit_code == 128 + SIGSEGV || run.exit_code == 1) << run.exit_code;
+    EXPECT_EQ(read_file(dir / "clip.mp4"), "precious");
+    EXPECT_EQ(directory_entries(dir.path()), std::vector<std::string>{"clip.mp4"});
+}
+
 // Every encoder option the CLI accepts is checked before anything is opened (a bad one is exit
 // 2, see cli_gl_test.cpp), so libav refusing to open the encoder cannot be caused through the
 // binary. Here the sink gets an option libx264 rejects only when avcodec_open2 runs.

@@ -93,6 +93,13 @@ struct WorldStats {
     std::size_t contact_count = 0;  // pairs that exchanged an impulse during the last step
 };
 
+// The first disc whose state stopped being finite: the scene asked for more than double
+// precision can carry (the scene loader's limits keep ordinary scenes far from this).
+struct NonFiniteState {
+    std::size_t disc = 0;          // index into WorldDef::discs
+    double t = 0.0;                // seconds, the end of the step that produced it
+};
+
 class World {
 public:
     explicit World(const WorldDef& def);
@@ -100,7 +107,7 @@ public:
     World(World&&) noexcept;
     World& operator=(World&&) noexcept;
 
-    void step();                   // advance by exactly 1/rate seconds
+    void step();                   // advance by exactly 1/rate seconds; nothing once failed
     std::int64_t step_count() const;
     double time() const;           // step_count() / rate, seconds
 
@@ -108,6 +115,10 @@ public:
 
     // Contacts that began during the steps since the last call, in a deterministic order.
     std::vector<ContactEvent> take_events();
+
+    // Set once any disc's position, velocity, angle or spin is NaN or infinite, after a step
+    // or already in the definition; step() does nothing from then on.
+    std::optional<NonFiniteState> failure() const;
 
     WorldStats stats() const;
     double energy() const;         // kinetic + potential, J (see WorldStats)

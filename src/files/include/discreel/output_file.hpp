@@ -1,13 +1,15 @@
 #pragma once
-// The target of a sink, written atomically: bytes go to a uniquely named temporary file in the
-// target's directory (same file system, so the final rename is atomic), and only commit()
-// renames it onto the target. Destroyed uncommitted, it deletes the temporary file, so a
-// failed or abandoned write leaves the target exactly as it was.
+// A file written atomically: bytes go to a uniquely named temporary file in the target's
+// directory (same file system, so the final rename is atomic), and only commit() renames it
+// onto the target. Destroyed uncommitted, it deletes the temporary file, so a failed or
+// abandoned write leaves the target exactly as it was; a crash deletes it too, in programs
+// that call delete_temporary_files_on_crash() (temporary_files.hpp).
+#include <cstddef>
 #include <string>
 
 #include "discreel/expected.hpp"
 
-namespace discreel::encode {
+namespace discreel {
 
 class OutputFile {
 public:
@@ -42,9 +44,10 @@ private:
     std::string temp_path_;
     int fd_ = -1;          // open until seal or commit, for write_all and the final fsync
     bool committed_ = false;
+    std::size_t registration_ = 0;   // in the crash handler's list while not committed
 };
 
 // "cannot write '<path>': <reason>": the prefix of every error about an output file.
 Error write_error(const std::string& path, const std::string& reason);
 
-}  // namespace discreel::encode
+}  // namespace discreel

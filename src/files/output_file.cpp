@@ -1,4 +1,6 @@
-#include "output_file.hpp"
+#include "discreel/output_file.hpp"
+
+#include "discreel/temporary_files.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -11,10 +13,21 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-namespace discreel::encode {
+namespace discreel {
 namespace {
 
 std::string errno_text(int error_number) { return std::strerror(error_number); }
+
+// Read once, on the first call (on the main thread, before any other starts): umask() can
+// only be read by setting it, which would race with other threads creating files.
+mode_t file_creation_mask() {
+    static const mode_t mask = [] {
+        const mode_t current = umask(0);
+        umask(current);
+        return current;
+    }();
+    return mask;
+}
 
 }  // namespace
 
@@ -49,19 +62,24 @@ Expected<OutputFile> OutputFile::create(const std::string& target_path) {
     if (fd < 0) {
         return write_error(target_path, errno_text(errno));
     }
-    // mkstemp creates 0600; the output is an ordinary document, readable like any other file.
-    fchmod(fd, 0644);
+    // mkstemp creates 0600; the output is an ordinary document, with the permissions any
+    // other new file would get.
+    fchmod(fd, 0666 & ~file_creation_mask());
     return OutputFile(target_path, std::string(name.data()), fd);
 }
 
 OutputFile::OutputFile(std::string target_path, std::string temp_path, int fd)
-    : target_path_(std::move(target_path)), temp_path_(std::move(temp_path)), fd_(fd) {}
+    : target_path_(std::move(target_path)),
+      temp_path_(std::move(temp_path)),
+      fd_(fd),
+      registration_(register_temporary_file(temp_path_)) {}
 
 OutputFile::OutputFile(OutputFile&& other) noexcept
     : target_path_(std::move(other.target_path_)),
       temp_path_(std::move(other.temp_path_)),
       fd_(std::exchange(other.fd_, -1)),
-      committed_(std::exchange(other.committed_, true)) {}
+      committed_(std::exchange(other.committed_, true)),
+      registration_(other.registration_) {}
 
 OutputFile& OutputFile::operator=(OutputFile&& other) noexcept {
     if (this != &other) {
@@ -70,6 +88,7 @@ OutputFile& OutputFile::operator=(OutputFile&& other) noexcept {
         temp_path_ = std::move(other.temp_path_);
         fd_ = std::exchange(other.fd_, -1);
         committed_ = std::exchange(other.committed_, true);
+        registration_ = other.registration_;
     }
     return *this;
 }
@@ -83,6 +102,7 @@ void OutputFile::discard() {
     }
     if (!committed_) {
         unlink(temp_path_.c_str());
+        unregister_temporary_file(registration_);
         committed_ = true;   // nothing left to clean up
     }
 }
@@ -124,8 +144,9 @@ Status OutputFile::commit() {
     if (std::rename(temp_path_.c_str(), target_path_.c_str()) != 0) {
         return write_error(target_path_, errno_text(errno));
     }
+    unregister_temporary_file(registration_);
     committed_ = true;
     return {};
 }
 
-}  // namespace discreel::encode
+}  // namespace discreel
