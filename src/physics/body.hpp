@@ -41,7 +41,6 @@ struct Body {
     V2 shift = V2::Zero();         // metres
     double turn = 0.0;             // radians
     double t_last = 0.0;           // seconds into the substep of its latest impulse
-    V2 w_base = V2::Zero();        // m/s, v_begin / 2 + shift / h (see contact_solver.cpp)
     int changed_pass = -1;         // last impulsive pass that changed its velocity
     int struck_pass = -1;          // last impulsive pass that applied an impact to it
     double next_impact = 0.0;      // seconds, its earliest impact found at the start of a pass

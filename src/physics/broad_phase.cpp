@@ -1,6 +1,7 @@
 #include "broad_phase.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "discreel/physics.hpp"
@@ -33,11 +34,12 @@ std::uint64_t cell_hash(std::int64_t x, std::int64_t y) {
 
 }  // namespace
 
-void BroadPhase::update(const std::vector<Body>& bodies, std::size_t disc_count,
+bool BroadPhase::update(const std::vector<Body>& bodies, std::size_t disc_count,
                         const std::vector<Feature>& features, double dt, double gravity,
                         std::vector<Contact>& contacts) {
-    if (built_ && still_valid(bodies, disc_count, dt, gravity)) return;
+    if (built_ && still_valid(bodies, disc_count, dt, gravity)) return false;
     rebuild(bodies, disc_count, features, dt, gravity, contacts);
+    return true;
 }
 
 bool BroadPhase::still_valid(const std::vector<Body>& bodies, std::size_t disc_count, double dt,
@@ -47,9 +49,39 @@ bool BroadPhase::still_valid(const std::vector<Body>& bodies, std::size_t disc_c
     for (std::size_t i = 0; i < disc_count; ++i) {
         const Body& b = bodies[i];
         if (!b.moves()) continue;
-        if ((b.x - anchor_[i]).norm() + reach(b, dt, gravity) > margin_[i]) return false;
+        // Valid while drift + reach <= margin. Most discs are far inside it, which
+        // (drift + speed dt)^2 <= 2 (drift^2 + (speed dt)^2) shows without a square root.
+        const double drift2 = (b.x - anchor_[i]).squaredNorm();
+        const double fall = b.falls() ? 0.5 * gravity * dt * dt : 0.0;
+        const double room = margin_[i] - fall;
+        if (room >= 0.0 && 2.0 * (drift2 + b.v.squaredNorm() * dt * dt) <= room * room) continue;
+        const double left = margin_[i] - reach(b, dt, gravity);
+        if (left < 0.0 || drift2 > left * left) return false;
     }
     return true;
+}
+
+void BroadPhase::sort_pairs(std::size_t body_count) {
+    // LSD radix sort on (a, b) packed into as few bits as the body count needs, 11 bits a pass:
+    // two or three passes for up to 2^16 bodies instead of a comparison sort's log2(pairs).
+    const int bits = std::min(32, static_cast<int>(std::bit_width(body_count)));
+    const int key_bits = 2 * bits;
+    constexpr int digit_bits = 11;
+    constexpr std::size_t digits = std::size_t{1} << digit_bits;
+    for (std::uint64_t& key : pairs_) key = ((key >> 32) << bits) | (key & 0xffffffffu);
+    sorted_.resize(pairs_.size());
+    std::vector<std::uint32_t>& count = digit_count_;
+    for (int shift = 0; shift < key_bits; shift += digit_bits) {
+        count.assign(digits + 1, 0);
+        for (const std::uint64_t key : pairs_) ++count[((key >> shift) & (digits - 1)) + 1];
+        for (std::size_t d = 0; d < digits; ++d) count[d + 1] += count[d];
+        for (const std::uint64_t key : pairs_) {
+            sorted_[count[(key >> shift) & (digits - 1)]++] = key;
+        }
+        pairs_.swap(sorted_);
+    }
+    const std::uint64_t low = (std::uint64_t{1} << bits) - 1;
+    for (std::uint64_t& key : pairs_) key = ((key >> bits) << 32) | (key & low);
 }
 
 void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count,
@@ -97,34 +129,42 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
         cell_x_.assign(disc_count, 0);
         cell_y_.assign(disc_count, 0);
         bucket_start_.assign(table + 1, 0);
-        std::vector<bool> in_grid(disc_count, false);
         for (std::size_t i = 0; i < disc_count; ++i) {
             if (fat(i) > fat_limit) continue;
-            in_grid[i] = true;
             cell_x_[i] = static_cast<std::int64_t>(std::floor(bodies[i].x.x() / cell));
             cell_y_[i] = static_cast<std::int64_t>(std::floor(bodies[i].x.y() / cell));
             ++bucket_start_[(cell_hash(cell_x_[i], cell_y_[i]) & mask) + 1];
         }
         for (std::size_t k = 0; k < table; ++k) bucket_start_[k + 1] += bucket_start_[k];
-        bucket_items_.assign(bucket_start_[table], 0);
-        std::vector<std::uint32_t> fill(bucket_start_.begin(), bucket_start_.end() - 1);
+        // Each bucket's discs are copied next to each other with what the search needs, so it
+        // reads the grid in order instead of bodies scattered over memory.
+        items_.resize(bucket_start_[table]);
+        fill_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
         for (std::size_t i = 0; i < disc_count; ++i) {
-            if (!in_grid[i]) continue;
-            bucket_items_[fill[cell_hash(cell_x_[i], cell_y_[i]) & mask]++] =
-                static_cast<std::uint32_t>(i);
+            if (fat(i) > fat_limit) continue;
+            items_[fill_[cell_hash(cell_x_[i], cell_y_[i]) & mask]++] =
+                GridItem{bodies[i].x, fat(i), cell_x_[i], cell_y_[i],
+                         static_cast<std::uint32_t>(i), bodies[i].moves()};
         }
-        for (std::size_t i = 0; i < disc_count; ++i) {
-            if (!in_grid[i]) continue;
-            for (std::int64_t dy = -1; dy <= 1; ++dy) {
-                for (std::int64_t dx = -1; dx <= 1; ++dx) {
-                    const std::int64_t cx = cell_x_[i] + dx, cy = cell_y_[i] + dy;
-                    const std::uint64_t h = cell_hash(cx, cy) & mask;
-                    for (std::uint32_t k = bucket_start_[h]; k < bucket_start_[h + 1]; ++k) {
-                        const std::uint32_t j = bucket_items_[k];
-                        // Other cells sharing the bucket are skipped so no pair comes twice.
-                        if (j <= i || cell_x_[j] != cx || cell_y_[j] != cy) continue;
-                        consider(i, j);
-                    }
+        // Each pair is met once: a disc meets the discs after it in its own cell and every disc
+        // of the four neighbouring cells after it (right, and the three above), so half of
+        // the neighbourhood is searched.
+        constexpr std::int64_t forward[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+        for (std::size_t p = 0; p < items_.size(); ++p) {
+            const GridItem& item = items_[p];
+            for (const auto& [dx, dy] : forward) {
+                const std::int64_t cx = item.cell_x + dx, cy = item.cell_y + dy;
+                const std::uint64_t h = cell_hash(cx, cy) & mask;
+                const std::size_t first = dx == 0 && dy == 0 ? p + 1 : bucket_start_[h];
+                for (std::size_t k = first; k < bucket_start_[h + 1]; ++k) {
+                    const GridItem& other = items_[k];
+                    // Other cells sharing the bucket are skipped so no pair comes twice.
+                    if (other.cell_x != cx || other.cell_y != cy) continue;
+                    if (!item.moves && !other.moves) continue;
+                    const double reach_sum = item.fat + other.fat;
+                    if ((item.x - other.x).squaredNorm() > reach_sum * reach_sum) continue;
+                    pairs_.push_back(pair_key(std::min(item.body, other.body),
+                                              std::max(item.body, other.body)));
                 }
             }
         }
@@ -148,7 +188,7 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
                                       static_cast<std::uint32_t>(disc_count + f)));
         }
     }
-    std::sort(pairs_.begin(), pairs_.end());
+    sort_pairs(bodies.size());
 
     // Merge with the previous list (both sorted) so surviving pairs keep their history.
     merged_.clear();

@@ -11,120 +11,230 @@
 // start-of-substep normal would push them apart and add energy). Existing overlap is not
 // resolved here (that would become velocity) but left to PositionProjector. The friction row
 // constrains the end velocity of the contact points (stick), within +- friction * normal impulse.
-// The iterations only read and write velocities, so they run on a compact copy: one row per
-// contact with everything constant over the substep folded in (normal, masses, the part of the
-// displacement velocity fixed by the impulsive stage), and one small velocity record per body.
-// That keeps the hot loop inside a few cache lines per contact, even for 10 000 discs.
+// Only the end velocity v changes while iterating (w moves by half of any change), so the row
+// is written as a bound on it. The iterations only read and write velocities, so they run on a
+// compact copy: one row per contact with everything constant over the substep folded in
+// (normal, masses, bound), and one small velocity record per body. That keeps the hot loop
+// inside a few cache lines per contact, even for 10 000 discs.
+//
+// Rows are solved grouped by colour, no two rows of a colour sharing a disc (greedy colouring
+// of the broad phase's whole pair list, redone when it is rebuilt, as Box2D's constraint graph
+// does): in active order consecutive rows share their first disc, so each row had to wait for
+// the previous one's velocity update; within a colour they are independent, so they are solved
+// two at a time in the lanes of an SSE register, with the same arithmetic per lane as one at a
+// time. An immovable body (wall, peg, held disc) is never changed by a row, so each of its rows
+// reads it from a private copy instead of chaining every floor row through one record.
 #include <algorithm>
+#include <bit>
 
 #include "substep.hpp"
 
 namespace discreel::physics::detail {
 
+// Gathers the velocities of both rows' bodies into lanes, and scatters them back.
+void ContactSolver::load(const RowPair& r, Lanes& avx, Lanes& avy, Lanes& aw, Lanes& bvx,
+                         Lanes& bvy, Lanes& bw) const {
+    const Velocity& a0 = velocities_[r.a[0]];
+    const Velocity& a1 = velocities_[r.a[1]];
+    const Velocity& b0 = velocities_[r.b[0]];
+    const Velocity& b1 = velocities_[r.b[1]];
+    avx = Lanes{a0.v.x(), a1.v.x()};
+    avy = Lanes{a0.v.y(), a1.v.y()};
+    aw = Lanes{a0.omega, a1.omega};
+    bvx = Lanes{b0.v.x(), b1.v.x()};
+    bvy = Lanes{b0.v.y(), b1.v.y()};
+    bw = Lanes{b0.omega, b1.omega};
+}
+
+void ContactSolver::store(const RowPair& r, const Lanes& avx, const Lanes& avy, const Lanes& aw,
+                          const Lanes& bvx, const Lanes& bvy, const Lanes& bw) {
+    // The two lanes never share a record: a colour shares no disc, immovable ends have private
+    // copies, and an empty lane points at the scratch record.
+    for (int l = 0; l < 2; ++l) {
+        Velocity& a = velocities_[r.a[l]];
+        a.v = V2(avx[l], avy[l]);
+        a.omega = aw[l];
+        Velocity& b = velocities_[r.b[l]];
+        b.v = V2(bvx[l], bvy[l]);
+        b.omega = bw[l];
+    }
+}
+
+// Greedy colouring of the whole contact list, in pair order, redone only when the broad phase
+// rebuilds it: no two contacts of a colour share a disc (walls take no colour; pegs and held
+// discs do, so the colours stay valid whatever moves), which is then true of any subset, such
+// as the contacts active in a substep.
+void ContactSolver::colour_contacts(const Substep& s) {
+    coloured_version_ = s.contacts_version;
+    colours_used_.assign(s.disc_count, 0);
+    colour_of_.resize(s.contacts.size());
+    for (std::size_t i = 0; i < s.contacts.size(); ++i) {
+        const Contact& c = s.contacts[i];
+        const bool b_disc = c.b < s.disc_count;
+        const std::uint64_t used = colours_used_[c.a] | (b_disc ? colours_used_[c.b] : 0);
+        const unsigned colour = static_cast<unsigned>(std::countr_one(used));
+        colour_of_[i] = static_cast<std::uint8_t>(colour);
+        if (colour == overflow) continue;
+        const std::uint64_t bit = std::uint64_t{1} << colour;
+        colours_used_[c.a] |= bit;
+        if (b_disc) colours_used_[c.b] |= bit;
+    }
+}
+
 void ContactSolver::solve(Substep& s, int iterations) {
     const double inv_h = 1.0 / s.h;
     velocities_.resize(s.bodies.size());
+    predicted_.resize(s.bodies.size());
     for (std::size_t i = 0; i < s.bodies.size(); ++i) {
         Body& b = s.bodies[i];
+        b.v_begin = b.v;
+        b.omega_begin = b.omega;
         if (b.falls()) b.v += s.gravity * s.h;
-        b.w_base = b.v_begin * 0.5 + b.shift * inv_h;
         velocities_[i] = Velocity{b.v, b.omega};
+        // Where it ends up without contact forces: the integration at the bottom, with v.
+        predicted_[i] = Predicted{b.x + (b.v_begin + b.v) * (0.5 * s.h) + b.shift, b.v_begin,
+                                  b.radius, b.inv_mass, b.radius * b.inv_inertia};
     }
 
-    rows_.clear();
+    // Colours first, so that each row is built straight into its place.
+    if (s.contacts_version != coloured_version_) colour_contacts(s);
+    colour_start_.assign(overflow + 2, 0);
+    pending_.clear();
     for (const std::uint32_t index : s.active) {
+        const Contact& c = s.contacts[index];
+        const bool a_moves = predicted_[c.a].inv_mass != 0.0;
+        const bool b_moves = predicted_[c.b].inv_mass != 0.0;
+        if (!a_moves && !b_moves) continue;  // two immovable bodies: nothing to solve
+        const unsigned colour = colour_of_[index];
+        ++colour_start_[colour + 1];
+        Pending p{index, c.a, c.b, colour};
+        // A row end on an immovable body gets its own velocity record, appended after the
+        // bodies', so that rows on one wall do not chain through its record.
+        for (std::uint32_t* end : {&p.a, &p.b}) {
+            if (predicted_[*end].inv_mass != 0.0) continue;
+            const Body& body = s.bodies[*end];
+            velocities_.push_back(Velocity{body.v, body.omega});
+            *end = static_cast<std::uint32_t>(velocities_.size() - 1);
+        }
+        pending_.push_back(p);
+    }
+    // Lanes: each colour starts on a pair, and a row of the overflow group (whose rows may
+    // share a disc) gets a pair to itself.
+    colour_start_[overflow + 1] *= 2;
+    for (unsigned c = 0; c <= overflow; ++c) {
+        colour_start_[c + 1] += colour_start_[c] + (colour_start_[c + 1] & 1u);
+    }
+    const std::uint32_t lanes = colour_start_[overflow + 1];
+    const auto scratch = static_cast<std::uint32_t>(velocities_.size());
+    velocities_.push_back(Velocity{});
+    RowPair empty;
+    for (std::uint32_t* end : {empty.a, empty.b}) end[0] = end[1] = scratch;
+    rows_.assign(lanes / 2, empty);
+    row_contact_.assign(lanes, no_contact);
+
+    for (const Pending& p : pending_) {
+        const std::uint32_t index = p.contact;
         Contact& c = s.contacts[index];
-        const Body& a = s.bodies[c.a];
-        const Body& b = s.bodies[c.b];
-        const double k = normal_mass_inverse(a, b);
-        if (k == 0.0) continue;  // two immovable bodies: nothing to solve
-        // Displacement velocity w = w_base + v / 2 (see the top of this file).
-        const V2 wa = a.w_base + a.v * 0.5;
-        const V2 wb = b.w_base + b.v * 0.5;
-        const V2 end_a = a.x + wa * s.h;
+        const Predicted& a = predicted_[c.a];
+        const Predicted& b = predicted_[c.b];
         const Feature* f = s.feature_of(c);
-        const Proximity end = f ? disc_feature(end_a, a.radius, *f)
-                                : disc_disc(end_a, a.radius, b.x + wb * s.h, b.radius);
-        const double allowed_overlap = std::min(c.gap, 0.0);
+        const Proximity end = f ? disc_feature(a.end, a.radius, *f)
+                                : disc_disc(a.end, a.radius, b.end, b.radius);
         const V2& n = end.normal;
-        double target = n.dot(wa - wb) - (end.gap - allowed_overlap) * inv_h;
+        // The normal row bounds the end velocity n.(v_a - v_b) from below so that the gap at
+        // the end is no smaller than allowed: with positions advancing by the mean velocity,
+        // a change dv in it moves the gap by dv h / 2, hence the factor 2.
+        const double allowed_overlap = std::min(c.gap, 0.0);
+        const double close = n.dot(velocities_[c.a].v - velocities_[c.b].v) -
+                             2.0 * (end.gap - allowed_overlap) * inv_h;
         // Never ask for more than a restitution bounce: the pair must not leave faster than
         // e times its approach speed (after gravity, forces only ever stop a pair). Overlap that
         // this cannot prevent is removed by PositionProjector, without creating velocity.
         const double approach = n.dot(a.v_begin - b.v_begin);
         const double leave = std::max(0.0, -c.restitution * approach);
-        const double capped = 0.5 * (approach + leave) + n.dot(a.shift - b.shift) * inv_h;
-        target = std::min(target, capped);
 
-        Row r;
-        r.a = c.a;
-        r.b = c.b;
-        r.contact = index;
-        r.normal = n;
-        // The row drives n.(w_a - w_b) = n.(w_base_a - w_base_b) + n.(v_a - v_b) / 2 up to the
-        // target; only v changes while iterating, so the rest is folded into the bias.
-        r.bias = 2.0 * (target - n.dot(a.w_base - b.w_base));
-        r.normal_mass = 1.0 / k;
-        r.tangent_mass = 1.0 / tangent_mass_inverse(a, b);
-        r.friction = c.friction;
-        r.inv_mass_a = a.inv_mass;
-        r.inv_mass_b = b.inv_mass;
-        r.radius_a = a.radius;
-        r.radius_b = b.radius;
-        r.spin_a = a.radius * a.inv_inertia;
-        r.spin_b = b.radius * b.inv_inertia;
-        r.normal_impulse = c.normal_impulse;
-        r.tangent_impulse = c.tangent_impulse;
-        rows_.push_back(r);
+        const std::uint32_t slot = colour_start_[p.colour];
+        colour_start_[p.colour] += p.colour == overflow ? 2 : 1;
+        row_contact_[slot] = index;
+        RowPair& r = rows_[slot / 2];
+        const unsigned l = slot % 2;
+        r.a[l] = p.a;
+        r.b[l] = p.b;
+        r.normal_x[l] = n.x();
+        r.normal_y[l] = n.y();
+        r.bias[l] = std::min(close, leave);
+        r.normal_mass[l] = 1.0 / (a.inv_mass + b.inv_mass);
+        r.tangent_mass[l] =
+            1.0 / (a.inv_mass + b.inv_mass + a.radius * a.spin + b.radius * b.spin);
+        r.friction[l] = c.friction;
+        r.inv_mass_a[l] = a.inv_mass;
+        r.inv_mass_b[l] = b.inv_mass;
+        r.radius_a[l] = a.radius;
+        r.radius_b[l] = b.radius;
+        r.spin_a[l] = a.spin;
+        r.spin_b[l] = b.spin;
+        r.normal_impulse[l] = c.normal_impulse;
+        r.tangent_impulse[l] = c.tangent_impulse;
     }
 
-    // Warm start, then sequential impulses. A normal impulse passes through the centres, so
-    // only tangential impulses turn the discs.
-    for (const Row& r : rows_) {
-        Velocity& a = velocities_[r.a];
-        Velocity& b = velocities_[r.b];
-        const V2 p = r.normal * r.normal_impulse + perp(r.normal) * r.tangent_impulse;
-        a.v += p * r.inv_mass_a;
-        b.v -= p * r.inv_mass_b;
-        a.omega -= r.spin_a * r.tangent_impulse;
-        b.omega -= r.spin_b * r.tangent_impulse;
+    // Warm start, then sequential impulses, two rows at a time. A normal impulse passes
+    // through the centres, so only tangential impulses turn the discs.
+    for (const RowPair& r : rows_) {
+        Lanes avx, avy, aw, bvx, bvy, bw;
+        load(r, avx, avy, aw, bvx, bvy, bw);
+        const Lanes px = r.normal_x * r.normal_impulse - r.normal_y * r.tangent_impulse;
+        const Lanes py = r.normal_y * r.normal_impulse + r.normal_x * r.tangent_impulse;
+        avx += px * r.inv_mass_a;
+        avy += py * r.inv_mass_a;
+        bvx -= px * r.inv_mass_b;
+        bvy -= py * r.inv_mass_b;
+        aw -= r.spin_a * r.tangent_impulse;
+        bw -= r.spin_b * r.tangent_impulse;
+        store(r, avx, avy, aw, bvx, bvy, bw);
     }
     // Both rows of a contact are solved from the same velocities: a normal impulse passes
     // through the centres along n, so it leaves the tangential relative velocity unchanged and
     // the friction row need not wait for it. One update per body per contact, and a dependency
     // chain half as long as solving the rows one after the other.
+    const Lanes zero = {0.0, 0.0};
     for (int it = 0; it < iterations; ++it) {
-        for (Row& r : rows_) {
-            Velocity& a = velocities_[r.a];
-            Velocity& b = velocities_[r.b];
-            const V2& n = r.normal;
-            const V2 t = perp(n);
-            const V2 dv = a.v - b.v;
-            const double vn = n.dot(dv);
-            const double vt = t.dot(dv) - r.radius_a * a.omega - r.radius_b * b.omega;
-            const double jn = std::max(r.normal_impulse + (r.bias - vn) * r.normal_mass, 0.0);
-            const double limit = r.friction * jn;
-            const double jt = std::clamp(r.tangent_impulse - vt * r.tangent_mass, -limit, limit);
-            const double dn = jn - r.normal_impulse;
-            const double dt = jt - r.tangent_impulse;
-            const V2 p = n * dn + t * dt;
-            a.v += p * r.inv_mass_a;
-            b.v -= p * r.inv_mass_b;
-            a.omega -= r.spin_a * dt;
-            b.omega -= r.spin_b * dt;
+        for (RowPair& r : rows_) {
+            Lanes avx, avy, aw, bvx, bvy, bw;
+            load(r, avx, avy, aw, bvx, bvy, bw);
+            const Lanes dvx = avx - bvx;
+            const Lanes dvy = avy - bvy;
+            // n = (nx, ny), t = perp(n) = (-ny, nx).
+            const Lanes vn = r.normal_x * dvx + r.normal_y * dvy;
+            const Lanes vt = (-r.normal_y * dvx + r.normal_x * dvy) - r.radius_a * aw -
+                             r.radius_b * bw;
+            const Lanes jn_free = r.normal_impulse + (r.bias - vn) * r.normal_mass;
+            const Lanes jn = jn_free < zero ? zero : jn_free;
+            const Lanes limit = r.friction * jn;
+            const Lanes jt_free = r.tangent_impulse - vt * r.tangent_mass;
+            const Lanes jt = jt_free < -limit ? -limit : (limit < jt_free ? limit : jt_free);
+            const Lanes dn = jn - r.normal_impulse;
+            const Lanes dt = jt - r.tangent_impulse;
+            const Lanes px = r.normal_x * dn - r.normal_y * dt;
+            const Lanes py = r.normal_y * dn + r.normal_x * dt;
+            avx += px * r.inv_mass_a;
+            avy += py * r.inv_mass_a;
+            bvx -= px * r.inv_mass_b;
+            bvy -= py * r.inv_mass_b;
+            aw -= r.spin_a * dt;
+            bw -= r.spin_b * dt;
+            store(r, avx, avy, aw, bvx, bvy, bw);
             r.normal_impulse = jn;
             r.tangent_impulse = jt;
         }
     }
 
-    for (const Row& r : rows_) {
-        Contact& c = s.contacts[r.contact];
-        c.normal_impulse = r.normal_impulse;
-        c.tangent_impulse = r.tangent_impulse;
-    }
-    for (const std::uint32_t index : s.active) {
-        Contact& c = s.contacts[index];
-        c.step_impulse += c.normal_impulse;
+    for (std::uint32_t slot = 0; slot < lanes; ++slot) {
+        if (row_contact_[slot] == no_contact) continue;
+        const RowPair& r = rows_[slot / 2];
+        Contact& c = s.contacts[row_contact_[slot]];
+        c.normal_impulse = r.normal_impulse[slot % 2];
+        c.tangent_impulse = r.tangent_impulse[slot % 2];
+        c.step_impulse += r.normal_impulse[slot % 2];
     }
     for (std::size_t i = 0; i < s.disc_count; ++i) {
         Body& b = s.bodies[i];

@@ -92,12 +92,6 @@ std::vector<Feature> features_of(const std::vector<WallDef>& walls) {
     return out;
 }
 
-bool feature_applies(const Feature& f, const V2& x) {
-    if (f.kind == Feature::Kind::capsule) return true;
-    return x.x() >= f.box_min.x() && x.x() <= f.box_max.x() && x.y() >= f.box_min.y() &&
-           x.y() <= f.box_max.y();
-}
-
 namespace {
 V2 closest_on_segment(const V2& x, const V2& a, const V2& b) {
     const V2 ab = b - a;
@@ -108,8 +102,7 @@ V2 closest_on_segment(const V2& x, const V2& a, const V2& b) {
 }
 }  // namespace
 
-Proximity disc_feature(const V2& x, double r, const Feature& f) {
-    if (f.kind == Feature::Kind::plane) return {f.b, f.b.dot(x - f.a) - r};
+Proximity disc_capsule(const V2& x, double r, const Feature& f) {
     const V2 q = closest_on_segment(x, f.a, f.b);
     const V2 d = x - q;
     const double dist = d.norm();

@@ -25,7 +25,12 @@ struct Feature {
 std::vector<Feature> features_of(const std::vector<WallDef>& walls);
 
 // Does the feature act on a disc centred at x? (Box planes only act on discs inside the box.)
-bool feature_applies(const Feature& f, const V2& x);
+// Inline, like the plane case of disc_feature: the broad phase asks it of every disc and wall.
+inline bool feature_applies(const Feature& f, const V2& x) {
+    if (f.kind == Feature::Kind::capsule) return true;
+    return x.x() >= f.box_min.x() && x.x() <= f.box_max.x() && x.y() >= f.box_min.y() &&
+           x.y() <= f.box_max.y();
+}
 
 struct Proximity {
     V2 normal = V2::UnitY();       // unit, from the other body towards the disc
@@ -48,7 +53,14 @@ inline bool certainly_farther(double d2, double radius_sum, double gap) {
     const double reach = radius_sum + gap;
     return reach < 0.0 || d2 > reach * reach * (1.0 + 1e-9);
 }
-Proximity disc_feature(const V2& x, double r, const Feature& f);
+// disc_feature's capsule case.
+Proximity disc_capsule(const V2& x, double r, const Feature& f);
+// Inline: the plane case is one dot product, asked of every wall contact several times per
+// substep.
+inline Proximity disc_feature(const V2& x, double r, const Feature& f) {
+    if (f.kind == Feature::Kind::plane) return {f.b, f.b.dot(x - f.a) - r};
+    return disc_capsule(x, r, f);
+}
 
 // A body's motion during a substep, valid from t_min on: x(t) = x0 + v t + g t^2 / 2.
 struct Trajectory {

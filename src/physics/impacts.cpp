@@ -19,16 +19,13 @@ namespace {
 // direction needs one sweep per disc; a dense heap of colliding discs would ping-pong for long.
 // Whatever still approaches afterwards is handled by the resting stage (bounce of at most e).
 constexpr int max_passes = 8;
+constexpr int max_sweeps = 4096;
 
 // Approach speeds below this are rounding noise, not impacts. Approaches slower than what
 // gravity adds in one substep are resting contact too: the resting stage handles them, still
 // with a bounce of up to e times the approach speed, only without the time-of-impact timing.
 // Left here, a pile would cost dozens of sweeps of micro-impacts per substep.
 constexpr double min_approach_speed = 1e-9;  // m/s
-
-// A pair already touching at the start of the substep (gap under this fraction of the smaller
-// radius) is part of a heap or a row, not a flight ending in a collision.
-constexpr double touching_gap = 0.005;
 
 // Such a pair is timed only if its bounce would be worth it: approaching fast enough to rise
 // `visible_bounce` radii against gravity (v^2 / 2|g| = f r), or to cover `tunnelling_step`
@@ -52,26 +49,11 @@ double settle_speed(const Substep& s, double r, double slow) {
     return std::max(slow, std::min(bounce, tunnelling_step * r / s.h));
 }
 
-// Cheap tests that rule out most pairs of a pile before the swept test (kept small so that it
-// is inlined into the sweeps).
-bool surely_no_impact(const Substep& s, const Contact& c, double slow) {
-    const Body& a = s.bodies[c.a];
-    const Body& b = s.bodies[c.b];
-    if (normal_mass_inverse(a, b) == 0.0) return true;  // two immovable bodies
-    // Within the substep the approach speed grows by at most the relative acceleration times
-    // h, so a pair slower than `slow` by that much cannot approach faster than `slow`.
-    const V2 u = a.v - b.v;
-    const bool same_fall = c.b < s.disc_count && a.falls() == b.falls();
-    const double margin = slow - (same_fall ? 0.0 : s.gravity.norm() * s.h);
-    if (margin > 0.0 && u.squaredNorm() <= margin * margin) return true;
-    if (!same_fall) return false;
-    // No relative acceleration: a pair moving apart along its centre line never meets.
-    return ((a.x + a.shift) - (b.x + b.shift)).dot(u) >= 0.0;
-}
-
 // The impact of contact c in this substep, if its pair approaches faster than `slow` then,
-// for a pair that surely_no_impact did not rule out.
-std::optional<Impact> swept_impact(const Substep& s, const Contact& c, double slow) {
+// for a pair that surely_no_impact did not rule out. Kept out of line so that the cheap tests
+// before it are inlined into the sweeps (a settled pile never gets here).
+[[gnu::noinline]] std::optional<Impact> swept_impact(const Substep& s, const Contact& c,
+                                                     double slow) {
     const Body& a = s.bodies[c.a];
     const Body& b = s.bodies[c.b];
     const Feature* f = s.feature_of(c);
@@ -89,16 +71,8 @@ std::optional<Impact> swept_impact(const Substep& s, const Contact& c, double sl
 
 }  // namespace
 
-double ImpactResolver::slowest_impact(const Substep& s, const Contact& c, double slow) const {
-    const Body& a = s.bodies[c.a];
-    const bool wall = c.b >= s.disc_count;
-    const double r = wall ? a.radius : std::min(a.radius, s.bodies[c.b].radius);
-    if (c.gap > touching_gap * r) return slow;
-    return wall ? settle_speed_[c.a] : std::min(settle_speed_[c.a], settle_speed_[c.b]);
-}
-
-std::optional<Impact> ImpactResolver::find_impact(const Substep& s, const Contact& c,
-                                                  double slow) const {
+inline std::optional<Impact> ImpactResolver::find_impact(const Substep& s, const Contact& c,
+                                                         double slow) const {
     const double slowest = slowest_impact(s, c, slow);
     if (surely_no_impact(s, c, slowest)) return std::nullopt;
     return swept_impact(s, c, slowest);
@@ -125,24 +99,38 @@ void ImpactResolver::list_contacts_of_bodies(const Substep& s) {
     }
 }
 
-void ImpactResolver::resolve(Substep& s) {
-    const double slow = std::max(min_approach_speed, s.gravity.norm() * s.h);
-    const std::size_t count = s.active.size();
-    found_.assign(count, FoundImpact{});
-    queued_.assign(count, -1);
+void ImpactResolver::begin(const Substep& s) {
+    gravity_step_ = s.gravity.norm() * s.h;
+    slow_ = std::max(min_approach_speed, gravity_step_);
+    screened_.clear();
     // Per body, because the threshold grows with the radius: a pair's is its smaller disc's.
-    settle_speed_.resize(s.disc_count);
-    for (std::size_t i = 0; i < s.disc_count; ++i) {
-        settle_speed_[i] = settle_speed(s, s.bodies[i].radius, slow);
+    // Radii, gravity and the substep's length never change within a world.
+    if (settle_speed_.size() != s.disc_count || settle_h_ != s.h) {
+        settle_h_ = s.h;
+        settle_speed_.resize(s.disc_count);
+        for (std::size_t i = 0; i < s.disc_count; ++i) {
+            settle_speed_[i] = settle_speed(s, s.bodies[i].radius, slow_);
+        }
     }
+}
+
+void ImpactResolver::resolve(Substep& s) {
+    const double slow = slow_;
+    const std::size_t count = s.active.size();
     for (Body& b : s.bodies) b.next_impact = s.h;
     changed_.clear();
-    for (int pass = 0; pass < max_passes; ++pass) {
-        // This sweep's pairs, in active order: all of them first, then those of bodies changed
-        // in the previous sweep.
+    // Each sweep after the first visits only the pairs of discs struck in the one before, so a
+    // few discs ping-ponging fast (a light disc between a heavy one and a wall needs about
+    // pi sqrt(M/m) bounces) get many sweeps, while a heap colliding everywhere at once stops
+    // after max_passes full sweeps' worth of work.
+    const std::size_t budget = static_cast<std::size_t>(max_passes) * std::max<std::size_t>(count, 64);
+    std::size_t spent = 0;
+    for (int pass = 0; spent < budget && pass < max_sweeps; ++pass) {
+        // This sweep's pairs, in active order: those that screen() did not rule out first, then
+        // those of bodies changed in the previous sweep.
         candidates_.clear();
         if (pass == 0) {
-            for (std::uint32_t k = 0; k < count; ++k) candidates_.push_back(k);
+            candidates_.swap(screened_);
         } else {
             for (const std::uint32_t body : changed_) {
                 for (std::uint32_t e = contacts_of_start_[body]; e < contacts_of_start_[body + 1];
@@ -156,28 +144,39 @@ void ImpactResolver::resolve(Substep& s) {
             std::sort(candidates_.begin(), candidates_.end());
         }
         changed_.clear();
+        spent += pass == 0 ? count : candidates_.size();
 
         // A body's impacts must happen in time order, or a later one computed first would move
         // it through the earlier one's wall: find each body's earliest impact first.
         lowered_.clear();
+        first_hits_.clear();
         for (const std::uint32_t k : candidates_) {
             const Contact& c = s.contacts[s.active[k]];
-            FoundImpact& found = found_[k];
-            found.pass = pass;
-            found.hit = find_impact(s, c, slow);
-            if (!found.hit) continue;
+            const std::optional<Impact> hit = find_impact(s, c, slow);
+            // The first sweep's answers (mostly none) are kept only once it has found a hit.
+            if (pass == 0) {
+                if (hit) first_hits_.emplace_back(k, *hit);
+            } else {
+                found_[k] = FoundImpact{pass, hit};
+            }
+            if (!hit) continue;
             for (const std::uint32_t i : {c.a, c.b}) {
                 Body& body = s.bodies[i];
                 if (body.next_impact == s.h) lowered_.push_back(i);
-                body.next_impact = std::min(body.next_impact, found.hit->t);
+                body.next_impact = std::min(body.next_impact, hit->t);
             }
         }
 
-        // A settled pile has no impacts at all: the per-body contact lists below are only
-        // built once the first sweep has found one.
+        // A settled pile has no impacts at all: the per-body contact lists and per-contact
+        // records below are only built once the first sweep has found one.
         if (pass == 0) {
             if (lowered_.empty()) break;
             list_contacts_of_bodies(s);
+            found_.assign(count, FoundImpact{0, std::nullopt});
+            for (const auto& [k, hit] : first_hits_) found_[k].hit = hit;
+            // The pairs ruled out are listed too when an impact of this sweep changes a body.
+            queued_.assign(count, -1);
+            for (const std::uint32_t k : candidates_) queued_[k] = 0;
         }
 
         // Visited in active order; a body changed during this sweep adds its later pairs to it
@@ -187,8 +186,8 @@ void ImpactResolver::resolve(Substep& s) {
         auto mark_changed = [&](std::uint32_t i, std::uint32_t after) {
             Body& body = s.bodies[i];
             if (body.inv_mass == 0.0 || body.changed_pass == pass) return;
-            // Changed in the previous sweep (or this is the first): all its pairs are listed.
-            const bool already_queued = body.changed_pass == pass - 1;
+            // Changed in the previous sweep: all its pairs are listed.
+            const bool already_queued = pass > 0 && body.changed_pass == pass - 1;
             body.changed_pass = pass;
             changed_.push_back(i);
             if (already_queued) return;

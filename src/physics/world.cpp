@@ -22,7 +22,7 @@ namespace {
 
 // Substeps are sized so that one lasts at most this long (documented in docs/physics.md).
 constexpr double longest_substep = 1.0 / 480.0;  // s
-constexpr int contact_iterations = 4;
+constexpr int contact_iterations = 3;
 constexpr int projection_iterations = 2;
 
 V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
@@ -83,8 +83,10 @@ struct World::Impl {
     std::vector<detail::Feature> features;
     std::vector<Body> bodies;
     std::vector<Contact> contacts;
+    std::uint64_t contacts_version = 0;  // counts the broad phase's rebuilds
     std::vector<std::uint32_t> active;
     std::vector<double> reach;  // metres per body, scratch of substep()
+    std::vector<V2> start;      // disc centres at the start of the substep, scratch
     detail::BroadPhase broad_phase;
     detail::ImpactResolver impact_resolver;
     detail::ContactSolver contact_solver;
@@ -104,8 +106,9 @@ void World::Impl::step() {
     const double t1 = static_cast<double>(steps + 1) / rate;
     const double dt = 1.0 / rate;
     throws.begin_step(t0, t1, bodies);
-    broad_phase.update(bodies, disc_count, features, dt, gravity.norm(), contacts);
-    for (Contact& c : contacts) c.step_impulse = 0.0;
+    if (broad_phase.update(bodies, disc_count, features, dt, gravity.norm(), contacts)) {
+        ++contacts_version;
+    }
     const double h = dt / substeps;
     for (int k = 0; k < substeps; ++k) substep(h);
     throws.end_step(t1, bodies);
@@ -118,10 +121,19 @@ void World::Impl::substep(double h) {
     const double fall = 0.5 * gravity.norm() * h * h;
     // How far each body can travel in this substep, computed once rather than per contact.
     reach.resize(bodies.size());
+    start.resize(disc_count);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const Body& b = bodies[i];
+        Body& b = bodies[i];
         reach[i] = b.v.norm() * h + (b.falls() ? fall : 0.0);
+        if (i < disc_count) start[i] = b.x;
+        b.shift = V2::Zero();
+        b.turn = 0.0;
+        b.t_last = 0.0;
+        b.changed_pass = -1;
+        b.struck_pass = -1;
     }
+    detail::Substep s{bodies, disc_count, features, contacts, contacts_version, active, gravity, h};
+    impact_resolver.begin(s);
     active.clear();
     for (std::size_t i = 0; i < contacts.size(); ++i) {
         Contact& c = contacts[i];
@@ -143,6 +155,7 @@ void World::Impl::substep(double h) {
         }
         // Only the gap is kept: the resting stage takes its normal at the end of the substep.
         if (near) {
+            impact_resolver.screen(s, c, static_cast<std::uint32_t>(active.size()));
             active.push_back(static_cast<std::uint32_t>(i));
         } else {
             // Apart for good this substep: nothing to warm-start from next time.
@@ -150,21 +163,10 @@ void World::Impl::substep(double h) {
             c.tangent_impulse = 0.0;
         }
     }
-    for (Body& b : bodies) {
-        b.shift = V2::Zero();
-        b.turn = 0.0;
-        b.t_last = 0.0;
-        b.changed_pass = -1;
-        b.struck_pass = -1;
-    }
-    detail::Substep s{bodies, disc_count, features, contacts, active, gravity, h};
     impact_resolver.resolve(s);
-    for (Body& b : bodies) {
-        b.v_begin = b.v;
-        b.omega_begin = b.omega;
-    }
     contact_solver.solve(s, contact_iterations);
     projector.project(s, projection_iterations);
+    projector.contain_runaways(s, start, reach);
 }
 
 void World::Impl::collect_events(double t) {
@@ -187,6 +189,7 @@ void World::Impl::collect_events(double t) {
             events.push_back(e);
         }
         c.touched_before = touching;
+        c.step_impulse = 0.0;  // the broad phase adds new contacts with none
     }
 }
 
@@ -194,10 +197,12 @@ void World::Impl::publish() {
     for (std::size_t i = 0; i < disc_count; ++i) {
         const Body& b = bodies[i];
         states[i] = DiscState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
-        // One check per disc per step, on values already in a register.
-        if (!failure && !(std::isfinite(b.x.x()) && std::isfinite(b.x.y()) &&
-                          std::isfinite(b.v.x()) && std::isfinite(b.v.y()) &&
-                          std::isfinite(b.angle) && std::isfinite(b.omega))) {
+        // One check per disc per step, on values already in a register: u - u is 0 for a
+        // finite u and NaN otherwise, so the sum is 0 exactly when all six are finite.
+        const double finite_zero = (b.x.x() - b.x.x()) + (b.x.y() - b.x.y()) +
+                                   (b.v.x() - b.v.x()) + (b.v.y() - b.v.y()) +
+                                   (b.angle - b.angle) + (b.omega - b.omega);
+        if (!failure && finite_zero != 0.0) {
             failure = NonFiniteState{i, static_cast<double>(steps) / rate};
         }
     }
