@@ -3,8 +3,9 @@
 #
 #   bash setup.sh demo          install packages, build, render the demo to out/demo.mp4
 #   bash setup.sh test [ARGS]   install packages (with the container tools and clang), build,
-#                               run ctest (the fuzzer for 60 s included); then build again with
-#                               ASan + UBSan and run the suite once more under them.
+#                               run ctest (the fuzzer for 60 s included) and clang-tidy over
+#                               src/; then build again with ASan + UBSan and run the suite once
+#                               more under them.
 #                               ARGS go to both ctest runs, e.g. `bash setup.sh test -LE container`
 #   bash setup.sh build         install packages, build (what the Dockerfile runs)
 #   bash setup.sh deps          install packages only
@@ -104,6 +105,11 @@ case "$command" in
     build
     log "Running the tests"
     ctest --test-dir "$BUILD_DIR" --output-on-failure --parallel "$JOBS" "$@"
+    # The agreed checks of .clang-tidy, every finding an error; the Release build's
+    # compile_commands.json says how each file is compiled.
+    log "Running clang-tidy over src/"
+    run-clang-tidy -p "$BUILD_DIR" -j "$JOBS" -quiet "$SOURCE_DIR/src/" >"$BUILD_DIR/clang-tidy.log" 2>&1 \
+      || { grep -E "(error|warning):" "$BUILD_DIR/clang-tidy.log" >&2; log "clang-tidy found problems (whole output: $BUILD_DIR/clang-tidy.log)"; exit 1; }
     # The same suite again, where a memory error or undefined behaviour stops the test that
     # hit it; without the container test (it builds the Release image) and the benchmarks.
     # A sanitizer build registers no fuzzer test: the fuzzer runs under them already. Peak

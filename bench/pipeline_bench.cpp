@@ -11,6 +11,7 @@
 // --hd-seconds S also renders S seconds of 1 000 discs at 1920x1080 and reports peak memory.
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -233,6 +234,11 @@ Settings parse(int argc, char** argv) {
 
 int main(int argc, char** argv) {
     const Settings settings = parse(argc, argv);
+    // The process settings of `discreel render` (which the pipeline column runs), so every
+    // column draws and encodes alike: llvmpipe drawing on the calling thread (LP_NUM_THREADS in
+    // the environment overrides it for all columns) and no transparent huge pages.
+    render::set_rasterizer_threads(0);
+    prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
     const auto dir = std::filesystem::temp_directory_path() /
                      ("discreel-pipeline-bench-" + std::to_string(getpid()));
     std::filesystem::create_directories(dir);
@@ -240,8 +246,8 @@ int main(int argc, char** argv) {
     double load[1] = {0};
     getloadavg(load, 1);
     std::printf("%d frames at %dx%d, 60 fps, libx264 veryfast crf 23, 2 encoder threads; "
-                "%u cores, load average %.1f at the start\n\n",
-                settings.frames, settings.width, settings.height,
+                "LP_NUM_THREADS=%s; %u cores, load average %.1f at the start\n\n",
+                settings.frames, settings.width, settings.height, std::getenv("LP_NUM_THREADS"),
                 std::thread::hardware_concurrency(), load[0]);
     std::printf("fps = frames / wall seconds; in brackets: CPU ms per frame, all threads and "
                 "child processes\n\n");

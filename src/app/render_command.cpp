@@ -1,3 +1,4 @@
+#include <sys/prctl.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -110,10 +111,26 @@ void report_details(const PipelineResult& run, int frames, std::ostream& err) {
     }
 }
 
+// Three slots let each stage hold a frame. Above 720p a slot is 8 MiB or more and two keep
+// a 1080p render under 300 MB (docs/performance.md); the encoder still has the next frame
+// ready, because drawing and simulating a frame take a fraction of the time it needs.
+int slots_for(int width, int height) {
+    return static_cast<long>(width) * height > 1280L * 720L ? 2 : 3;
+}
+
 }  // namespace
 
 int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = Clock::now();
+    // The encoder's threads keep most of the cores busy; llvmpipe's rasterizer threads would
+    // compete with them and cost more CPU than they save, so the render stage draws on its own
+    // thread (docs/performance.md). Set here, before any thread starts; LP_NUM_THREADS in the
+    // environment still wins.
+    render::set_rasterizer_threads(0);
+    // libx264 asks for transparent huge pages on its frame buffers, which rounds each one up to
+    // whole 2 MiB pages of resident memory: 11-13 MiB at 1080p, at no measurable cost in speed.
+    // Best effort (a kernel without the setting just keeps the default).
+    prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
     scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
@@ -196,7 +213,8 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const PipelineResult run = run_pipeline(
         {.frame_count = frames->last + 1,
          .renderer = {.width = scene.video.width, .height = scene.video.height},
-         .threaded = !o.sequential},
+         .threaded = !o.sequential,
+         .slots = slots_for(scene.video.width, scene.video.height)},
         stages);
     progress.finish();
     if (!simulated) {

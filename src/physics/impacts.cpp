@@ -59,7 +59,7 @@ double settle_speed(const Substep& s, double r, double slow) {
     const Feature* f = s.feature_of(c);
     const double t_min = std::max(a.t_last, b.t_last);
     const Trajectory ta = trajectory(s, a);
-    const std::optional<Impact> hit =
+    std::optional<Impact> hit =   // not const: returned, so moved
         f ? impact_disc_feature(ta, a.radius, *f, t_min, s.h)
           : impact_disc_disc(ta, a.radius, trajectory(s, b), b.radius, t_min, s.h);
     if (!hit) return std::nullopt;

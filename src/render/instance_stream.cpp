@@ -13,6 +13,8 @@ InstanceStream InstanceStream::create(std::size_t record_size,
     const auto stride = static_cast<GLsizei>(record_size);
     for (const InstanceAttribute& a : attributes) {
         glEnableVertexAttribArray(a.location);
+        // GL takes the attribute's byte offset in the buffer as a pointer.
+        // NOLINTNEXTLINE(performance-no-int-to-ptr)
         const auto* offset = reinterpret_cast<const void*>(a.offset);
         if (a.type == GL_UNSIGNED_INT) {
             glVertexAttribIPointer(a.location, a.components, a.type, stride, offset);

@@ -201,7 +201,7 @@ std::optional<std::vector<Value>> read_list(const Value& value, Diagnostics& dia
         const YAML::Node item = *it;
         // An empty item's mark points past it; the list's own position is the honest fallback.
         const Location where = item.IsNull() ? value.where : location_of(item, value.where);
-        items.push_back({item, where, value.path + "[" + std::to_string(i) + "]"});
+        items.emplace_back(item, where, value.path + "[" + std::to_string(i) + "]");
     }
     return items;
 }

@@ -123,6 +123,36 @@ TEST(CliPipelineGLTest, PeakMemoryIsBoundedAndFlatInClipLength) {
     EXPECT_LT(long_peak - short_peak, 8.0) << short_peak << " MiB vs " << long_peak << " MiB";
 }
 
+// The bound for a 1080p render: 300 MB (286.1 MiB). x264 holds most of it, about 7 MiB
+// per input frame in flight; docs/performance.md lists what keeps it under (measured 280.5 MiB
+// for 1 000 discs). Half a second of frames fills every queue and x264's lookahead, and the
+// flat-in-length test above covers longer clips.
+TEST(CliPipelineGLTest, PeakMemoryOfA1080pRenderIsUnder300MB) {
+    TempDir dir;
+    const auto run = run_command({bin, "render", gas_scene, "-o", dir / "hd.mp4", "--size",
+                                  "1920x1080", "--duration", "0.5", "--verbose"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const double peak = peak_mib(run.err);
+    ASSERT_GT(peak, 0) << run.err;
+    EXPECT_LT(peak, 300e6 / (1024.0 * 1024.0));
+}
+
+// x264 writes its settings into the stream as text. Above 720p the veryfast lookahead is cut
+// from 10 to 8 frames for memory; 720p keeps the preset's 10.
+TEST(CliPipelineGLTest, X264LookaheadIsShortenedOnlyAbove720p) {
+    TempDir dir;
+    const auto render = [&](const std::string& size) {
+        const auto run = run_command({bin, "render", short_scene, "-o", dir / (size + ".mp4"),
+                                      "--size", size, "--duration", "0.1"});
+        EXPECT_EQ(run.exit_code, 0) << run.err;
+        return read_file(dir / (size + ".mp4"));
+    };
+    const std::string hd = render("1920x1080");
+    EXPECT_NE(hd.find(" rc_lookahead=8 "), std::string::npos);
+    const std::string sd = render("1280x720");
+    EXPECT_NE(sd.find(" rc_lookahead=10 "), std::string::npos);
+}
+
 // Starts `discreel render` of a long clip into `dir` with stderr captured in dir/err.txt.
 pid_t start_long_render(const TempDir& dir, const std::string& output) {
     const std::vector<std::string> args{bin,      "render",  gas_scene,  "-o",   output,

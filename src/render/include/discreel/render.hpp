@@ -77,6 +77,15 @@ struct FrameScene {
     std::vector<TextGeom> texts;
 };
 
+// How many threads of its own llvmpipe rasterizes on (Mesa's LP_NUM_THREADS), for the whole
+// process: 0 draws on the thread that calls draw(). By default Mesa starts one per core and the
+// drawing thread waits for them; next to a video encoder that keeps the cores busy, they
+// compete with it and cost more CPU than they save (see docs/performance.md). Mesa reads the
+// setting once, when the process's first Renderer is created, so call this before that and
+// before starting other threads (it sets an environment variable). A value already in the
+// environment wins: the user's choice is kept. Frames are the same bytes either way.
+void set_rasterizer_threads(int count);
+
 struct RendererDef {
     int width = 1280;               // pixels
     int height = 720;               // pixels
