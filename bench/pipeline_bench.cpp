@@ -122,7 +122,7 @@ double draw_all(const scene::Scene& scene, int frames, Each each) {
 encode::SinkDef mp4(const std::string& path, const scene::Scene& scene) {
     return {.path = path, .width = scene.video.width, .height = scene.video.height,
             .fps = scene.video.fps, .crf = 23, .preset = "veryfast", .threads = 2, .codec = "",
-            .pixel_format = "", .lossless = false, .key_colours = {}};
+            .pixel_format = "", .lossless = false, .stream_container = "", .key_colours = {}};
 }
 
 double encode_only(const std::vector<std::uint8_t>& frames, const scene::Scene& scene, int count,

@@ -26,6 +26,7 @@ struct RenderOptions {
     std::string codec;                       // empty: the container's default
     std::string pixel_format;                // empty: yuv420p
     bool lossless = false;                   // FFV1 in Matroska
+    std::string stream_container;            // -o -: "mkv" (empty) or "mp4" (fragmented)
     OutputFiles files;
     bool sequential = false;                 // every stage on one thread: same bytes, slower
     bool progress = false;                   // progress lines even when stderr is no terminal

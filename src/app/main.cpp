@@ -87,7 +87,8 @@ static int run_command_line(int argc, char** argv) {
     render_cmd->add_option("-o,--output", render.output,
                            "Output file; the extension picks the format: .mp4, .mkv, .webm, "
                            ".gif, .png (a still, or every frame for frame_%04d.png), or - for "
-                           "Matroska on standard output")
+                           "a stream on standard output (Matroska, or fragmented MP4 with "
+                           "--format mp4)")
         ->required();
     render_cmd->add_option("--frame", render.frame, "Frame index for a .png still (default 0)");
     render_cmd->add_option("--at", render.at, "Time in seconds for a .png still");
@@ -111,6 +112,9 @@ static int run_command_line(int argc, char** argv) {
                            "Video codec: h264 (.mp4, .mkv), vp9 (.webm, .mkv), ffv1 (.mkv)");
     render_cmd->add_option("--pix-fmt", render.pixel_format,
                            "yuv420p (default) or yuv444p, for crisp colour edges (H.264, VP9)");
+    render_cmd->add_option("--format", render.stream_container,
+                           "Container of -o -: mkv (default) or mp4 (fragmented MP4)")
+        ->check(CLI::IsMember({"mkv", "mp4"}));
     render_cmd->add_flag("--lossless", render.lossless,
                          "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);

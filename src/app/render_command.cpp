@@ -139,7 +139,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         return exit_bad_input;
     }
 
-    const auto output = encode::describe_output(o.output);
+    const auto output = encode::describe_output(o.output, o.stream_container);
     if (!output) {
         err << "discreel: " << output.error().message << '\n';
         return exit_bad_input;
@@ -153,6 +153,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
                                    .codec = o.codec,
                                    .pixel_format = o.pixel_format,
                                    .lossless = o.lossless,
+                                   .stream_container = o.stream_container,
                                    .key_colours = scene_colours(scene)};
     if (Status settings = encode::check_settings(sink_def); !settings) {
         err << "discreel: " << settings.error().message << '\n';

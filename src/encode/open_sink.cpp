@@ -33,7 +33,8 @@ constexpr std::array<OutputKind, 6> output_kinds = {{
     {".gif", ".gif", "gif", gif_format},
     {".png", ".png (one frame, or every frame for a numbered name such as frame_%04d.png)",
      "png", nullptr},
-    {"-", "- (Matroska on standard output)", "mkv", mkv_format},
+    {"-", "- (Matroska or fragmented MP4 on standard output)",
+     "mkv", stream_format},
 }};
 
 std::string supported_formats() {
@@ -75,6 +76,10 @@ Expected<Resolved> resolve(const std::string& path) {
 }
 
 Status check_resolved(const Resolved& resolved, const SinkDef& def) {
+    if (!def.stream_container.empty() && resolved.kind->name != "-") {
+        return Error{"a stream container is chosen for standard output (-o -) only; a file's "
+                     "extension picks its format"};
+    }
     if (resolved.kind->video != nullptr) {
         auto format = resolved.kind->video(def);
         if (!format) {
@@ -87,7 +92,8 @@ Status check_resolved(const Resolved& resolved, const SinkDef& def) {
 
 }  // namespace
 
-Expected<OutputDescription> describe_output(const std::string& path) {
+Expected<OutputDescription> describe_output(const std::string& path,
+                                            const std::string& stream_container) {
     auto resolved = resolve(path);
     if (!resolved) {
         return resolved.error();
@@ -95,6 +101,7 @@ Expected<OutputDescription> describe_output(const std::string& path) {
     OutputDescription description;
     description.format = std::string(resolved->kind->format);
     description.to_stdout = path == "-";
+    if (description.to_stdout && !stream_container.empty()) description.format = stream_container;
     if (resolved->kind->video == nullptr) {
         description.one_frame = !resolved->pattern.has_value();
         if (resolved->pattern) {

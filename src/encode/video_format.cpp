@@ -190,6 +190,27 @@ Expected<VideoFormat> mp4_format(const SinkDef& def) {
     return format;
 }
 
+Expected<VideoFormat> stream_format(const SinkDef& def) {
+    if (def.stream_container.empty() || def.stream_container == "mkv") return mkv_format(def);
+    if (def.stream_container != "mp4") {
+        return Error{"unknown stream container '" + def.stream_container + "' (mkv, mp4)"};
+    }
+    if (def.lossless) {
+        return Error{"lossless output is FFV1 in Matroska: stream it as mkv, not mp4"};
+    }
+    if (auto status = check_codec(def, "an mp4 stream", {"h264"}); !status) {
+        return status.error();
+    }
+    auto format = h264_format(def, "mp4");
+    if (format) {
+        // A pipe cannot seek back to put the index first: an empty moov goes up front and
+        // each fragment (one per keyframe) carries its own index, so readers can play the
+        // stream as it arrives.
+        format->muxer_options = {{"movflags", "frag_keyframe+empty_moov+default_base_moof"}};
+    }
+    return format;
+}
+
 Expected<VideoFormat> mkv_format(const SinkDef& def) {
     if (auto status = check_codec(def, ".mkv", {"h264", "vp9", "ffv1"}); !status) {
         return status.error();

@@ -41,6 +41,8 @@ struct VideoFormat {
 //   .webm: VP9 (libvpx-vp9).
 //   .gif: GIF with a palette from the key colours and the first frame.
 Expected<VideoFormat> mp4_format(const SinkDef& def);
+// "-": Matroska, or fragmented MP4 with SinkDef::stream_container "mp4".
+Expected<VideoFormat> stream_format(const SinkDef& def);
 Expected<VideoFormat> mkv_format(const SinkDef& def);
 Expected<VideoFormat> webm_format(const SinkDef& def);
 Expected<VideoFormat> gif_format(const SinkDef& def);

@@ -100,7 +100,7 @@ TEST(CliGLTest, UnknownOutputExtensionIsABadCommandLine) {
     EXPECT_EQ(run.err,
               "discreel: unsupported output extension '.avi' (supported: .mp4 (H.264), .mkv "
               "(H.264, VP9, or FFV1 lossless), .webm (VP9), .gif, .png (one frame, or every frame "
-              "for a numbered name such as frame_%04d.png), - (Matroska on standard output))\n");
+              "for a numbered name such as frame_%04d.png), - (Matroska or fragmented MP4 on standard output))\n");
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 
@@ -187,9 +187,34 @@ TEST(CliGLTest, DashWritesStreamableMatroskaToStdoutAndTheSummaryToStderr) {
     EXPECT_TRUE(run_command({bin, "render", short_scene, "-o", "-"}).out == first.out);
 }
 
+// `--format mp4` streams fragmented MP4 instead, for tools that want MP4 from a pipe.
+TEST(CliGLTest, DashWithFormatMp4WritesFragmentedMp4ToStdout) {
+    TempDir dir;
+    const auto first = run_command({bin, "render", short_scene, "-o", "-", "--format", "mp4"});
+    ASSERT_EQ(first.exit_code, 0) << first.err;
+    testing::write_file(dir / "piped.mp4", first.out);
+    auto probe = probe_video(dir / "piped.mp4");
+    EXPECT_EQ(probe["codec_name"], "h264");
+    EXPECT_EQ(probe["nb_read_frames"], "30");
+    EXPECT_EQ(probe["color_space"], "bt709");
+    // Written for a pipe: an empty moov up front, then fragments (moof + mdat), no index at
+    // the end to seek back for.
+    const auto boxes = testing::mp4_top_level_boxes(dir / "piped.mp4");
+    ASSERT_GE(boxes.size(), 4u);
+    EXPECT_EQ(boxes[0], "ftyp");
+    EXPECT_EQ(boxes[1], "moov");
+    EXPECT_EQ(boxes[2], "moof");
+    EXPECT_EQ(boxes[3], "mdat");
+    EXPECT_TRUE(run_command({bin, "render", short_scene, "-o", "-", "--format", "mp4"}).out ==
+                first.out);
+}
+
 TEST(CliGLTest, FormatOptionsThatDoNotFitAreABadCommandLine) {
     TempDir dir;
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"-o", dir / "c.mkv", "--format", "mp4"},
+         "discreel: a stream container is chosen for standard output (-o -) only; a file's "
+         "extension picks its format\n"},
         {{"-o", dir / "c.mp4", "--lossless"},
          "discreel: lossless output is FFV1 in Matroska: use .mkv or -, not .mp4\n"},
         {{"-o", dir / "c.mp4", "--codec", "vp9"},

@@ -29,6 +29,9 @@ struct SinkDef {
     std::string codec;             // "h264", "vp9", "ffv1"; empty: the format's default
     std::string pixel_format;      // "yuv420p" or "yuv444p" (H.264, VP9); empty: yuv420p
     bool lossless = false;         // FFV1 in Matroska, bit-exact RGB (.mkv and "-" only)
+    // The container of a stream to standard output ("-"): "mkv" (default) or "mp4"
+    // (fragmented MP4). Files take theirs from the extension.
+    std::string stream_container;
     // Colours the frames are mostly made of (the scene's background, walls and discs). A GIF
     // palette starts with them, so they come out exact; other formats ignore them.
     std::vector<Rgb> key_colours;
@@ -45,14 +48,16 @@ public:
 struct OutputDescription {
     std::string format;            // "mp4", "mkv", "webm", "gif", "png", "png sequence"
     bool one_frame = false;        // a still: the sink takes exactly one frame
-    bool to_stdout = false;        // "-": Matroska streamed to standard output
+    bool to_stdout = false;        // "-": a stream on standard output
 };
 
-// The format an output path names, from the file system's point of view of nothing: "-" is
-// Matroska on standard output; otherwise the extension, case-insensitive (.mp4, .mkv, .webm,
+// The format an output path names, from the file system's point of view of nothing: "-" is a
+// stream on standard output (Matroska, or fragmented MP4 when stream_container is "mp4");
+// otherwise the extension, case-insensitive (.mp4, .mkv, .webm,
 // .gif, .png); a .png name holding one printf-style frame number (%d, %04d) is a sequence with
 // one file per frame, numbered from 0. The error lists the supported formats.
-Expected<OutputDescription> describe_output(const std::string& path);
+Expected<OutputDescription> describe_output(const std::string& path,
+                                            const std::string& stream_container = "");
 
 // Checks the encoder settings of `def` (codec, pixel format, crf, preset, lossless, threads)
 // against the format its path names, without touching the file system. The message names the
