@@ -34,6 +34,18 @@ std::string parse_size(const std::string& text, VideoOverrides& video) {
     return "expected WIDTHxHEIGHT, e.g. 1280x720";
 }
 
+void add_size_option(CLI::App& cmd, VideoOverrides& video, const std::string& description) {
+    cmd.add_option_function<std::string>(
+           "--size",
+           [&video](const std::string& s) {
+               if (auto problem = parse_size(s, video); !problem.empty()) {
+                   throw CLI::ValidationError("--size", problem);
+               }
+           },
+           description)
+        ->option_text("WxH");
+}
+
 void add_output_files(CLI::App& cmd, OutputFiles& files) {
     cmd.add_option("--trace", files.trace, "Write one CSV row per disc per frame to FILE")
         ->option_text("FILE");
@@ -92,15 +104,7 @@ static int run_command_line(int argc, char** argv) {
         ->required();
     render_cmd->add_option("--frame", render.frame, "Frame index for a .png still (default 0)");
     render_cmd->add_option("--at", render.at, "Time in seconds for a .png still");
-    render_cmd->add_option_function<std::string>(
-                  "--size",
-                  [&](const std::string& s) {
-                      if (auto problem = parse_size(s, render.video); !problem.empty()) {
-                          throw CLI::ValidationError("--size", problem);
-                      }
-                  },
-                  "Override the frame size, WIDTHxHEIGHT")
-        ->option_text("WxH");
+    add_size_option(*render_cmd, render.video, "Override the frame size, WIDTHxHEIGHT");
     render_cmd->add_option("--fps", render.video.fps, "Override frames per second");
     render_cmd->add_option("--duration", render.video.duration, "Override duration in seconds");
     render_cmd->add_option("--crf", render.crf,
@@ -164,15 +168,7 @@ static int run_command_line(int argc, char** argv) {
                            "Differing pixels allowed per frame, as a fraction of all, 0..1");
     golden_cmd->add_option("--junit", golden.junit, "Also write a JUnit XML report to FILE")
         ->option_text("FILE");
-    golden_cmd->add_option_function<std::string>(
-                  "--size",
-                  [&](const std::string& s) {
-                      if (auto problem = parse_size(s, golden.video); !problem.empty()) {
-                          throw CLI::ValidationError("--size", problem);
-                      }
-                  },
-                  "Override every scene's frame size, WIDTHxHEIGHT")
-        ->option_text("WxH");
+    add_size_option(*golden_cmd, golden.video, "Override every scene's frame size, WIDTHxHEIGHT");
 
     try {
         app.parse(argc, argv);

@@ -177,18 +177,29 @@ Status reject_encoder_settings(const SinkDef& def, const std::string& target) {
     return {};
 }
 
-Expected<VideoFormat> mp4_format(const SinkDef& def) {
+namespace {
+
+// H.264 in MP4, a file or a stream; only the lossless advice, the name the codec error uses
+// and the muxer's movflags differ between them.
+Expected<VideoFormat> h264_in_mp4(const SinkDef& def, const std::string& lossless_advice,
+                                  const std::string& output_name, const std::string& movflags) {
     if (def.lossless) {
-        return Error{"lossless output is FFV1 in Matroska: use .mkv or -, not .mp4"};
+        return Error{"lossless output is FFV1 in Matroska: " + lossless_advice};
     }
-    if (auto status = check_codec(def, ".mp4", {"h264"}); !status) {
+    if (auto status = check_codec(def, output_name, {"h264"}); !status) {
         return status.error();
     }
     auto format = h264_format(def, "mp4");
     if (format) {
-        format->muxer_options = {{"movflags", "+faststart"}};
+        format->muxer_options = {{"movflags", movflags}};
     }
     return format;
+}
+
+}  // namespace
+
+Expected<VideoFormat> mp4_format(const SinkDef& def) {
+    return h264_in_mp4(def, "use .mkv or -, not .mp4", ".mp4", "+faststart");
 }
 
 Expected<VideoFormat> stream_format(const SinkDef& def) {
@@ -196,20 +207,11 @@ Expected<VideoFormat> stream_format(const SinkDef& def) {
     if (def.stream_container != "mp4") {
         return Error{"unknown stream container '" + def.stream_container + "' (mkv, mp4)"};
     }
-    if (def.lossless) {
-        return Error{"lossless output is FFV1 in Matroska: stream it as mkv, not mp4"};
-    }
-    if (auto status = check_codec(def, "an mp4 stream", {"h264"}); !status) {
-        return status.error();
-    }
-    auto format = h264_format(def, "mp4");
-    if (format) {
-        // A pipe cannot seek back to put the index first: an empty moov goes up front and
-        // each fragment (one per keyframe) carries its own index, so readers can play the
-        // stream as it arrives.
-        format->muxer_options = {{"movflags", "frag_keyframe+empty_moov+default_base_moof"}};
-    }
-    return format;
+    // A pipe cannot seek back to put the index first: an empty moov goes up front and each
+    // fragment (one per keyframe) carries its own index, so readers can play the stream as it
+    // arrives.
+    return h264_in_mp4(def, "stream it as mkv, not mp4", "an mp4 stream",
+                       "frag_keyframe+empty_moov+default_base_moof");
 }
 
 Expected<VideoFormat> mkv_format(const SinkDef& def) {
