@@ -2,12 +2,15 @@
 // For 100, 1 000 and 10 000 moving discs it measures, on the same frames:
 //   render only     simulate + draw + readback, timing the draws alone (its CPU time
 //                   includes the simulation and keeping the frames)
-//   encode only     the pre-rendered RGBA frames through the mp4 sink (libswscale + libx264)
+//   encode only     the pre-rendered RGBA frames through the mp4 sink (colour conversion +
+//                   libx264)
 //   render | ffmpeg drawing frames and writing raw RGBA into the ffmpeg CLI (the usual way)
 //   pipeline        the discreel binary end to end (process start and scene load included),
 //                   with its peak memory as it reports it with --verbose
 // All at libx264 veryfast, crf 23, 2 encoder threads. Prints a Markdown table.
-//     pipeline_bench [--frames 600] [--size 1280x720] [--discs 100,1000,10000] [--hd-seconds 0]
+//     pipeline_bench [--frames 600] [--size 1280x720] [--discs 100,1000,10000] [--repeat 1]
+//                    [--hd-seconds 0]
+// --repeat K runs the three encoding columns K times in turn and reports each one's median.
 // --hd-seconds S also renders S seconds of 1 000 discs at 1920x1080 and reports peak memory.
 #include <fcntl.h>
 #include <spawn.h>
@@ -16,6 +19,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -64,6 +68,7 @@ struct Settings {
     int height = 720;
     std::vector<int> disc_counts{100, 1000, 10000};
     int hd_seconds = 0;
+    int repeat = 1;                 // runs of each encoding column; the median is reported
 };
 
 // Discs covering about a fifth of a 12.8 x 7.2 m box, moving without gravity or losses, so
@@ -171,6 +176,19 @@ double render_into_ffmpeg(const scene::Scene& scene, int frames, const std::stri
     return seconds_since(start);
 }
 
+// One timed run of a column: wall seconds and CPU milliseconds per frame.
+struct Run {
+    double seconds = 0;
+    double cpu_ms = 0;
+};
+
+// The run with the median wall time (the upper one of the middle two for an even count).
+Run median(std::vector<Run> runs) {
+    std::sort(runs.begin(), runs.end(),
+              [](const Run& a, const Run& b) { return a.seconds < b.seconds; });
+    return runs[runs.size() / 2];
+}
+
 struct ProcessRun {
     double seconds = 0;
     double peak_mib = 0;
@@ -220,6 +238,8 @@ Settings parse(int argc, char** argv) {
             s.disc_counts.clear();
             std::istringstream list(value);
             for (std::string n; std::getline(list, n, ',');) s.disc_counts.push_back(std::stoi(n));
+        } else if (name == "--repeat") {
+            s.repeat = std::max(1, std::stoi(value));
         } else if (name == "--hd-seconds") {
             s.hd_seconds = std::stoi(value);
         } else {
@@ -250,7 +270,8 @@ int main(int argc, char** argv) {
                 settings.frames, settings.width, settings.height, std::getenv("LP_NUM_THREADS"),
                 std::thread::hardware_concurrency(), load[0]);
     std::printf("fps = frames / wall seconds; in brackets: CPU ms per frame, all threads and "
-                "child processes\n\n");
+                "child processes; encoding columns: median of %d runs taken in turn\n\n",
+                settings.repeat);
     std::printf("| discs | render only | encode only | render \\| ffmpeg | pipeline | "
                 "pipeline / encode | pipeline / ffmpeg | pipeline peak memory |\n");
     std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -281,27 +302,35 @@ int main(int argc, char** argv) {
             stored.insert(stored.end(), image.rgba.begin(), image.rgba.end());
         });
         const double render_cpu = cpu_ms_per_frame();
-        const double encode_seconds =
-            encode_only(stored, loaded.scene, frames, (dir / "encode.mp4").string());
-        const double encode_cpu = cpu_ms_per_frame();
+        // The VM's speed drifts by 10-20 % within minutes, so the three encoding columns are
+        // run in turn `repeat` times and each reports its median run.
+        std::vector<Run> encoded, piped, pipelined;
+        double peak_mib = 0;
+        for (int r = 0; r < settings.repeat; ++r) {
+            const double encode_seconds =
+                encode_only(stored, loaded.scene, frames, (dir / "encode.mp4").string());
+            encoded.push_back({encode_seconds, cpu_ms_per_frame()});
+            const double piped_seconds =
+                render_into_ffmpeg(loaded.scene, frames, (dir / "piped.mp4").string());
+            piped.push_back({piped_seconds, cpu_ms_per_frame()});
+            const ProcessRun pipeline = run_discreel(
+                {DISCREEL_BIN, "render", scene_path, "-o", (dir / "pipe.mp4").string(), "--crf",
+                 "23", "--preset", "veryfast", "--verbose"},
+                (dir / "pipe.err").string());
+            pipelined.push_back({pipeline.seconds, cpu_ms_per_frame()});
+            peak_mib = std::max(peak_mib, pipeline.peak_mib);
+        }
         std::vector<std::uint8_t>().swap(stored);
-        const double piped_seconds =
-            render_into_ffmpeg(loaded.scene, frames, (dir / "piped.mp4").string());
-        const double piped_cpu = cpu_ms_per_frame();
-        const ProcessRun pipeline =
-            run_discreel({DISCREEL_BIN, "render", scene_path, "-o", (dir / "pipe.mp4").string(),
-                          "--crf", "23", "--preset", "veryfast", "--verbose"},
-                         (dir / "pipe.err").string());
-        const double pipeline_cpu = cpu_ms_per_frame();
+        const Run encode = median(encoded), pipe = median(piped), pipeline = median(pipelined);
 
-        const double encode_fps = fps / encode_seconds;
-        const double piped_fps = fps / piped_seconds;
+        const double encode_fps = fps / encode.seconds;
+        const double piped_fps = fps / pipe.seconds;
         const double pipeline_fps = fps / pipeline.seconds;
         std::printf("| %d | %.1f (%.1f) | %.1f (%.1f) | %.1f (%.1f) | %.1f (%.1f) | %.2f | %.2f "
                     "| %.0f MiB |\n",
-                    discs, fps / draw_seconds, render_cpu, encode_fps, encode_cpu, piped_fps,
-                    piped_cpu, pipeline_fps, pipeline_cpu, pipeline_fps / encode_fps,
-                    pipeline_fps / piped_fps, pipeline.peak_mib);
+                    discs, fps / draw_seconds, render_cpu, encode_fps, encode.cpu_ms, piped_fps,
+                    pipe.cpu_ms, pipeline_fps, pipeline.cpu_ms, pipeline_fps / encode_fps,
+                    pipeline_fps / piped_fps, peak_mib);
         std::fflush(stdout);
     }
 

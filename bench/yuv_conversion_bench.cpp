@@ -4,6 +4,8 @@
 //      rounding, bit-exact) on the CPU
 //   B  two GL passes (BT.709 limited range: Y at full size, U and V from 2x2 averages at half
 //      size) and glReadPixels of the 1.5 bytes per pixel
+//   C  glReadPixels RGBA, then discreel's own integer converter (Bt709Converter, what the
+//      sinks use for yuv420p and yuv444p now)
 // Plain program; prints milliseconds per frame. See docs/performance.md.
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/osmesa.h>
@@ -12,6 +14,8 @@ extern "C" {
 #include <libavutil/frame.h>
 #include <libswscale/swscale.h>
 }
+
+#include "bt709_converter.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -170,11 +174,22 @@ int main() {
     const double gl_ms = ms_per_frame(start);
     check(glGetError() == GL_NO_ERROR, "GL calls");
 
+    // C: the same readback as A, converted by Bt709Converter.
+    discreel::encode::Bt709Converter converter(true);
+    double ours_ms = 0;
+    for (int i = 0; i < frames; ++i) {
+        const auto converting = Clock::now();
+        converter.convert({width, height, readback}, *yuv);
+        ours_ms += ms_per_frame(converting);
+    }
+
     std::printf("%dx%d, %d frames, ms per frame\n", width, height, frames);
     std::printf("A  glReadPixels RGBA        %6.2f\n", read_ms);
     std::printf("A  libswscale to yuv420p    %6.2f\n", sws_ms);
     std::printf("A  total                    %6.2f\n", read_ms + sws_ms);
     std::printf("B  GL passes + readback     %6.2f\n", gl_ms);
+    std::printf("C  Bt709Converter           %6.2f\n", ours_ms);
+    std::printf("C  total                    %6.2f\n", read_ms + ours_ms);
     sws_freeContext(sws);
     av_frame_free(&yuv);
     OSMesaDestroyContext(context);

@@ -7,6 +7,9 @@
 #include <thread>
 #include <vector>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include "pipeline_queue.hpp"
 
 namespace discreel::app {
@@ -61,6 +64,13 @@ PipelineResult run_on_one_thread(const PipelineDef& def, const PipelineStages& s
     return result;
 }
 
+// Gives the calling thread the lowest priority (nice 19; Linux applies nice per thread),
+// best effort: where the call fails, the thread keeps its priority. Nothing restores it: only
+// the producer threads call this, and they end with the run.
+void yield_to_other_threads() {
+    setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 19);
+}
+
 // What the three threads share. Slots move free -> drawable -> encodable -> free; a slot is
 // touched only by the stage that last popped it, so the slots themselves need no lock.
 class ThreadedRun {
@@ -73,9 +83,12 @@ public:
     }
 
     PipelineResult run() {
+        // The simulate stage gets a thread of its own too, so that lowering its priority never
+        // touches the caller's.
+        std::thread simulate_thread([this] { simulate_stage(); });
         std::thread render_thread([this] { render_stage(); });
         std::thread encode_thread([this] { encode_stage(); });
-        simulate_stage();
+        simulate_thread.join();
         render_thread.join();
         encode_thread.join();
         result_.stopped = stopped_;
@@ -90,6 +103,7 @@ private:
     };
 
     void simulate_stage() {
+        if (def_.encoder_first) yield_to_other_threads();
         for (int frame = 0; frame < def_.frame_count; ++frame) {
             if (stages_.should_stop()) {
                 stopped_ = true;
@@ -111,6 +125,7 @@ private:
     }
 
     void render_stage() {
+        if (def_.encoder_first) yield_to_other_threads();
         auto renderer = render::Renderer::create(def_.renderer);
         if (!renderer) return fail(renderer.error());
         result_.renderer_info = renderer->renderer_info();
@@ -164,7 +179,7 @@ private:
     SlotQueue encodable_;
     std::mutex failure_mutex_;
     PipelineResult result_;
-    bool stopped_ = false;   // written and read by the simulating (calling) thread only
+    bool stopped_ = false;   // written by the simulate thread only, read after it ends
 };
 
 }  // namespace

@@ -19,12 +19,16 @@ struct PipelineDef {
     render::RendererDef renderer;
     bool threaded = true;            // false: every stage on the calling thread, frame by frame
     int slots = 3;                   // frames in flight when threaded: one per stage
+    // Threaded only: the simulate and render threads run at the lowest priority (nice 19), so
+    // they use the cycles the encoder's threads leave idle instead of preempting them, and
+    // work ahead into the free slots while the encoder is busy.
+    bool encoder_first = false;
 };
 
 struct PipelineStages {
     // Advances the simulation to `frame` and returns what to draw, or nullptr for a frame that
-    // is simulated but not drawn. Called on the calling thread, frames in order. The returned
-    // scene is copied into a slot before the next call.
+    // is simulated but not drawn. Called on one thread (the caller's when not threaded), frames
+    // in order. The returned scene is copied into a slot before the next call.
     std::function<const render::FrameScene*(int frame)> simulate;
     // Every drawn frame, in order, on one thread.
     std::function<Status(const ImageView& image)> encode;

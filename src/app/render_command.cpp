@@ -111,11 +111,13 @@ void report_details(const PipelineResult& run, int frames, std::ostream& err) {
     }
 }
 
-// Three slots let each stage hold a frame. Above 720p a slot is 8 MiB or more and two keep
-// a 1080p render under 300 MB (docs/performance.md); the encoder still has the next frame
-// ready, because drawing and simulating a frame take a fraction of the time it needs.
+// Up to 720p, six slots (3.5 MiB each at 720p) let the simulate and render stages, which
+// yield to the encoder (PipelineDef::encoder_first), work several frames ahead in the cycles
+// x264 leaves idle. Above 720p a slot is 8 MiB or more and two keep a 1080p render under
+// 300 MB (docs/performance.md); the encoder still has the next frame ready, because drawing
+// and simulating a frame take a fraction of the time it needs.
 int slots_for(int width, int height) {
-    return static_cast<long>(width) * height > 1280L * 720L ? 2 : 3;
+    return static_cast<long>(width) * height > 1280L * 720L ? 2 : 6;
 }
 
 }  // namespace
@@ -215,7 +217,8 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         {.frame_count = frames->last + 1,
          .renderer = {.width = scene.video.width, .height = scene.video.height},
          .threaded = !o.sequential,
-         .slots = slots_for(scene.video.width, scene.video.height)},
+         .slots = slots_for(scene.video.width, scene.video.height),
+         .encoder_first = true},
         stages);
     progress.finish();
     if (!simulated) {

@@ -2,6 +2,9 @@
 // order, in both modes, and a failing encoder or a stop request ends the run early.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <cstdint>
 #include <vector>
 
@@ -94,6 +97,37 @@ TEST(PipelineGLTest, ARendererThatCannotStartIsAnError) {
     ASSERT_FALSE(result.status);
     EXPECT_EQ(result.status.error().message, "renderer size must be positive, got 0x8");
     EXPECT_TRUE(clip.encoded_red.empty());
+}
+
+int this_thread_nice() {
+    return getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
+}
+
+// encoder_first: the simulate stage runs at nice 19; the encoding thread and the caller keep
+// their priority. (The render thread is set up by the same code as the simulate one.)
+TEST(PipelineGLTest, EncoderFirstLowersTheProducersOnly) {
+    const int before = this_thread_nice();
+    if (before >= 19) GTEST_SKIP() << "already at the lowest priority";
+    std::vector<int> simulate_nice, encode_nice;
+    FakeClip clip;
+    PipelineStages stages = clip.stages();
+    stages.simulate = [&, simulate = stages.simulate](int frame) {
+        simulate_nice.push_back(this_thread_nice());
+        return simulate(frame);
+    };
+    stages.encode = [&, encode = stages.encode](const ImageView& image) {
+        encode_nice.push_back(this_thread_nice());
+        return encode(image);
+    };
+    PipelineDef def = small(true);
+    def.encoder_first = true;
+    def.slots = 6;
+    const PipelineResult result = run_pipeline(def, stages);
+    ASSERT_TRUE(result.status) << result.status.error().message;
+    EXPECT_EQ(simulate_nice, std::vector<int>(20, 19));
+    EXPECT_EQ(encode_nice, std::vector<int>(10, before));
+    EXPECT_EQ(this_thread_nice(), before);
+    EXPECT_EQ(clip.encoded_red, (std::vector<int>{0, 2, 4, 6, 8, 10, 12, 14, 16, 18}));
 }
 
 }  // namespace
