@@ -36,27 +36,19 @@ std::uint64_t cell_hash(std::int64_t x, std::int64_t y) {
 
 bool BroadPhase::update(const std::vector<Body>& bodies, std::size_t disc_count,
                         const std::vector<Feature>& features, double dt, double gravity,
-                        std::vector<Contact>& contacts) {
-    if (built_ && still_valid(bodies, disc_count, dt, gravity)) return false;
+                        std::vector<Contact>& contacts, std::optional<bool> known_valid) {
+    if (built_ && (known_valid ? *known_valid : still_valid(bodies, disc_count, dt, gravity))) {
+        return false;
+    }
     rebuild(bodies, disc_count, features, dt, gravity, contacts);
     return true;
 }
 
 bool BroadPhase::still_valid(const std::vector<Body>& bodies, std::size_t disc_count, double dt,
                              double gravity) const {
-    // A pair left out was farther apart than the sum of its margins at the rebuild; it cannot
-    // touch this step while every disc's drift plus reach stays within its own margin.
     for (std::size_t i = 0; i < disc_count; ++i) {
         const Body& b = bodies[i];
-        if (!b.moves()) continue;
-        // Valid while drift + reach <= margin. Most discs are far inside it, which
-        // (drift + speed dt)^2 <= 2 (drift^2 + (speed dt)^2) shows without a square root.
-        const double drift2 = (b.x - anchor_[i]).squaredNorm();
-        const double fall = b.falls() ? 0.5 * gravity * dt * dt : 0.0;
-        const double room = margin_[i] - fall;
-        if (room >= 0.0 && 2.0 * (drift2 + b.v.squaredNorm() * dt * dt) <= room * room) continue;
-        const double left = margin_[i] - reach(b, dt, gravity);
-        if (left < 0.0 || drift2 > left * left) return false;
+        if (b.moves() && !keeps(b, i, dt, gravity)) return false;
     }
     return true;
 }

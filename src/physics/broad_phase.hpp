@@ -5,6 +5,7 @@
 // rarely. Cost is linear in the number of discs; pairs come out sorted by (a, b).
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "body.hpp"
@@ -18,9 +19,29 @@ public:
     // Keeps `contacts` holding every pair that can come into contact during the next step of
     // length dt, sorted by (a, b); pairs that stay keep their warm-start impulses and history.
     // True when it rebuilt the list (contact indices changed).
+    // `known_valid`: what keeps() said of every moving disc since the bodies last changed, if
+    // the caller asked it (it saves a pass over the bodies).
     bool update(const std::vector<Body>& bodies, std::size_t disc_count,
                 const std::vector<Feature>& features, double dt, double gravity,
-                std::vector<Contact>& contacts);
+                std::vector<Contact>& contacts, std::optional<bool> known_valid);
+
+    bool built() const { return built_; }
+    // Whether moving disc i (body b) stays within its margin over a step of length dt: the
+    // list stays valid while this holds for every moving disc. Only once built().
+    bool keeps(const Body& b, std::size_t i, double dt, double gravity) const {
+        // A pair left out was farther apart than the sum of its margins at the rebuild; it
+        // cannot touch this step while every disc's drift plus reach stays within its own
+        // margin. Most discs are far inside it, which (drift + speed dt)^2 <= 2 (drift^2 +
+        // (speed dt)^2) shows without a square root.
+        const double drift2 = (b.x - anchor_[i]).squaredNorm();
+        const double fall = b.falls() ? 0.5 * gravity * dt * dt : 0.0;
+        const double room = margin_[i] - fall;
+        if (room >= 0.0 && 2.0 * (drift2 + b.v.squaredNorm() * dt * dt) <= room * room) {
+            return true;
+        }
+        const double left = margin_[i] - (b.v.norm() * dt + fall);
+        return !(left < 0.0 || drift2 > left * left);
+    }
 
 private:
     bool still_valid(const std::vector<Body>& bodies, std::size_t disc_count, double dt,

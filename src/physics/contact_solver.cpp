@@ -81,9 +81,34 @@ void ContactSolver::colour_contacts(const Substep& s) {
     }
 }
 
+void ContactSolver::compute_masses(const Substep& s) {
+    massed_contacts_ = s.contacts_version;
+    massed_bodies_ = s.bodies_version;
+    masses_.resize(s.contacts.size());
+    for (std::size_t i = 0; i < s.contacts.size(); ++i) {
+        const Body& a = s.bodies[s.contacts[i].a];
+        const Body& b = s.bodies[s.contacts[i].b];
+        // Two immovable bodies give infinities here; they get no row.
+        masses_[i] = Masses{1.0 / (a.inv_mass + b.inv_mass),
+                            1.0 / (a.inv_mass + b.inv_mass + a.radius * (a.radius * a.inv_inertia) +
+                                   b.radius * (b.radius * b.inv_inertia))};
+    }
+}
+
+void ContactSolver::begin(const Substep& s) {
+    // Colours first, so that each row is built straight into its place.
+    if (s.contacts_version != coloured_version_) colour_contacts(s);
+    if (s.contacts_version != massed_contacts_ || s.bodies_version != massed_bodies_) {
+        compute_masses(s);
+    }
+    colour_start_.assign(overflow + 2, 0);
+    pending_.clear();
+    copied_.clear();
+}
+
 void ContactSolver::solve(Substep& s, int iterations) {
     const double inv_h = 1.0 / s.h;
-    velocities_.resize(s.bodies.size());
+    velocities_.resize(s.bodies.size() + copied_.size());
     predicted_.resize(s.bodies.size());
     for (std::size_t i = 0; i < s.bodies.size(); ++i) {
         Body& b = s.bodies[i];
@@ -95,29 +120,10 @@ void ContactSolver::solve(Substep& s, int iterations) {
         predicted_[i] = Predicted{b.x + (b.v_begin + b.v) * (0.5 * s.h) + b.shift, b.v_begin,
                                   b.radius, b.inv_mass, b.radius * b.inv_inertia};
     }
-
-    // Colours first, so that each row is built straight into its place.
-    if (s.contacts_version != coloured_version_) colour_contacts(s);
-    colour_start_.assign(overflow + 2, 0);
-    pending_.clear();
-    for (const std::uint32_t index : s.active) {
-        const Contact& c = s.contacts[index];
-        const bool a_moves = predicted_[c.a].inv_mass != 0.0;
-        const bool b_moves = predicted_[c.b].inv_mass != 0.0;
-        if (!a_moves && !b_moves) continue;  // two immovable bodies: nothing to solve
-        const unsigned colour = colour_of_[index];
-        ++colour_start_[colour + 1];
-        Pending p{index, c.a, c.b, colour};
-        // A row end on an immovable body gets its own velocity record, appended after the
-        // bodies', so that rows on one wall do not chain through its record.
-        for (std::uint32_t* end : {&p.a, &p.b}) {
-            if (predicted_[*end].inv_mass != 0.0) continue;
-            const Body& body = s.bodies[*end];
-            velocities_.push_back(Velocity{body.v, body.omega});
-            *end = static_cast<std::uint32_t>(velocities_.size() - 1);
-        }
-        pending_.push_back(p);
+    for (std::size_t k = 0; k < copied_.size(); ++k) {
+        velocities_[s.bodies.size() + k] = velocities_[copied_[k]];
     }
+
     // Lanes: each colour starts on a pair, and a row of the overflow group (whose rows may
     // share a disc) gets a pair to itself.
     colour_start_[overflow + 1] *= 2;
@@ -127,10 +133,9 @@ void ContactSolver::solve(Substep& s, int iterations) {
     const std::uint32_t lanes = colour_start_[overflow + 1];
     const auto scratch = static_cast<std::uint32_t>(velocities_.size());
     velocities_.push_back(Velocity{});
-    RowPair empty;
-    for (std::uint32_t* end : {empty.a, empty.b}) end[0] = end[1] = scratch;
-    rows_.assign(lanes / 2, empty);
-    row_contact_.assign(lanes, no_contact);
+    // Every lane is written below, by its row or as an empty one: no filling first.
+    rows_.resize(lanes / 2);
+    row_contact_.resize(lanes);
 
     for (const Pending& p : pending_) {
         const std::uint32_t index = p.contact;
@@ -163,9 +168,8 @@ void ContactSolver::solve(Substep& s, int iterations) {
         r.normal_x[l] = n.x();
         r.normal_y[l] = n.y();
         r.bias[l] = std::min(close, leave);
-        r.normal_mass[l] = 1.0 / (a.inv_mass + b.inv_mass);
-        r.tangent_mass[l] =
-            1.0 / (a.inv_mass + b.inv_mass + a.radius * a.spin + b.radius * b.spin);
+        r.normal_mass[l] = masses_[index].normal;
+        r.tangent_mass[l] = masses_[index].tangent;
         r.friction[l] = c.friction;
         r.inv_mass_a[l] = a.inv_mass;
         r.inv_mass_b[l] = b.inv_mass;
@@ -175,6 +179,27 @@ void ContactSolver::solve(Substep& s, int iterations) {
         r.spin_b[l] = b.spin;
         r.normal_impulse[l] = c.normal_impulse;
         r.tangent_impulse[l] = c.tangent_impulse;
+    }
+
+    // The lanes left over: the last of a colour with an odd count, the second of each pair of
+    // the overflow group.
+    auto empty_lane = [&](std::uint32_t slot) {
+        row_contact_[slot] = no_contact;
+        RowPair& r = rows_[slot / 2];
+        const unsigned l = slot % 2;
+        r.a[l] = r.b[l] = scratch;
+        for (Lanes* field : {&r.normal_x, &r.normal_y, &r.bias, &r.normal_mass, &r.tangent_mass,
+                             &r.friction, &r.inv_mass_a, &r.inv_mass_b, &r.radius_a, &r.radius_b,
+                             &r.spin_a, &r.spin_b, &r.normal_impulse, &r.tangent_impulse}) {
+            (*field)[l] = 0.0;
+        }
+    };
+    for (unsigned c = 0; c < overflow; ++c) {
+        if (colour_start_[c] % 2 != 0) empty_lane(colour_start_[c]);
+    }
+    for (std::uint32_t slot = colour_start_[overflow - 1] + colour_start_[overflow - 1] % 2;
+         slot < lanes; slot += 2) {
+        empty_lane(slot + 1);
     }
 
     // Warm start, then sequential impulses, two rows at a time. A normal impulse passes

@@ -78,28 +78,29 @@ inline std::optional<Impact> ImpactResolver::find_impact(const Substep& s, const
     return swept_impact(s, c, slowest);
 }
 
-// Which active contacts each body is in, so a sweep after the first visits only the pairs
-// whose velocities just changed (the only ones that can start to approach) instead of all.
 void ImpactResolver::list_contacts_of_bodies(const Substep& s) {
-    const std::size_t count = s.active.size();
+    listed_version_ = s.contacts_version;
     contacts_of_start_.assign(s.bodies.size() + 1, 0);
-    for (const std::uint32_t index : s.active) {
-        ++contacts_of_start_[s.contacts[index].a + 1];
-        ++contacts_of_start_[s.contacts[index].b + 1];
+    for (const Contact& c : s.contacts) {
+        ++contacts_of_start_[c.a + 1];
+        ++contacts_of_start_[c.b + 1];
     }
     for (std::size_t i = 0; i < s.bodies.size(); ++i) {
         contacts_of_start_[i + 1] += contacts_of_start_[i];
     }
-    contacts_of_.resize(2 * count);
+    contacts_of_.resize(2 * s.contacts.size());
     fill_.assign(contacts_of_start_.begin(), contacts_of_start_.end() - 1);
-    for (std::uint32_t k = 0; k < count; ++k) {
-        const Contact& c = s.contacts[s.active[k]];
-        contacts_of_[fill_[c.a]++] = k;
-        contacts_of_[fill_[c.b]++] = k;
+    for (std::size_t i = 0; i < s.contacts.size(); ++i) {
+        const Contact& c = s.contacts[i];
+        contacts_of_[fill_[c.a]++] = static_cast<std::uint32_t>(i);
+        contacts_of_[fill_[c.b]++] = static_cast<std::uint32_t>(i);
     }
+    position_.assign(s.contacts.size(), 0);
 }
 
 void ImpactResolver::begin(const Substep& s) {
+    if (s.contacts_version != listed_version_) list_contacts_of_bodies(s);
+    ++listing_;
     gravity_step_ = s.gravity.norm() * s.h;
     slow_ = std::max(min_approach_speed, gravity_step_);
     screened_.clear();
@@ -135,8 +136,8 @@ void ImpactResolver::resolve(Substep& s) {
             for (const std::uint32_t body : changed_) {
                 for (std::uint32_t e = contacts_of_start_[body]; e < contacts_of_start_[body + 1];
                      ++e) {
-                    const std::uint32_t k = contacts_of_[e];
-                    if (queued_[k] == pass) continue;
+                    std::uint32_t k;
+                    if (!active_position(contacts_of_[e], k) || queued_[k] == pass) continue;
                     queued_[k] = pass;
                     candidates_.push_back(k);
                 }
@@ -167,11 +168,10 @@ void ImpactResolver::resolve(Substep& s) {
             }
         }
 
-        // A settled pile has no impacts at all: the per-body contact lists and per-contact
-        // records below are only built once the first sweep has found one.
+        // A settled pile has no impacts at all: the per-contact records below are only built
+        // once the first sweep has found one.
         if (pass == 0) {
             if (lowered_.empty()) break;
-            list_contacts_of_bodies(s);
             found_.assign(count, FoundImpact{0, std::nullopt});
             for (const auto& [k, hit] : first_hits_) found_[k].hit = hit;
             // The pairs ruled out are listed too when an impact of this sweep changes a body.
@@ -192,8 +192,10 @@ void ImpactResolver::resolve(Substep& s) {
             changed_.push_back(i);
             if (already_queued) return;
             for (std::uint32_t e = contacts_of_start_[i]; e < contacts_of_start_[i + 1]; ++e) {
-                const std::uint32_t k = contacts_of_[e];
-                if (k <= after || queued_[k] == pass) continue;
+                std::uint32_t k;
+                if (!active_position(contacts_of_[e], k) || k <= after || queued_[k] == pass) {
+                    continue;
+                }
                 queued_[k] = pass;
                 queue_.push_back(k);
                 std::push_heap(queue_.begin(), queue_.end(), std::greater<>());

@@ -83,46 +83,42 @@ void PositionProjector::project(Substep& s, int iterations) {
     }
 }
 
-void PositionProjector::contain_runaways(Substep& s, const std::vector<V2>& start,
-                                         const std::vector<double>& reach) {
+void PositionProjector::stop_at_wall(std::vector<Body>& bodies, std::size_t disc_count,
+                                     const std::vector<Feature>& features, std::size_t i,
+                                     const V2& start) {
     // The impacts and resting stages only see the walls within a disc's reach at the start of
     // the substep, and the broad phase only those within its margin; a disc sent off much
     // faster (struck by a heavy one) can cross others unseen. Such a disc moved farther than
-    // its reach, which is rare and cheap to test; it is stopped where its straight path first
-    // touched a wall it crossed, and bounces off it. Up to a thousandth of its radius beyond
-    // the reach is let through (in a wall it saw not at all, it cannot be deeper than that),
-    // so a pile's discs, nudged a little farther than they were going by their neighbours,
-    // are not tested.
-    Body* const bodies = s.bodies.data();  // no aliasing reloads in this per-disc loop
-    for (std::size_t i = 0; i < s.disc_count; ++i) {
-        Body& a = bodies[i];
-        const double tolerance = 1e-3 * a.radius;
-        const V2 path = a.x - start[i];
-        const double unseen = reach[i] + tolerance;
-        if (path.squaredNorm() <= unseen * unseen || !a.falls()) continue;  // held: scripted
-        for (std::size_t k = 0; k < s.features.size(); ++k) {
-            const Feature& f = s.features[k];
-            bool crossed;
-            if (f.kind == Feature::Kind::plane) {
-                crossed = f.b.dot(a.x - f.a) - a.radius < -tolerance;
-            } else {
-                // Into a segment, or through it and out on its other side.
-                const V2 side = perp(f.b - f.a);
-                crossed = disc_feature(a.x, a.radius, f).gap < -tolerance ||
-                          (side.dot(start[i] - f.a) * side.dot(a.x - f.a) < 0.0 &&
-                           disc_feature(start[i], a.radius, f).gap > 0.0);
-            }
-            // A box holds what was inside it; a disc outside one is not pulled in.
-            if (!crossed || !feature_applies(f, start[i])) continue;
-            const auto hit =
-                impact_disc_feature(Trajectory{start[i], path, V2::Zero()}, a.radius, f, 0.0, 1.0);
-            if (!hit) continue;
-            a.x = start[i] + path * hit->t;
-            const double vn = hit->normal.dot(a.v);
-            if (vn < 0.0) {
-                const Body& wall = s.bodies[s.disc_count + k];
-                a.v -= hit->normal * ((1.0 + mix_restitution(a.restitution, wall.restitution)) * vn);
-            }
+    // its reach, which is rare and cheap to test (contain_runaway); it is stopped where its
+    // straight path first touched a wall it crossed, and bounces off it. Up to a thousandth of
+    // its radius beyond the reach is let through (in a wall it saw not at all, it cannot be
+    // deeper than that), so a pile's discs, nudged a little farther than they were going by
+    // their neighbours, are not tested.
+    Body& a = bodies[i];
+    const double tolerance = 1e-3 * a.radius;
+    const V2 path = a.x - start;
+    for (std::size_t k = 0; k < features.size(); ++k) {
+        const Feature& f = features[k];
+        bool crossed;
+        if (f.kind == Feature::Kind::plane) {
+            crossed = f.b.dot(a.x - f.a) - a.radius < -tolerance;
+        } else {
+            // Into a segment, or through it and out on its other side.
+            const V2 side = perp(f.b - f.a);
+            crossed = disc_feature(a.x, a.radius, f).gap < -tolerance ||
+                      (side.dot(start - f.a) * side.dot(a.x - f.a) < 0.0 &&
+                       disc_feature(start, a.radius, f).gap > 0.0);
+        }
+        // A box holds what was inside it; a disc outside one is not pulled in.
+        if (!crossed || !feature_applies(f, start)) continue;
+        const auto hit =
+            impact_disc_feature(Trajectory{start, path, V2::Zero()}, a.radius, f, 0.0, 1.0);
+        if (!hit) continue;
+        a.x = start + path * hit->t;
+        const double vn = hit->normal.dot(a.v);
+        if (vn < 0.0) {
+            const Body& wall = bodies[disc_count + k];
+            a.v -= hit->normal * ((1.0 + mix_restitution(a.restitution, wall.restitution)) * vn);
         }
     }
 }

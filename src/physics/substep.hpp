@@ -20,6 +20,7 @@ struct Substep {
     const std::vector<Feature>& features;
     std::vector<Contact>& contacts;
     std::uint64_t contacts_version;            // changes whenever contact indices do
+    std::uint64_t bodies_version;              // changes whenever a body's mass may have
     const std::vector<std::uint32_t>& active;  // indices into contacts, in pair order
     V2 gravity;                                // m/s^2
     double h;                                  // seconds
@@ -56,7 +57,9 @@ public:
     void begin(const Substep& s);
     // Each active contact as it is listed (k: its position in s.active), while it is in cache:
     // the first sweep visits only those that the cheap tests do not rule out.
-    void screen(const Substep& s, const Contact& c, std::uint32_t k) {
+    // index: its index in s.contacts.
+    void screen(const Substep& s, const Contact& c, std::uint32_t index, std::uint32_t k) {
+        position_[index] = (listing_ << 32) | k;
         if (!surely_no_impact(s, c, slowest_impact(s, c, slow_))) screened_.push_back(k);
     }
     void resolve(Substep& s);
@@ -72,6 +75,12 @@ private:
         std::optional<Impact> hit;
     };
     void list_contacts_of_bodies(const Substep& s);
+    // Contact k's position in s.active, if it is active in this substep.
+    bool active_position(std::uint32_t contact, std::uint32_t& k) const {
+        const std::uint64_t p = position_[contact];
+        k = static_cast<std::uint32_t>(p);
+        return (p >> 32) == listing_;
+    }
     // The approach speed below which contact c is left to the resting stage in this substep.
     double slowest_impact(const Substep& s, const Contact& c, double slow) const {
         const Body& a = s.bodies[c.a];
@@ -106,8 +115,15 @@ private:
     std::vector<FoundImpact> found_;               // per active contact
     std::vector<std::pair<std::uint32_t, Impact>> first_hits_;  // the first sweep's, in order
     std::vector<int> queued_;                      // per active contact: last sweep listing it
+    // Which contacts of the broad phase's list each body is in, rebuilt with the list, so a
+    // sweep after the first visits only the pairs whose velocities just changed.
     std::vector<std::uint32_t> contacts_of_start_;  // per body, into contacts_of_
-    std::vector<std::uint32_t> contacts_of_;       // active contact positions, grouped by body
+    std::vector<std::uint32_t> contacts_of_;       // indices into s.contacts, grouped by body
+    std::uint64_t listed_version_ = ~std::uint64_t{0};  // the contact list contacts_of_ is for
+    // Per contact: (listing_ << 32) | its position in s.active, for the contacts screened in
+    // the listing numbered listing_ (one per substep); older entries are stale.
+    std::vector<std::uint64_t> position_;
+    std::uint64_t listing_ = 0;
     std::vector<std::uint32_t> fill_;
     std::vector<std::uint32_t> changed_;           // bodies changed in the current sweep
     std::vector<std::uint32_t> lowered_;           // bodies whose next_impact was set
@@ -120,6 +136,24 @@ private:
 // keep its scratch arrays between substeps.
 class ContactSolver {
 public:
+    // Before the active contacts are listed.
+    void begin(const Substep& s);
+    // Each active contact as it is listed (index: into s.contacts), while it is in cache: its
+    // colour is counted and it is queued for the row build.
+    void list(const Substep& s, const Contact& c, std::uint32_t index) {
+        const bool a_moves = s.bodies[c.a].inv_mass != 0.0;
+        const bool b_moves = s.bodies[c.b].inv_mass != 0.0;
+        if (!a_moves && !b_moves) return;  // two immovable bodies: nothing to solve
+        const unsigned colour = colour_of_[index];
+        ++colour_start_[colour + 1];
+        Pending p{index, c.a, c.b, colour};
+        // A row end on an immovable body gets its own velocity record, appended after the
+        // bodies' (filled in solve(), after the impacts), so that rows on one wall do not chain
+        // through its record.
+        if (!a_moves) p.a = copy_of(c.a, s);
+        if (!b_moves) p.b = copy_of(c.b, s);
+        pending_.push_back(p);
+    }
     void solve(Substep& s, int iterations);
 
 private:
@@ -164,6 +198,10 @@ private:
     // Rows whose discs have all 64 colours go to one last group, solved a row at a time.
     static constexpr unsigned overflow = 64;
     void colour_contacts(const Substep& s);
+    std::uint32_t copy_of(std::uint32_t body, const Substep& s) {
+        copied_.push_back(body);
+        return static_cast<std::uint32_t>(s.bodies.size() + copied_.size() - 1);
+    }
     void load(const RowPair& r, Lanes& avx, Lanes& avy, Lanes& aw, Lanes& bvx, Lanes& bvy,
               Lanes& bw) const;
     void store(const RowPair& r, const Lanes& avx, const Lanes& avy, const Lanes& aw,
@@ -174,6 +212,17 @@ private:
     std::vector<RowPair> rows_;         // grouped by colour: no two rows of one share a disc
     std::vector<std::uint32_t> row_contact_;  // per lane of rows_, index into contacts; or none
     std::vector<Pending> pending_;      // in active order
+    std::vector<std::uint32_t> copied_;  // the body of each velocity record after the bodies'
+    // What a contact's rows need of its bodies' masses, which only change with the contact
+    // list or a throw: two divisions per row less in every substep.
+    struct Masses {
+        double normal = 0.0;           // kg
+        double tangent = 0.0;          // kg
+    };
+    void compute_masses(const Substep& s);
+    std::vector<Masses> masses_;       // per contact
+    std::uint64_t massed_contacts_ = ~std::uint64_t{0};  // the versions masses_ is for
+    std::uint64_t massed_bodies_ = ~std::uint64_t{0};
     std::vector<std::uint64_t> colours_used_;  // per disc, bit c: in a row of colour c
     std::vector<std::uint8_t> colour_of_;      // per contact
     std::uint64_t coloured_version_ = ~std::uint64_t{0};  // the contact list colour_of_ is for
@@ -187,12 +236,31 @@ public:
     void project(Substep& s, int iterations);
     // Puts back discs that crossed a wall the stages did not see: those that moved farther
     // than their reach (metres) from where they started the substep.
-    void contain_runaways(Substep& s, const std::vector<V2>& start,
-                          const std::vector<double>& reach);
+    static void contain_runaways(Substep& s, const std::vector<V2>& start,
+                                 const std::vector<double>& reach) {
+        for (std::size_t i = 0; i < s.disc_count; ++i) {
+            contain_runaway(s.bodies, s.disc_count, s.features, i, start[i], reach[i]);
+        }
+    }
+    // The same for disc i alone (each disc is handled on its own), so that the last substep of
+    // a step can leave it to the world's pass over the discs at the end of the step.
+    static void contain_runaway(std::vector<Body>& bodies, std::size_t disc_count,
+                                const std::vector<Feature>& features, std::size_t i,
+                                const V2& start, double reach) {
+        // Up to a thousandth of its radius beyond the reach is let through (see projection.cpp).
+        const Body& a = bodies[i];
+        const V2 path = a.x - start;
+        const double unseen = reach + 1e-3 * a.radius;
+        if (path.squaredNorm() <= unseen * unseen || !a.falls()) return;  // held: scripted
+        stop_at_wall(bodies, disc_count, features, i, start);
+    }
 
 private:
     // Moves a and b of contact c apart by most of their overlap; false if they hardly overlap.
     static bool push_apart(Substep& s, const Contact& c);
+    // contain_runaway's rare case: disc i moved farther than its reach from `start`.
+    static void stop_at_wall(std::vector<Body>& bodies, std::size_t disc_count,
+                             const std::vector<Feature>& features, std::size_t i, const V2& start);
     std::vector<std::uint32_t> overlapping_;  // contacts pushed by the first sweep
     std::vector<std::uint32_t> walls_;        // active contacts with a wall
 };

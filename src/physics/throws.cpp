@@ -46,7 +46,8 @@ Throws::Throws(const std::vector<ThrowDef>& defs) {
     for (const ThrowDef& d : defs) throws_.push_back(Throw{d, Stage::waiting});
 }
 
-void Throws::begin_step(double t0, double t1, std::vector<Body>& bodies) {
+bool Throws::begin_step(double t0, double t1, std::vector<Body>& bodies) {
+    bool changed = false;
     for (Throw& th : throws_) {
         if (th.stage == Stage::done) continue;
         Body& b = bodies[th.def.disc];
@@ -58,12 +59,14 @@ void Throws::begin_step(double t0, double t1, std::vector<Body>& bodies) {
         if (path.empty()) {
             if (t0 < th.def.at) continue;
             if (th.def.velocity) b.v = to_v2(*th.def.velocity);
+            changed = true;
             th.stage = Stage::done;
             continue;
         }
         if (th.stage == Stage::waiting) {
             if (t0 < path.front().t) continue;
             hold(b);
+            changed = true;
             th.stage = Stage::holding;
         }
         if (t0 >= path.back().t) {
@@ -74,7 +77,9 @@ void Throws::begin_step(double t0, double t1, std::vector<Body>& bodies) {
         }
         b.x = path_at(path, t0);
         b.v = (path_at(path, t1) - b.x) / (t1 - t0);
+        changed = true;
     }
+    return changed;
 }
 
 void Throws::end_step(double t1, std::vector<Body>& bodies) const {

@@ -19,7 +19,8 @@ public:
 
     // For the step [t0, t1]: applies due flicks, starts and ends grabs, and gives held discs
     // their position at t0 and the velocity that brings them to their path point at t1.
-    void begin_step(double t0, double t1, std::vector<Body>& bodies);
+    // True when it changed a body.
+    bool begin_step(double t0, double t1, std::vector<Body>& bodies);
     // Puts held discs exactly on their paths at t1 (integration would round).
     void end_step(double t1, std::vector<Body>& bodies) const;
 

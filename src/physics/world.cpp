@@ -68,13 +68,17 @@ struct World::Impl {
             bodies.push_back(b);
         }
         states.resize(disc_count);
-        publish();
+        check_finite();
     }
 
     void step();
-    void substep(double h);
+    void substep(double h, bool last);
     void collect_events(double t);
-    void publish();
+    void check_finite() { end_step(0.0, false); }
+    // runaways: the last substep left its runaway discs (PositionProjector::contain_runaways)
+    // to this pass.
+    void end_step(double dt, bool runaways);
+    std::span<const DiscState> publish() const;
 
     int rate;
     int substeps = 1;
@@ -84,6 +88,7 @@ struct World::Impl {
     std::vector<Body> bodies;
     std::vector<Contact> contacts;
     std::uint64_t contacts_version = 0;  // counts the broad phase's rebuilds
+    std::uint64_t bodies_version = 0;    // counts the steps whose throws changed a body
     std::vector<std::uint32_t> active;
     std::vector<double> reach;  // metres per body, scratch of substep()
     std::vector<V2> start;      // disc centres at the start of the substep, scratch
@@ -92,9 +97,12 @@ struct World::Impl {
     detail::ContactSolver contact_solver;
     detail::PositionProjector projector;
     detail::Throws throws;
-    std::vector<DiscState> states;
+    // Filled from the bodies when asked for, not every step (a renderer asks once per frame).
+    mutable std::vector<DiscState> states;
+    mutable std::int64_t published_steps = -1;  // the step count `states` is for
     std::vector<ContactEvent> events;
     std::int64_t steps = 0;
+    bool list_kept = false;  // BroadPhase::keeps() held for every moving disc after the last step
     std::size_t contacts_last_step = 0;
     std::optional<NonFiniteState> failure;
 };
@@ -105,19 +113,21 @@ void World::Impl::step() {
     const double t0 = static_cast<double>(steps) / rate;
     const double t1 = static_cast<double>(steps + 1) / rate;
     const double dt = 1.0 / rate;
-    throws.begin_step(t0, t1, bodies);
-    if (broad_phase.update(bodies, disc_count, features, dt, gravity.norm(), contacts)) {
+    const bool thrown = throws.begin_step(t0, t1, bodies);
+    if (thrown) ++bodies_version;
+    if (broad_phase.update(bodies, disc_count, features, dt, gravity.norm(), contacts,
+                           thrown ? std::nullopt : std::optional<bool>(list_kept))) {
         ++contacts_version;
     }
     const double h = dt / substeps;
-    for (int k = 0; k < substeps; ++k) substep(h);
+    for (int k = 0; k < substeps; ++k) substep(h, k == substeps - 1);
     throws.end_step(t1, bodies);
     ++steps;
     collect_events(t1);
-    publish();
+    end_step(dt, true);
 }
 
-void World::Impl::substep(double h) {
+void World::Impl::substep(double h, bool last) {
     const double fall = 0.5 * gravity.norm() * h * h;
     // How far each body can travel in this substep, computed once rather than per contact.
     reach.resize(bodies.size());
@@ -132,8 +142,10 @@ void World::Impl::substep(double h) {
         b.changed_pass = -1;
         b.struck_pass = -1;
     }
-    detail::Substep s{bodies, disc_count, features, contacts, contacts_version, active, gravity, h};
+    detail::Substep s{bodies, disc_count, features, contacts, contacts_version, bodies_version,
+                      active, gravity, h};
     impact_resolver.begin(s);
+    contact_solver.begin(s);
     active.clear();
     for (std::size_t i = 0; i < contacts.size(); ++i) {
         Contact& c = contacts[i];
@@ -155,7 +167,9 @@ void World::Impl::substep(double h) {
         }
         // Only the gap is kept: the resting stage takes its normal at the end of the substep.
         if (near) {
-            impact_resolver.screen(s, c, static_cast<std::uint32_t>(active.size()));
+            impact_resolver.screen(s, c, static_cast<std::uint32_t>(i),
+                                   static_cast<std::uint32_t>(active.size()));
+            contact_solver.list(s, c, static_cast<std::uint32_t>(i));
             active.push_back(static_cast<std::uint32_t>(i));
         } else {
             // Apart for good this substep: nothing to warm-start from next time.
@@ -166,7 +180,8 @@ void World::Impl::substep(double h) {
     impact_resolver.resolve(s);
     contact_solver.solve(s, contact_iterations);
     projector.project(s, projection_iterations);
-    projector.contain_runaways(s, start, reach);
+    // The last substep's runaways are left to end_step's pass over the discs.
+    if (!last) detail::PositionProjector::contain_runaways(s, start, reach);
 }
 
 void World::Impl::collect_events(double t) {
@@ -193,19 +208,48 @@ void World::Impl::collect_events(double t) {
     }
 }
 
-void World::Impl::publish() {
+void World::Impl::end_step(double dt, bool runaways) {
+    // One pass over the discs per step, for the last substep's runaways (each disc is handled
+    // on its own, and throws.end_step only moved held discs, which they leave alone) and two
+    // questions. Is the state finite? 0 u is 0 for a finite u and NaN otherwise, so the sum
+    // is 0 exactly when all are finite; only a total that is not 0 looks for the first culprit.
+    // Does the broad phase's pair list stay valid for the next step? (Asked here rather than
+    // in a pass of its own; throws that change a body at the start of the step ask again.)
+    const double g = gravity.norm();
+    bool kept = broad_phase.built() && dt > 0.0;
+    V2 all_finite_zero = V2::Zero();
+    for (std::size_t i = 0; i < disc_count; ++i) {
+        if (runaways) {
+            detail::PositionProjector::contain_runaway(bodies, disc_count, features, i, start[i],
+                                                       reach[i]);
+        }
+        const Body& b = bodies[i];
+        const V2 spin(b.angle, b.omega);
+        all_finite_zero += b.x * 0.0 + b.v * 0.0 + spin * 0.0;
+        if (kept && b.moves()) kept = broad_phase.keeps(b, i, dt, g);
+    }
+    list_kept = kept;
+    if (failure || all_finite_zero.x() + all_finite_zero.y() == 0.0) return;
     for (std::size_t i = 0; i < disc_count; ++i) {
         const Body& b = bodies[i];
-        states[i] = DiscState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
-        // One check per disc per step, on values already in a register: u - u is 0 for a
-        // finite u and NaN otherwise, so the sum is 0 exactly when all six are finite.
-        const double finite_zero = (b.x.x() - b.x.x()) + (b.x.y() - b.x.y()) +
-                                   (b.v.x() - b.v.x()) + (b.v.y() - b.v.y()) +
-                                   (b.angle - b.angle) + (b.omega - b.omega);
-        if (!failure && finite_zero != 0.0) {
+        const V2 spin(b.angle, b.omega);
+        const V2 zero = b.x * 0.0 + b.v * 0.0 + spin * 0.0;
+        if (zero.x() + zero.y() != 0.0) {
             failure = NonFiniteState{i, static_cast<double>(steps) / rate};
+            return;
         }
     }
+}
+
+std::span<const DiscState> World::Impl::publish() const {
+    if (published_steps != steps) {
+        published_steps = steps;
+        for (std::size_t i = 0; i < disc_count; ++i) {
+            const Body& b = bodies[i];
+            states[i] = DiscState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
+        }
+    }
+    return states;
 }
 
 World::World(const WorldDef& def) : impl_(std::make_unique<Impl>(def)) {}
@@ -216,7 +260,7 @@ World& World::operator=(World&&) noexcept = default;
 void World::step() { impl_->step(); }
 std::int64_t World::step_count() const { return impl_->steps; }
 double World::time() const { return static_cast<double>(impl_->steps) / impl_->rate; }
-std::span<const DiscState> World::discs() const { return impl_->states; }
+std::span<const DiscState> World::discs() const { return impl_->publish(); }
 std::vector<ContactEvent> World::take_events() { return std::exchange(impl_->events, {}); }
 std::optional<NonFiniteState> World::failure() const { return impl_->failure; }
 

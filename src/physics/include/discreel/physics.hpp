@@ -111,7 +111,8 @@ public:
     std::int64_t step_count() const;
     double time() const;           // step_count() / rate, seconds
 
-    std::span<const DiscState> discs() const;   // same order as WorldDef::discs
+    // Same order as WorldDef::discs; valid until the next step() (ask again after it).
+    std::span<const DiscState> discs() const;
 
     // Contacts that began during the steps since the last call, in a deterministic order.
     std::vector<ContactEvent> take_events();
