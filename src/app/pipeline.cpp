@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <exception>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -85,12 +86,14 @@ public:
     PipelineResult run() {
         // The simulate stage gets a thread of its own too, so that lowering its priority never
         // touches the caller's.
-        std::thread simulate_thread([this] { simulate_stage(); });
-        std::thread render_thread([this] { render_stage(); });
-        std::thread encode_thread([this] { encode_stage(); });
+        std::thread simulate_thread([this] { guarded([this] { simulate_stage(); }); });
+        std::thread render_thread([this] { guarded([this] { render_stage(); }); });
+        std::thread encode_thread([this] { guarded([this] { encode_stage(); }); });
         simulate_thread.join();
         render_thread.join();
         encode_thread.join();
+        // What a stage threw reaches the caller as if the stages ran on its thread.
+        if (exception_) std::rethrow_exception(exception_);
         result_.stopped = stopped_;
         return std::move(result_);
     }
@@ -157,6 +160,20 @@ private:
         result_.busy.encode = busy;
     }
 
+    // Runs a stage; an exception it throws cancels the other stages and is kept for run().
+    template <class Stage>
+    void guarded(Stage stage) {
+        try {
+            stage();
+        } catch (...) {
+            {
+                std::lock_guard lock(failure_mutex_);
+                if (!exception_) exception_ = std::current_exception();
+            }
+            cancel_all();
+        }
+    }
+
     void fail(Error error) {
         {
             std::lock_guard lock(failure_mutex_);
@@ -179,6 +196,7 @@ private:
     SlotQueue encodable_;
     std::mutex failure_mutex_;
     PipelineResult result_;
+    std::exception_ptr exception_;   // the first exception a stage threw
     bool stopped_ = false;   // written by the simulate thread only, read after it ends
 };
 

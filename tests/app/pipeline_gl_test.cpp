@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "pipeline.hpp"
@@ -97,6 +98,27 @@ TEST(PipelineGLTest, ARendererThatCannotStartIsAnError) {
     ASSERT_FALSE(result.status);
     EXPECT_EQ(result.status.error().message, "renderer size must be positive, got 0x8");
     EXPECT_TRUE(clip.encoded_red.empty());
+}
+
+// A stage that throws (say, out of memory) must not take the process down with
+// std::terminate: the other stages stop and the caller gets the exception, as it would if the
+// stages ran on its thread.
+TEST(PipelineGLTest, AnExceptionInAStageReachesTheCaller) {
+    for (const bool threaded : {false, true}) {
+        FakeClip clip;
+        PipelineStages stages = clip.stages();
+        stages.simulate = [&, simulate = stages.simulate](int frame) {
+            if (frame == 6) throw std::runtime_error("out of luck");
+            return simulate(frame);
+        };
+        try {
+            (void)run_pipeline(small(threaded), stages);
+            ADD_FAILURE() << "no exception, threaded " << threaded;
+        } catch (const std::runtime_error& e) {
+            EXPECT_STREQ(e.what(), "out of luck");
+        }
+        EXPECT_LE(clip.encoded_red.size(), 3u);   // frames 0, 2, 4 at most
+    }
 }
 
 int this_thread_nice() {
