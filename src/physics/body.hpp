@@ -43,7 +43,6 @@ struct Body {
     double t_last = 0.0;           // seconds into the substep of its latest impulse
     int changed_pass = -1;         // last impulsive pass that changed its velocity
     int struck_pass = -1;          // last impulsive pass that applied an impact to it
-    double next_impact = 0.0;      // seconds, its earliest impact found at the start of a pass
 
     bool moves() const { return motion != Motion::fixed; }
     bool falls() const { return motion == Motion::dynamic; }

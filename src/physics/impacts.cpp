@@ -108,6 +108,7 @@ void ImpactResolver::begin(const Substep& s) {
     // Radii, gravity and the substep's length never change within a world.
     if (settle_speed_.size() != s.disc_count || settle_h_ != s.h) {
         settle_h_ = s.h;
+        next_impact_.assign(s.bodies.size(), s.h);
         settle_speed_.resize(s.disc_count);
         for (std::size_t i = 0; i < s.disc_count; ++i) {
             settle_speed_[i] = settle_speed(s, s.bodies[i].radius, slow_);
@@ -118,7 +119,6 @@ void ImpactResolver::begin(const Substep& s) {
 void ImpactResolver::resolve(Substep& s) {
     const double slow = slow_;
     const std::size_t count = s.active.size();
-    for (Body& b : s.bodies) b.next_impact = s.h;
     changed_.clear();
     // Each sweep after the first visits only the pairs of discs struck in the one before, so a
     // few discs ping-ponging fast (a light disc between a heavy one and a wall needs about
@@ -162,9 +162,8 @@ void ImpactResolver::resolve(Substep& s) {
             }
             if (!hit) continue;
             for (const std::uint32_t i : {c.a, c.b}) {
-                Body& body = s.bodies[i];
-                if (body.next_impact == s.h) lowered_.push_back(i);
-                body.next_impact = std::min(body.next_impact, hit->t);
+                if (next_impact_[i] == s.h) lowered_.push_back(i);
+                next_impact_[i] = std::min(next_impact_[i], hit->t);
             }
         }
 
@@ -226,8 +225,8 @@ void ImpactResolver::resolve(Substep& s) {
             any = true;
             // An impact set off by another one in this sweep (a row of touching discs) happens
             // at that one's time, which is then this body's earliest; later ones wait a pass.
-            if (hit->t > std::max(a.next_impact, a.t_last) ||
-                hit->t > std::max(b.next_impact, b.t_last)) {
+            if (hit->t > std::max(next_impact_[c.a], a.t_last) ||
+                hit->t > std::max(next_impact_[c.b], b.t_last)) {
                 // Make the next sweep look at this pair again.
                 mark_changed(c.a, k);
                 mark_changed(c.b, k);
@@ -259,7 +258,7 @@ void ImpactResolver::resolve(Substep& s) {
             mark_changed(c.b, k);
             c.step_impulse += jn;
         }
-        for (const std::uint32_t i : lowered_) s.bodies[i].next_impact = s.h;
+        for (const std::uint32_t i : lowered_) next_impact_[i] = s.h;
         if (!any) break;
     }
 }

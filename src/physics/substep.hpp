@@ -126,7 +126,11 @@ private:
     std::uint64_t listing_ = 0;
     std::vector<std::uint32_t> fill_;
     std::vector<std::uint32_t> changed_;           // bodies changed in the current sweep
-    std::vector<std::uint32_t> lowered_;           // bodies whose next_impact was set
+    // Per body: its earliest impact found at the start of a sweep (seconds), or h. Only the
+    // bodies of a sweep's impacts are lowered, and they are put back after it (lowered_), so
+    // it is filled once per world rather than in every substep.
+    std::vector<double> next_impact_;
+    std::vector<std::uint32_t> lowered_;           // bodies whose next_impact_ was set
     std::vector<std::uint32_t> candidates_;        // this sweep's pairs, sorted
     std::vector<std::uint32_t> queue_;             // min-heap of pairs still to visit
 };
