@@ -88,8 +88,10 @@ void ContactSolver::compute_masses(const Substep& s) {
     for (std::size_t i = 0; i < s.contacts.size(); ++i) {
         const Body& a = s.bodies[s.contacts[i].a];
         const Body& b = s.bodies[s.contacts[i].b];
-        // Two immovable bodies give infinities here; they get no row.
-        masses_[i] = Masses{1.0 / (a.inv_mass + b.inv_mass),
+        // Two immovable bodies give infinities here; they get no row. The angular terms are
+        // r times the rows' spin factor r / I, not tangent_mass_inverse's (r r) / I: the two
+        // can differ in the last bit, and the determinism hash pins this rounding.
+        masses_[i] = Masses{1.0 / normal_mass_inverse(a, b),
                             1.0 / (a.inv_mass + b.inv_mass + a.radius * (a.radius * a.inv_inertia) +
                                    b.radius * (b.radius * b.inv_inertia))};
     }

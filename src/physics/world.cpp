@@ -215,6 +215,9 @@ void World::Impl::end_step(double dt, bool runaways) {
     // is 0 exactly when all are finite; only a total that is not 0 looks for the first culprit.
     // Does the broad phase's pair list stay valid for the next step? (Asked here rather than
     // in a pass of its own; throws that change a body at the start of the step ask again.)
+    const auto finite_zero = [](const Body& b) {
+        return V2(b.x * 0.0 + b.v * 0.0 + V2(b.angle, b.omega) * 0.0);
+    };
     const double g = gravity.norm();
     bool kept = broad_phase.built() && dt > 0.0;
     V2 all_finite_zero = V2::Zero();
@@ -224,16 +227,13 @@ void World::Impl::end_step(double dt, bool runaways) {
                                                        reach[i]);
         }
         const Body& b = bodies[i];
-        const V2 spin(b.angle, b.omega);
-        all_finite_zero += b.x * 0.0 + b.v * 0.0 + spin * 0.0;
+        all_finite_zero += finite_zero(b);
         if (kept && b.moves()) kept = broad_phase.keeps(b, i, dt, g);
     }
     list_kept = kept;
     if (failure || all_finite_zero.x() + all_finite_zero.y() == 0.0) return;
     for (std::size_t i = 0; i < disc_count; ++i) {
-        const Body& b = bodies[i];
-        const V2 spin(b.angle, b.omega);
-        const V2 zero = b.x * 0.0 + b.v * 0.0 + spin * 0.0;
+        const V2 zero = finite_zero(bodies[i]);
         if (zero.x() + zero.y() != 0.0) {
             failure = NonFiniteState{i, static_cast<double>(steps) / rate};
             return;
