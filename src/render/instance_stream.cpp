@@ -28,14 +28,25 @@ InstanceStream InstanceStream::create(std::size_t record_size,
 }
 
 void InstanceStream::draw(const void* records, std::size_t count) {
+    upload(records, count);
+    draw_uploaded(Shape::quad, 0, count);
+}
+
+void InstanceStream::upload(const void* records, std::size_t count) {
     if (count == 0) return;
     // glBufferData with fresh contents orphans the previous frame's storage rather than
     // waiting for a draw that may still read it.
     glBindBuffer(GL_ARRAY_BUFFER, buffer_.id());
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(count * record_size_), records,
                  GL_STREAM_DRAW);
+}
+
+void InstanceStream::draw_uploaded(Shape shape, std::size_t first, std::size_t count) {
+    if (count == 0) return;
     glBindVertexArray(vertex_array_.id());
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(count));
+    const bool quad = shape == Shape::quad;
+    glDrawArraysInstancedBaseInstance(quad ? GL_TRIANGLE_STRIP : GL_POINTS, 0, quad ? 4 : 1,
+                                      static_cast<GLsizei>(count), static_cast<GLuint>(first));
 }
 
 }  // namespace discreel::render

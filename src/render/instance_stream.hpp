@@ -1,7 +1,7 @@
 #pragma once
 // A vertex array fed by one per-instance buffer: each record becomes a quad (4-vertex triangle
-// strip whose corners the vertex shader derives from gl_VertexID), so a whole frame of discs
-// is one upload and one draw call.
+// strip whose corners the vertex shader derives from gl_VertexID) or a point sprite, so a whole
+// frame of discs is one upload and a few draw calls.
 #include <cstddef>
 #include <initializer_list>
 
@@ -21,8 +21,14 @@ public:
     static InstanceStream create(std::size_t record_size,
                                  std::initializer_list<InstanceAttribute> attributes);
 
+    enum class Shape { quad, point };
+
     // Replaces the buffer's contents and draws one quad per record with the current program.
     void draw(const void* records, std::size_t count);
+    // Replaces the buffer's contents, to be drawn by draw_uploaded.
+    void upload(const void* records, std::size_t count);
+    // Draws records [first, first + count) of the last upload with the current program.
+    void draw_uploaded(Shape shape, std::size_t first, std::size_t count);
 
 private:
     InstanceStream() = default;

@@ -35,6 +35,14 @@ void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
     }
 }
 
+bool fits_point_sprite(const DiscInstance& disc, int width, int height, float max_point_size) {
+    const float size = 2.0f * (std::max(disc.radius, kDiscMinRadius) + kDiscQuadMargin);
+    const float inside_x = 0.5f * static_cast<float>(width) - 1.0f;
+    const float inside_y = 0.5f * static_cast<float>(height) - 1.0f;
+    return size <= max_point_size && std::abs(disc.center[0]) <= inside_x &&
+           std::abs(disc.center[1]) <= inside_y;
+}
+
 void make_capsule_instances(const FrameScene& frame, double pixels_per_metre,
                             std::vector<CapsuleInstance>& out) {
     const ToPixels to_px{frame.camera, pixels_per_metre};

@@ -16,10 +16,19 @@ struct DiscInstance {
     float color[4];
     std::uint32_t flags;
 };
-// Match the constants of the same names in disc.frag.
+// Match the constants of the same names in disc.vert.
 inline constexpr std::uint32_t kDiscStatic = 1;
 inline constexpr std::uint32_t kDiscNoOutline = 2;
 inline constexpr std::uint32_t kDiscNoSpinMarker = 4;
+
+// Match the constants of the same names in disc.vert: a disc's quad or sprite is
+// 2 (max(radius, kDiscMinRadius) + kDiscQuadMargin) pixels across.
+inline constexpr float kDiscMinRadius = 0.5f;
+inline constexpr float kDiscQuadMargin = 1.0f;
+
+// Whether the disc can be drawn as a point sprite in a width x height frame: GL drops a point
+// whose centre leaves the view (this keeps it a pixel inside) and caps the size of a sprite.
+bool fits_point_sprite(const DiscInstance& disc, int width, int height, float max_point_size);
 
 struct CapsuleInstance {
     float a[2];        // pixels

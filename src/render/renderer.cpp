@@ -53,6 +53,8 @@ struct Renderer::Impl {
     GlProgram disc_program;
     GlProgram capsule_program;
     GlProgram glyph_program;
+    GLint disc_point_sprites = -1;   // uniform location
+    float max_point_size = 0;        // pixels
     std::optional<InstanceStream> disc_stream;
     std::optional<InstanceStream> capsule_stream;
     std::optional<InstanceStream> glyph_stream;
@@ -77,7 +79,28 @@ struct Renderer::Impl {
 
     Status init(const RendererDef& def);
     Expected<ImageView> draw(const FrameScene& frame, std::span<std::uint8_t> out);
+    void draw_discs();
 };
+
+// As point sprites where they fit, as quads where not, in runs that keep the discs' order (the
+// later disc is blended over the earlier one where their edges meet).
+void Renderer::Impl::draw_discs() {
+    glUseProgram(disc_program.id());
+    disc_stream->upload(disc_instances.data(), disc_instances.size());
+    const auto as_point = [&](const DiscInstance& d) {
+        return fits_point_sprite(d, width, height, max_point_size);
+    };
+    for (std::size_t first = 0; first < disc_instances.size();) {
+        const bool points = as_point(disc_instances[first]);
+        std::size_t end = first + 1;
+        while (end < disc_instances.size() && as_point(disc_instances[end]) == points) ++end;
+        glUniform1i(disc_point_sprites, points ? 1 : 0);
+        disc_stream->draw_uploaded(
+            points ? InstanceStream::Shape::point : InstanceStream::Shape::quad, first,
+            end - first);
+        first = end;
+    }
+}
 
 Status Renderer::Impl::init(const RendererDef& def) {
     const std::string size = std::to_string(def.width) + "x" + std::to_string(def.height);
@@ -110,6 +133,10 @@ Status Renderer::Impl::init(const RendererDef& def) {
     set_pixels_to_ndc(disc_program, width, height);
     set_pixels_to_ndc(capsule_program, width, height);
     set_pixels_to_ndc(glyph_program, width, height);
+    disc_point_sprites = glGetUniformLocation(disc_program.id(), "u_point_sprites");
+    GLfloat point_sizes[2] = {0, 0};
+    glGetFloatv(GL_POINT_SIZE_RANGE, point_sizes);
+    max_point_size = point_sizes[1];
 
     disc_stream = InstanceStream::create(
         sizeof(DiscInstance), {{0, 2, GL_FLOAT, offsetof(DiscInstance, center)},
@@ -132,6 +159,7 @@ Status Renderer::Impl::init(const RendererDef& def) {
     // The context belongs to this renderer alone, so fixed state is set once.
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_DITHER);
+    glEnable(GL_PROGRAM_POINT_SIZE);
     glEnable(GL_BLEND);
     // Alpha takes ONE, ONE_MINUS_SRC_ALPHA so it stays 1 over the opaque background and the
     // frame has no translucent edges.
@@ -163,8 +191,7 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     glUseProgram(capsule_program.id());
     capsule_stream->draw(capsule_instances.data(), capsule_instances.size());
     capsule_stream->draw(trail_instances.data(), trail_instances.size());
-    glUseProgram(disc_program.id());
-    disc_stream->draw(disc_instances.data(), disc_instances.size());
+    draw_discs();
     glUseProgram(capsule_program.id());
     capsule_stream->draw(arrow_instances.data(), arrow_instances.size());
     glUseProgram(glyph_program.id());

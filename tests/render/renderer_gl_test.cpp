@@ -172,6 +172,61 @@ TEST_F(RendererGLTest, LaterDiscsAreDrawnOnTop) {
     expect_near_color(pixel_at_world(image.view(), kCamera, -2.5, 0), opaque(kRed));
 }
 
+// The renderer draws most discs as point sprites, but GL drops a point whose centre is outside
+// the view: those discs are drawn as quads instead, and must look the same.
+TEST_F(RendererGLTest, ADiscCutByTheFrameEdgeIsDrawnLikeOneInside) {
+    // Centre 3 pixels beyond the right edge (x = 8 m), spoke pointing back into the frame.
+    FrameScene cut = empty_frame();
+    cut.discs.push_back(disc(8.3f, 0, 1.5f, std::numbers::pi_v<float>, kRed));
+    // The same disc with the camera 1 m (10 pixels) further right: its centre is inside.
+    FrameScene inside = cut;
+    inside.camera.center_x = 1;
+    const Image a = draw(cut);
+    const Image b = draw(inside);
+    expect_near_color(pixel_at_world(a.view(), kCamera, 7.9, 1.0), opaque(kRed));
+    for (int row = 0; row < kHeight; ++row) {
+        for (int column = 140; column < kWidth; ++column) {
+            const Pixel expected = pixel_at(b.view(), column - 10, row);
+            const Pixel actual = pixel_at(a.view(), column, row);
+            // The two primitives interpolate the disc's local coordinates differently, which
+            // moves a colour by at most one unit after rounding.
+            for (int c = 0; c < 4; ++c) {
+                ASSERT_NEAR(actual[c], expected[c], 1)
+                    << "column " << column << ", row " << row << ", channel " << c;
+            }
+        }
+    }
+}
+
+TEST_F(RendererGLTest, DiscsDrawnAsQuadsAndAsPointsKeepTheirOrder) {
+    // Red's centre is outside the frame (a quad); blue's is inside (a point sprite).
+    FrameScene blue_on_top = empty_frame();
+    blue_on_top.discs.push_back(disc(8.5f, 0, 2, 0, kRed));
+    blue_on_top.discs.push_back(disc(6.5f, 0, 1, 0, kBlue));
+    FrameScene red_on_top = blue_on_top;
+    std::swap(red_on_top.discs[0], red_on_top.discs[1]);
+    expect_near_color(pixel_at_world(draw(blue_on_top).view(), kCamera, 7.05, 0.35),
+                      opaque(kBlue));
+    expect_near_color(pixel_at_world(draw(red_on_top).view(), kCamera, 7.05, 0.35),
+                      opaque(kRed));
+}
+
+// GL caps a point sprite's size (255 pixels on llvmpipe): a bigger disc must not be cut square.
+TEST(RendererBigDiscGLTest, ADiscWiderThanAnyPointSpriteIsDrawnWhole) {
+    auto renderer = Renderer::create({.width = 400, .height = 300});
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    FrameScene frame = empty_frame();
+    frame.camera = {.center_x = 0, .center_y = 0, .height = 3};   // 100 pixels per metre
+    frame.discs.push_back(disc(0, 0, 1.4f, std::numbers::pi_v<float> / 2, kRed));
+    auto image = renderer->draw(frame);
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    // 135 pixels out along the axes and the diagonal, inside the outline: the fill colour.
+    for (const auto& [x, y] : {std::pair{1.35, 0.0}, {-1.35, 0.0}, {0.0, -1.35}, {0.95, 0.95}}) {
+        expect_near_color(pixel_at_world(*image, frame.camera, x, y), opaque(kRed));
+    }
+    EXPECT_EQ(pixel_at_world(*image, frame.camera, 1.45, 0), opaque(kBackground));
+}
+
 TEST_F(RendererGLTest, CapsulesCoverTheirSegmentAndRoundEndsAndLieUnderDiscs) {
     FrameScene frame = empty_frame();
     frame.capsules.push_back({.ax = -4, .ay = 0, .bx = 4, .by = 0, .radius = 0.5f, .color = kWall});
