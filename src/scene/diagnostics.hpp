@@ -13,6 +13,8 @@ namespace discreel::scene::detail {
 struct Location {
     int line = 1;
     int column = 1;
+
+    bool operator==(const Location&) const = default;
 };
 
 class Diagnostics {

@@ -138,11 +138,21 @@ bool room_for(Loader& loader, const Value& item, std::size_t count) {
 }
 
 void add_disc(Loader& loader, Disc disc, const Value& item, const std::optional<Value>& id_value,
-              bool usable) {
-    DiscSource source{item.where, item.path, item.where, item.path, usable};
+              const std::optional<Value>& velocity_value, bool usable) {
+    DiscSource source{.entry = item.where,
+                      .where = item.path,
+                      .id_where = item.where,
+                      .id_path = item.path,
+                      .velocity_where = item.where,
+                      .velocity_path = item.path,
+                      .usable = usable};
     if (id_value) {
         source.id_where = id_value->where;
         source.id_path = id_value->path;
+    }
+    if (velocity_value) {
+        source.velocity_where = velocity_value->where;
+        source.velocity_path = velocity_value->path;
     }
     loader.scene.discs.push_back(std::move(disc));
     loader.sources.push_back(std::move(source));
@@ -170,7 +180,7 @@ void read_single_disc(Loader& loader, const Fields& fields, const Value& item) {
     Disc disc = make_disc(p, std::move(id), position.value_or(Vec2{}), radius.value_or(0),
                           index);
     const bool usable = position && radius && check_mass(disc, item, d);
-    add_disc(loader, std::move(disc), item, id_value, usable);
+    add_disc(loader, std::move(disc), item, id_value, fields.get("velocity"), usable);
 }
 
 // A number (min = max) or a range [min, max]; each end checked by `check`.
@@ -443,6 +453,9 @@ void read_generator(Loader& loader, const Fields& fields, const Value& item,
         loader.discs_complete = false;
         return;
     }
+    // What the speed check points at: the velocity every disc of a grid shares, or the range a
+    // random entry draws its speeds from.
+    const auto velocity_value = is_grid ? merged.get("velocity") : generator_fields->get("speed");
     bool mass_ok = true;
     for (std::size_t k = 0; k < generated->positions.size(); ++k) {
         Properties each = p;
@@ -453,7 +466,7 @@ void read_generator(Loader& loader, const Fields& fields, const Value& item,
         // One report per entry is enough: every disc of it shares the cause.
         const bool usable = mass_ok && check_mass(disc, item, d);
         mass_ok = mass_ok && usable;
-        add_disc(loader, std::move(disc), item, id_value, usable);
+        add_disc(loader, std::move(disc), item, id_value, velocity_value, usable);
     }
 }
 

@@ -85,10 +85,21 @@ void check_envelope(Loader& loader) {
                                       : std::string()) +
                            "; " + advice + " (docs/physics.md, Limits)");
     };
+    // The discs of a generator share where their speed was written: the fastest of them
+    // speaks for all, once.
     for (std::size_t i = 0; i < scene.discs.size(); ++i) {
         if (scene.discs[i].is_static) continue;
         const DiscSource& source = loader.sources[i];
-        check(speed_of(scene.discs[i].velocity), source.entry, source.where + ".velocity");
+        double speed = speed_of(scene.discs[i].velocity);
+        std::size_t next = i + 1;
+        for (; next < scene.discs.size() && loader.sources[next].velocity_where ==
+                                                source.velocity_where;
+             ++next) {
+            if (!scene.discs[next].is_static)
+                speed = std::max(speed, speed_of(scene.discs[next].velocity));
+        }
+        check(speed, source.velocity_where, source.velocity_path);
+        i = next - 1;
     }
     for (std::size_t k = 0; k < scene.throws.size(); ++k) {
         const Throw& t = scene.throws[k];

@@ -18,6 +18,8 @@ struct DiscSource {
     std::string where;       // "discs[4]"
     Location id_where;       // its `id:` value, or `entry` when the id was not written
     std::string id_path;     // "discs[4].id", or `where` when the id was not written
+    Location velocity_where; // its `velocity:` value (a random entry's `speed:`), or `entry`
+    std::string velocity_path;  // "discs[4].velocity", or `where` when none was written
     bool usable = true;      // position and radius read fine: takes part in overlap checks
 };
 
