@@ -161,18 +161,23 @@ public:
     void solve(Substep& s, int iterations);
 
 private:
-    struct Velocity {
-        V2 v = V2::Zero();         // m/s
-        double omega = 0.0;        // rad/s
+    // Four doubles, one per row of a block (GCC vector extension): one AVX register in the
+    // AVX2 build of solve_rows, two SSE registers in the baseline one. Where this file is not
+    // built for AVX, GCC aligns the type to 16 bytes only, so the structs holding it ask for
+    // the 32 that AVX loads need.
+    using Lanes = double __attribute__((vector_size(32)));
+    static constexpr unsigned width = 4;  // rows per block, the lanes of Lanes
+    // A body's velocity as the rows see it: v.x, v.y (m/s), omega (rad/s) and an unused lane,
+    // so that a block gathers each of its records with one aligned load (see load()).
+    struct alignas(32) Velocity {
+        Lanes packed = {};
     };
-    // Two doubles, one per row of a pair, in one SSE register (GCC vector extension).
-    using Lanes = double __attribute__((vector_size(16)));
-    // Two contacts of one colour (they share no moving body, so solving them side by side gives
+    // Four contacts of one colour (they share no moving body, so solving them side by side gives
     // the same result as one after the other), with what stays constant over the substep
     // precomputed. A lane without a contact points both ends at a scratch record, with zero
     // coefficients, so it computes zero impulses.
-    struct RowPair {
-        std::uint32_t a[2] = {0, 0}, b[2] = {0, 0};  // indices into velocities_
+    struct alignas(32) RowBlock {
+        std::uint32_t a[width] = {}, b[width] = {};  // indices into velocities_
         Lanes normal_x = {}, normal_y = {};  // unit, from b towards a, at the predicted end
         Lanes bias = {};               // m/s, lower bound on n.(v_a - v_b)
         Lanes normal_mass = {};        // kg
@@ -206,14 +211,18 @@ private:
         copied_.push_back(body);
         return static_cast<std::uint32_t>(s.bodies.size() + copied_.size() - 1);
     }
-    void load(const RowPair& r, Lanes& avx, Lanes& avy, Lanes& aw, Lanes& bvx, Lanes& bvy,
-              Lanes& bw) const;
-    void store(const RowPair& r, const Lanes& avx, const Lanes& avy, const Lanes& aw,
-               const Lanes& bvx, const Lanes& bvy, const Lanes& bw);
+    // The warm start and the iterations over rows_: the only code that runs on whole blocks,
+    // built for AVX2 and for baseline x86-64, the one the CPU can run chosen at load time.
+    [[gnu::target_clones("avx2", "default")]] void solve_rows(int iterations);
+    // Inlined, so that they are built for the caller's instruction set.
+    [[gnu::always_inline]] void load(const std::uint32_t (&records)[width], Lanes& x, Lanes& y,
+                                     Lanes& w) const;
+    [[gnu::always_inline]] void store(const std::uint32_t (&records)[width], const Lanes& x,
+                                      const Lanes& y, const Lanes& w);
 
     std::vector<Predicted> predicted_;  // per body
     std::vector<Velocity> velocities_;  // per body, then one per row end on an immovable body
-    std::vector<RowPair> rows_;         // grouped by colour: no two rows of one share a disc
+    std::vector<RowBlock> rows_;        // grouped by colour: no two rows of one share a disc
     std::vector<std::uint32_t> row_contact_;  // per lane of rows_, index into contacts; or none
     std::vector<Pending> pending_;      // in active order
     std::vector<std::uint32_t> copied_;  // the body of each velocity record after the bodies'
