@@ -85,21 +85,20 @@ void check_envelope(Loader& loader) {
                                       : std::string()) +
                            "; " + advice + " (docs/physics.md, Limits)");
     };
-    // The discs of a generator share where their speed was written: the fastest of them
-    // speaks for all, once.
-    for (std::size_t i = 0; i < scene.discs.size(); ++i) {
-        if (scene.discs[i].is_static) continue;
-        const DiscSource& source = loader.sources[i];
-        double speed = speed_of(scene.discs[i].velocity);
-        std::size_t next = i + 1;
-        for (; next < scene.discs.size() && loader.sources[next].velocity_where ==
-                                                source.velocity_where;
-             ++next) {
-            if (!scene.discs[next].is_static)
-                speed = std::max(speed, speed_of(scene.discs[next].velocity));
+    // The discs of a generator share where their speed was written (a run of equal locations):
+    // the fastest moving one speaks for all, once.
+    for (std::size_t first = 0; first < scene.discs.size();) {
+        const DiscSource& source = loader.sources[first];
+        std::optional<double> fastest;
+        std::size_t end = first;
+        for (; end < scene.discs.size() &&
+               loader.sources[end].velocity_where == source.velocity_where;
+             ++end) {
+            if (scene.discs[end].is_static) continue;
+            fastest = std::max(fastest.value_or(0.0), speed_of(scene.discs[end].velocity));
         }
-        check(speed, source.velocity_where, source.velocity_path);
-        i = next - 1;
+        if (fastest) check(*fastest, source.velocity_where, source.velocity_path);
+        first = end;
     }
     for (std::size_t k = 0; k < scene.throws.size(); ++k) {
         const Throw& t = scene.throws[k];
