@@ -157,9 +157,7 @@ void ContactSolver::solve(Substep& s, int iterations) {
         // the end is no smaller than allowed: with positions advancing by the mean velocity,
         // a change dv in it moves the gap by dv h / 2, hence the factor 2.
         const double allowed_overlap = std::min(c.gap, 0.0);
-        const V2 va(velocities_[c.a].packed[0], velocities_[c.a].packed[1]);
-        const V2 vb(velocities_[c.b].packed[0], velocities_[c.b].packed[1]);
-        const double close = n.dot(va - vb) -
+        const double close = n.dot(velocities_[c.a].v() - velocities_[c.b].v()) -
                              2.0 * (end.gap - allowed_overlap) * inv_h;
         // Never ask for more than a restitution bounce: the pair must not leave faster than
         // e times its approach speed (after gravity, forces only ever stop a pair). Overlap that
@@ -224,8 +222,8 @@ void ContactSolver::solve(Substep& s, int iterations) {
     for (std::size_t i = 0; i < s.disc_count; ++i) {
         Body& b = s.bodies[i];
         if (!b.moves()) continue;
-        b.v = V2(velocities_[i].packed[0], velocities_[i].packed[1]);
-        b.omega = velocities_[i].packed[2];
+        b.v = velocities_[i].v();
+        b.omega = velocities_[i].omega();
         b.x += (b.v_begin + b.v) * (0.5 * s.h) + b.shift;
         b.angle += (b.omega_begin + b.omega) * (0.5 * s.h) + b.turn;
     }

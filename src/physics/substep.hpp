@@ -171,6 +171,9 @@ private:
     // so that a block gathers each of its records with one aligned load (see load()).
     struct alignas(32) Velocity {
         Lanes packed = {};
+
+        V2 v() const { return {packed[0], packed[1]}; }
+        double omega() const { return packed[2]; }
     };
     // Four contacts of one colour (they share no moving body, so solving them side by side gives
     // the same result as one after the other), with what stays constant over the substep
