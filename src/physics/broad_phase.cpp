@@ -25,12 +25,34 @@ std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
     return (static_cast<std::uint64_t>(a) << 32) | b;
 }
 
-std::uint64_t cell_hash(std::int64_t x, std::int64_t y) {
-    // Large odd multipliers spread neighbouring cells over the table.
-    const auto ux = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
-    const auto uy = static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
-    return (ux ^ (uy >> 7) ^ uy) >> 16;
-}
+// The bucket of a cell. Where the occupied cells' bounding rectangle, with a ring of cells
+// around it for the neighbours searched, fits in the table, cells are numbered row by row: no
+// two cells share a bucket, and a disc's neighbours are its own bucket's successor and the
+// buckets one row up, so the search reads the grid nearly in order. Otherwise (discs spread
+// far apart) large odd multipliers spread neighbouring cells over the table.
+struct CellBuckets {
+    std::int64_t min_x = 0, min_y = 0;  // the ring's lower corner
+    std::uint64_t row = 0;              // cells per row; 0: hashed
+    std::uint64_t mask = 0;             // table size - 1
+
+    CellBuckets(std::int64_t lo_x, std::int64_t lo_y, std::int64_t hi_x, std::int64_t hi_y,
+                std::uint64_t table)
+        : min_x(lo_x - 1), min_y(lo_y - 1), mask(table - 1) {
+        // Spans in doubles: the cells of discs far apart could overflow an integer product.
+        const double width = static_cast<double>(hi_x) - static_cast<double>(lo_x) + 3.0;
+        const double height = static_cast<double>(hi_y) - static_cast<double>(lo_y) + 3.0;
+        if (width * height <= static_cast<double>(table)) row = static_cast<std::uint64_t>(width);
+    }
+    std::uint64_t operator()(std::int64_t x, std::int64_t y) const {
+        if (row != 0) {
+            return static_cast<std::uint64_t>(x - min_x) +
+                   static_cast<std::uint64_t>(y - min_y) * row;
+        }
+        const auto ux = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
+        const auto uy = static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
+        return ((ux ^ (uy >> 7) ^ uy) >> 16) & mask;
+    }
+};
 
 }  // namespace
 
@@ -117,15 +139,23 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
     if (cell > 0.0) {
         std::size_t table = 1;
         while (table < 2 * disc_count) table <<= 1;
-        const std::uint64_t mask = table - 1;
         cell_x_.assign(disc_count, 0);
         cell_y_.assign(disc_count, 0);
-        bucket_start_.assign(table + 1, 0);
+        std::int64_t lo_x = INT64_MAX, lo_y = INT64_MAX, hi_x = INT64_MIN, hi_y = INT64_MIN;
         for (std::size_t i = 0; i < disc_count; ++i) {
             if (fat(i) > fat_limit) continue;
             cell_x_[i] = static_cast<std::int64_t>(std::floor(bodies[i].x.x() / cell));
             cell_y_[i] = static_cast<std::int64_t>(std::floor(bodies[i].x.y() / cell));
-            ++bucket_start_[(cell_hash(cell_x_[i], cell_y_[i]) & mask) + 1];
+            lo_x = std::min(lo_x, cell_x_[i]);
+            lo_y = std::min(lo_y, cell_y_[i]);
+            hi_x = std::max(hi_x, cell_x_[i]);
+            hi_y = std::max(hi_y, cell_y_[i]);
+        }
+        const CellBuckets bucket(lo_x, lo_y, hi_x, hi_y, table);
+        bucket_start_.assign(table + 1, 0);
+        for (std::size_t i = 0; i < disc_count; ++i) {
+            if (fat(i) > fat_limit) continue;
+            ++bucket_start_[bucket(cell_x_[i], cell_y_[i]) + 1];
         }
         for (std::size_t k = 0; k < table; ++k) bucket_start_[k + 1] += bucket_start_[k];
         // Each bucket's discs are copied next to each other with what the search needs, so it
@@ -134,7 +164,7 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
         fill_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
         for (std::size_t i = 0; i < disc_count; ++i) {
             if (fat(i) > fat_limit) continue;
-            items_[fill_[cell_hash(cell_x_[i], cell_y_[i]) & mask]++] =
+            items_[fill_[bucket(cell_x_[i], cell_y_[i])]++] =
                 GridItem{bodies[i].x, fat(i), cell_x_[i], cell_y_[i],
                          static_cast<std::uint32_t>(i), bodies[i].moves()};
         }
@@ -146,7 +176,7 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
             const GridItem& item = items_[p];
             for (const auto& [dx, dy] : forward) {
                 const std::int64_t cx = item.cell_x + dx, cy = item.cell_y + dy;
-                const std::uint64_t h = cell_hash(cx, cy) & mask;
+                const std::uint64_t h = bucket(cx, cy);
                 const std::size_t first = dx == 0 && dy == 0 ? p + 1 : bucket_start_[h];
                 for (std::size_t k = first; k < bucket_start_[h + 1]; ++k) {
                     const GridItem& other = items_[k];
@@ -187,17 +217,23 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
     merged_.reserve(pairs_.size());
     std::size_t old = 0;
     for (const std::uint64_t key : pairs_) {
-        Contact c;
-        c.a = static_cast<std::uint32_t>(key >> 32);
-        c.b = static_cast<std::uint32_t>(key & 0xffffffffu);
-        while (old < contacts.size() && pair_less(contacts[old], c)) ++old;
-        if (old < contacts.size() && contacts[old].a == c.a && contacts[old].b == c.b) {
-            c = contacts[old];
-        } else {
-            c.restitution = mix_restitution(bodies[c.a].restitution, bodies[c.b].restitution);
-            c.friction = mix_friction(bodies[c.a].friction, bodies[c.b].friction);
+        const auto a = static_cast<std::uint32_t>(key >> 32);
+        const auto b = static_cast<std::uint32_t>(key & 0xffffffffu);
+        while (old < contacts.size() && (contacts[old].a < a ||
+                                         (contacts[old].a == a && contacts[old].b < b))) {
+            ++old;
         }
-        merged_.push_back(c);
+        // Copied straight into place: building the contact on the stack first and copying it
+        // stalled on store forwarding.
+        if (old < contacts.size() && contacts[old].a == a && contacts[old].b == b) {
+            merged_.push_back(contacts[old]);
+            continue;
+        }
+        Contact& c = merged_.emplace_back();
+        c.a = a;
+        c.b = b;
+        c.restitution = mix_restitution(bodies[a].restitution, bodies[b].restitution);
+        c.friction = mix_friction(bodies[a].friction, bodies[b].friction);
     }
     contacts.swap(merged_);
 }

@@ -23,8 +23,4 @@ struct Contact {
     double gap = 0.0;              // metres, negative when overlapping
 };
 
-inline bool pair_less(const Contact& l, const Contact& r) {
-    return l.a != r.a ? l.a < r.a : l.b < r.b;
-}
-
 }  // namespace discreel::physics::detail
