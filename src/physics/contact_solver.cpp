@@ -27,6 +27,7 @@
 // every floor row through one record.
 #include <algorithm>
 #include <bit>
+#include <cmath>
 
 #include "substep.hpp"
 
@@ -114,17 +115,29 @@ void ContactSolver::begin(const Substep& s) {
 
 void ContactSolver::solve(Substep& s, int iterations) {
     const double inv_h = 1.0 / s.h;
-    velocities_.resize(s.bodies.size() + copied_.size());
+    // The bodies' records, the copies' and a scratch one for the empty lanes.
+    velocities_.resize(s.bodies.size() + copied_.size() + 1);
+    const auto scratch = static_cast<std::uint32_t>(velocities_.size() - 1);
+    velocities_[scratch] = Velocity{};
     predicted_.resize(s.bodies.size());
-    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-        Body& b = s.bodies[i];
+    // Hoisted by hand: the stores below could alias the vectors' own pointers for all the
+    // compiler knows, so it would reload them for every body.
+    const double half_h = 0.5 * s.h;
+    const V2 fall = s.gravity * s.h;
+    Body* const bodies = s.bodies.data();
+    Velocity* const velocities = velocities_.data();
+    Predicted* const predicted = predicted_.data();
+    const std::size_t body_count = s.bodies.size();
+    for (std::size_t i = 0; i < body_count; ++i) {
+        Body& b = bodies[i];
         b.v_begin = b.v;
         b.omega_begin = b.omega;
-        if (b.falls()) b.v += s.gravity * s.h;
-        velocities_[i] = Velocity{{b.v.x(), b.v.y(), b.omega, 0.0}};
+        if (b.falls()) b.v += fall;
+        velocities[i] = Velocity{{b.v.x(), b.v.y(), b.omega, 0.0}};
         // Where it ends up without contact forces: the integration at the bottom, with v.
-        predicted_[i] = Predicted{b.x + (b.v_begin + b.v) * (0.5 * s.h) + b.shift, b.v_begin,
-                                  b.radius, b.inv_mass, b.radius * b.inv_inertia};
+        const V2 end = b.x + (b.v_begin + b.v) * half_h + b.shift;
+        predicted[i] = Predicted{{end.x(), end.y(), b.v_begin.x(), b.v_begin.y()},
+                                 {b.radius, b.inv_mass, b.radius * b.inv_inertia, 0.0}};
     }
     for (std::size_t k = 0; k < copied_.size(); ++k) {
         velocities_[s.bodies.size() + k] = velocities_[copied_[k]];
@@ -138,60 +151,34 @@ void ContactSolver::solve(Substep& s, int iterations) {
         colour_start_[c + 1] = colour_start_[c] + whole_blocks(colour_start_[c + 1]);
     }
     const std::uint32_t lanes = colour_start_[overflow + 1];
-    const auto scratch = static_cast<std::uint32_t>(velocities_.size());
-    velocities_.push_back(Velocity{});
-    // Every lane is written below, by its row or as an empty one: no filling first.
     rows_.resize(lanes / width);
-    row_contact_.resize(lanes);
-
-    for (const Pending& p : pending_) {
-        const std::uint32_t index = p.contact;
-        Contact& c = s.contacts[index];
-        const Predicted& a = predicted_[c.a];
-        const Predicted& b = predicted_[c.b];
-        const Feature* f = s.feature_of(c);
-        const Proximity end = f ? disc_feature(a.end, a.radius, *f)
-                                : disc_disc(a.end, a.radius, b.end, b.radius);
-        const V2& n = end.normal;
-        // The normal row bounds the end velocity n.(v_a - v_b) from below so that the gap at
-        // the end is no smaller than allowed: with positions advancing by the mean velocity,
-        // a change dv in it moves the gap by dv h / 2, hence the factor 2.
-        const double allowed_overlap = std::min(c.gap, 0.0);
-        const double close = n.dot(velocities_[c.a].v() - velocities_[c.b].v()) -
-                             2.0 * (end.gap - allowed_overlap) * inv_h;
-        // Never ask for more than a restitution bounce: the pair must not leave faster than
-        // e times its approach speed (after gravity, forces only ever stop a pair). Overlap that
-        // this cannot prevent is removed by PositionProjector, without creating velocity.
-        const double approach = n.dot(a.v_begin - b.v_begin);
-        const double leave = std::max(0.0, -c.restitution * approach);
-
-        const std::uint32_t slot = colour_start_[p.colour];
-        colour_start_[p.colour] += p.colour == overflow ? width : 1;
-        row_contact_[slot] = index;
-        RowBlock& r = rows_[slot / width];
-        const unsigned l = slot % width;
-        r.a[l] = p.a;
-        r.b[l] = p.b;
-        r.normal_x[l] = n.x();
-        r.normal_y[l] = n.y();
-        r.bias[l] = std::min(close, leave);
-        r.normal_mass[l] = masses_[index].normal;
-        r.tangent_mass[l] = masses_[index].tangent;
-        r.friction[l] = c.friction;
-        r.inv_mass_a[l] = a.inv_mass;
-        r.inv_mass_b[l] = b.inv_mass;
-        r.radius_a[l] = a.radius;
-        r.radius_b[l] = b.radius;
-        r.spin_a[l] = a.spin;
-        r.spin_b[l] = b.spin;
-        r.normal_impulse[l] = c.normal_impulse;
-        r.tangent_impulse[l] = c.tangent_impulse;
+    lane_of_.resize(pending_.size());
+    pending_of_lane_.resize(lanes);
+    for (std::uint32_t k = 0; k < pending_.size(); ++k) {
+        const unsigned colour = pending_[k].colour;
+        const std::uint32_t slot = colour_start_[colour];
+        colour_start_[colour] += colour == overflow ? width : 1;
+        lane_of_[k] = slot;
+        pending_of_lane_[slot] = k;
     }
-
     // The lanes left over: the last block of a colour whose count is not a multiple of the
-    // width, all but the first of each block of the overflow group.
-    auto empty_lane = [&](std::uint32_t slot) {
-        row_contact_[slot] = no_contact;
+    // width, all but the first of each block of the overflow group. They are built from any
+    // row (the first) and then emptied, so that every block is built whole.
+    empty_lanes_.clear();
+    for (unsigned c = 0; c < overflow; ++c) {
+        for (std::uint32_t slot = colour_start_[c]; slot % width != 0; ++slot) {
+            empty_lanes_.push_back(slot);
+        }
+    }
+    for (std::uint32_t slot = whole_blocks(colour_start_[overflow - 1]); slot < lanes;
+         slot += width) {
+        for (unsigned l = 1; l < width; ++l) empty_lanes_.push_back(slot + l);
+    }
+    for (const std::uint32_t slot : empty_lanes_) pending_of_lane_[slot] = 0;
+
+    build_rows(s, inv_h);
+
+    for (const std::uint32_t slot : empty_lanes_) {
         RowBlock& r = rows_[slot / width];
         const unsigned l = slot % width;
         r.a[l] = r.b[l] = scratch;
@@ -200,32 +187,122 @@ void ContactSolver::solve(Substep& s, int iterations) {
                              &r.spin_a, &r.spin_b, &r.normal_impulse, &r.tangent_impulse}) {
             (*field)[l] = 0.0;
         }
-    };
-    for (unsigned c = 0; c < overflow; ++c) {
-        for (std::uint32_t slot = colour_start_[c]; slot % width != 0; ++slot) empty_lane(slot);
-    }
-    for (std::uint32_t slot = whole_blocks(colour_start_[overflow - 1]); slot < lanes;
-         slot += width) {
-        for (unsigned l = 1; l < width; ++l) empty_lane(slot + l);
     }
 
     solve_rows(iterations);
 
-    for (std::uint32_t slot = 0; slot < lanes; ++slot) {
-        if (row_contact_[slot] == no_contact) continue;
+    // In contact order: the contacts are written in one forward sweep (in lane order they
+    // were a scattered write each), and each row's two impulses lie side by side in its block.
+    for (std::size_t k = 0; k < pending_.size(); ++k) {
+        const std::uint32_t slot = lane_of_[k];
         const RowBlock& r = rows_[slot / width];
-        Contact& c = s.contacts[row_contact_[slot]];
+        Contact& c = s.contacts[pending_[k].contact];
         c.normal_impulse = r.normal_impulse[slot % width];
         c.tangent_impulse = r.tangent_impulse[slot % width];
         c.step_impulse += r.normal_impulse[slot % width];
     }
-    for (std::size_t i = 0; i < s.disc_count; ++i) {
-        Body& b = s.bodies[i];
+    const std::size_t disc_count = s.disc_count;
+    for (std::size_t i = 0; i < disc_count; ++i) {
+        Body& b = bodies[i];
         if (!b.moves()) continue;
-        b.v = velocities_[i].v();
-        b.omega = velocities_[i].omega();
-        b.x += (b.v_begin + b.v) * (0.5 * s.h) + b.shift;
-        b.angle += (b.omega_begin + b.omega) * (0.5 * s.h) + b.turn;
+        b.v = velocities[i].v();
+        b.omega = velocities[i].omega();
+        b.x += (b.v_begin + b.v) * half_h + b.shift;
+        b.angle += (b.omega_begin + b.omega) * half_h + b.turn;
+    }
+}
+
+// A 4x4 transpose: lane l of column k is lane k of row l.
+inline void ContactSolver::transpose(const Lanes& r0, const Lanes& r1, const Lanes& r2,
+                                     const Lanes& r3, Lanes& c0, Lanes& c1, Lanes& c2,
+                                     Lanes& c3) {
+    const Lanes t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
+    const Lanes t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+    const Lanes t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+    const Lanes t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+    c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+    c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+    c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+    c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+// A block at a time, in lane order: its four rows' geometry and bias side by side in lanes (the
+// same IEEE operations per lane as disc_disc and one row at a time), and each of its fields
+// written once, whole. Rows against a wall take their normal and gap from disc_feature, a lane
+// at a time.
+[[gnu::target_clones("avx2", "default")]] void ContactSolver::build_rows(const Substep& s,
+                                                                        double inv_h) {
+    const Lanes zero = {};
+    const Lanes one = zero + 1.0;
+    for (std::size_t block = 0; block < rows_.size(); ++block) {
+        RowBlock& r = rows_[block];
+        const Contact* contact[width];
+        const Predicted* a[width];
+        const Predicted* b[width];
+        Lanes allowed_overlap, restitution;
+        for (unsigned l = 0; l < width; ++l) {
+            const Pending& p = pending_[pending_of_lane_[block * width + l]];
+            const Contact& c = s.contacts[p.contact];
+            contact[l] = &c;
+            a[l] = &predicted_[c.a];
+            b[l] = &predicted_[c.b];
+            r.a[l] = p.a;
+            r.b[l] = p.b;
+            r.normal_mass[l] = masses_[p.contact].normal;
+            r.tangent_mass[l] = masses_[p.contact].tangent;
+            r.friction[l] = c.friction;
+            r.normal_impulse[l] = c.normal_impulse;
+            r.tangent_impulse[l] = c.tangent_impulse;
+            allowed_overlap[l] = std::min(c.gap, 0.0);
+            restitution[l] = c.restitution;
+        }
+        Lanes ax, ay, a_begin_x, a_begin_y, bx, by, b_begin_x, b_begin_y, unused;
+        transpose(a[0]->motion, a[1]->motion, a[2]->motion, a[3]->motion, ax, ay, a_begin_x,
+                  a_begin_y);
+        transpose(b[0]->motion, b[1]->motion, b[2]->motion, b[3]->motion, bx, by, b_begin_x,
+                  b_begin_y);
+        transpose(a[0]->mass, a[1]->mass, a[2]->mass, a[3]->mass, r.radius_a, r.inv_mass_a,
+                  r.spin_a, unused);
+        transpose(b[0]->mass, b[1]->mass, b[2]->mass, b[3]->mass, r.radius_b, r.inv_mass_b,
+                  r.spin_b, unused);
+        Lanes avx, avy, bvx, bvy;
+        load(r.a, avx, avy, unused);
+        load(r.b, bvx, bvy, unused);
+
+        const Lanes dx = ax - bx;
+        const Lanes dy = ay - by;
+        const Lanes squared = dx * dx + dy * dy;
+        Lanes dist;
+        for (unsigned l = 0; l < width; ++l) dist[l] = std::sqrt(squared[l]);
+        // Coincident centres have no direction; disc_disc's fixed one.
+        const auto apart = dist > zero;
+        Lanes normal_x = apart ? dx / dist : zero;
+        Lanes normal_y = apart ? dy / dist : one;
+        Lanes gap = dist - r.radius_a - r.radius_b;
+        for (unsigned l = 0; l < width; ++l) {
+            if (const Feature* f = s.feature_of(*contact[l])) {
+                const Proximity end =
+                    disc_feature(V2(a[l]->motion[0], a[l]->motion[1]), a[l]->mass[0], *f);
+                normal_x[l] = end.normal.x();
+                normal_y[l] = end.normal.y();
+                gap[l] = end.gap;
+            }
+        }
+        // The normal row bounds the end velocity n.(v_a - v_b) from below so that the gap at
+        // the end is no smaller than allowed: with positions advancing by the mean velocity,
+        // a change dv in it moves the gap by dv h / 2, hence the factor 2.
+        const Lanes close = (normal_x * (avx - bvx) + normal_y * (avy - bvy)) -
+                            2.0 * (gap - allowed_overlap) * inv_h;
+        // Never ask for more than a restitution bounce: the pair must not leave faster than
+        // e times its approach speed (after gravity, forces only ever stop a pair). Overlap that
+        // this cannot prevent is removed by PositionProjector, without creating velocity.
+        const Lanes approach =
+            normal_x * (a_begin_x - b_begin_x) + normal_y * (a_begin_y - b_begin_y);
+        const Lanes bounce = -restitution * approach;
+        const Lanes leave = zero < bounce ? bounce : zero;  // std::max(0.0, bounce)
+        r.bias = leave < close ? leave : close;             // std::min(close, leave)
+        r.normal_x = normal_x;
+        r.normal_y = normal_y;
     }
 }
 

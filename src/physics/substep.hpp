@@ -192,13 +192,11 @@ private:
         Lanes normal_impulse = {};     // N s, accumulated
         Lanes tangent_impulse = {};    // N s, accumulated
     };
-    // What the rows need of a body, in one cache line.
-    struct Predicted {
-        V2 end = V2::Zero();           // m, its position at the end without contact forces
-        V2 v_begin = V2::Zero();       // m/s, see Body
-        double radius = 0.0;           // m
-        double inv_mass = 0.0;         // 1/kg
-        double spin = 0.0;             // r / I, 1/(kg m)
+    // What the rows need of a body, in one cache line of two records that a block gathers with
+    // a transpose each (see build_rows()).
+    struct alignas(32) Predicted {
+        Lanes motion = {};  // end x, y (m, where it ends up without contact forces); v_begin x, y
+        Lanes mass = {};    // radius (m), inverse mass (1/kg), spin factor r / I (1/(kg m)), unused
     };
     // A contact to solve: its velocity records and colour (see contact_solver.cpp).
     struct Pending {
@@ -206,7 +204,6 @@ private:
         std::uint32_t a = 0, b = 0;    // indices into velocities_
         unsigned colour = 0;
     };
-    static constexpr std::uint32_t no_contact = ~std::uint32_t{0};
     // Rows whose discs have all 64 colours go to one last group, solved a row at a time.
     static constexpr unsigned overflow = 64;
     void colour_contacts(const Substep& s);
@@ -217,6 +214,11 @@ private:
     // The warm start and the iterations over rows_: the only code that runs on whole blocks,
     // built for AVX2 and for baseline x86-64, the one the CPU can run chosen at load time.
     [[gnu::target_clones("avx2", "default")]] void solve_rows(int iterations);
+    // The row build, built the same two ways.
+    [[gnu::target_clones("avx2", "default")]] void build_rows(const Substep& s, double inv_h);
+    [[gnu::always_inline]] static void transpose(const Lanes& r0, const Lanes& r1,
+                                                 const Lanes& r2, const Lanes& r3, Lanes& c0,
+                                                 Lanes& c1, Lanes& c2, Lanes& c3);
     // Inlined, so that they are built for the caller's instruction set.
     [[gnu::always_inline]] void load(const std::uint32_t (&records)[width], Lanes& x, Lanes& y,
                                      Lanes& w) const;
@@ -224,10 +226,13 @@ private:
                                       const Lanes& y, const Lanes& w);
 
     std::vector<Predicted> predicted_;  // per body
-    std::vector<Velocity> velocities_;  // per body, then one per row end on an immovable body
+    // Per body, then one per row end on an immovable body, then the empty lanes' scratch one.
+    std::vector<Velocity> velocities_;
     std::vector<RowBlock> rows_;        // grouped by colour: no two rows of one share a disc
-    std::vector<std::uint32_t> row_contact_;  // per lane of rows_, index into contacts; or none
     std::vector<Pending> pending_;      // in active order
+    std::vector<std::uint32_t> lane_of_;  // per pending row, its lane in rows_
+    std::vector<std::uint32_t> pending_of_lane_;  // per lane of rows_, index into pending_
+    std::vector<std::uint32_t> empty_lanes_;      // lanes of rows_ without a row
     std::vector<std::uint32_t> copied_;  // the body of each velocity record after the bodies'
     // What a contact's rows need of its bodies' masses, which only change with the contact
     // list or a throw: two divisions per row less in every substep.
