@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -55,12 +56,19 @@ class ImpactResolver {
 public:
     // Before the active contacts are listed.
     void begin(const Substep& s);
-    // Each active contact as it is listed (k: its position in s.active), while it is in cache:
-    // the first sweep visits only those that the cheap tests do not rule out.
-    // index: its index in s.contacts.
-    void screen(const Substep& s, const Contact& c, std::uint32_t index, std::uint32_t k) {
-        position_[index] = (listing_ << 32) | k;
-        if (!surely_no_impact(s, c, slowest_impact(s, c, slow_))) screened_.push_back(k);
+    // The active contacts of a block as they are listed (listed: their indices into
+    // s.contacts; first: the first one's position in s.active), while they are in cache: the
+    // first sweep visits only those that the cheap tests do not rule out.
+    void screen(const Substep& s, std::span<const std::uint32_t> listed, std::size_t first) {
+        const Contact* const contacts = s.contacts.data();
+        std::uint64_t* const position = position_.data();
+        const std::uint64_t stamp = listing_ << 32;
+        for (std::size_t j = 0; j < listed.size(); ++j) {
+            const Contact& c = contacts[listed[j]];
+            const auto k = static_cast<std::uint32_t>(first + j);
+            position[listed[j]] = stamp | k;
+            if (!surely_no_impact(s, c, slowest_impact(s, c, slow_))) screened_.push_back(k);
+        }
     }
     void resolve(Substep& s);
 
@@ -142,21 +150,28 @@ class ContactSolver {
 public:
     // Before the active contacts are listed.
     void begin(const Substep& s);
-    // Each active contact as it is listed (index: into s.contacts), while it is in cache: its
-    // colour is counted and it is queued for the row build.
-    void list(const Substep& s, const Contact& c, std::uint32_t index) {
-        const bool a_moves = s.bodies[c.a].inv_mass != 0.0;
-        const bool b_moves = s.bodies[c.b].inv_mass != 0.0;
-        if (!a_moves && !b_moves) return;  // two immovable bodies: nothing to solve
-        const unsigned colour = colour_of_[index];
-        ++colour_start_[colour + 1];
-        Pending p{index, c.a, c.b, colour};
-        // A row end on an immovable body gets its own velocity record, appended after the
-        // bodies' (filled in solve(), after the impacts), so that rows on one wall do not chain
-        // through its record.
-        if (!a_moves) p.a = copy_of(c.a, s);
-        if (!b_moves) p.b = copy_of(c.b, s);
-        pending_.push_back(p);
+    // The active contacts of a block as they are listed (their indices into s.contacts), while
+    // they are in cache: each one's colour is counted and it is queued for the row build.
+    void list(const Substep& s, std::span<const std::uint32_t> listed) {
+        const Body* const bodies = s.bodies.data();
+        const Contact* const contacts = s.contacts.data();
+        const std::uint8_t* const colour_of = colour_of_.data();
+        std::uint32_t* const colour_start = colour_start_.data();
+        for (const std::uint32_t index : listed) {
+            const Contact& c = contacts[index];
+            const bool a_moves = bodies[c.a].inv_mass != 0.0;
+            const bool b_moves = bodies[c.b].inv_mass != 0.0;
+            if (!a_moves && !b_moves) continue;  // two immovable bodies: nothing to solve
+            const unsigned colour = colour_of[index];
+            ++colour_start[colour + 1];
+            Pending p{index, c.a, c.b, colour};
+            // A row end on an immovable body gets its own velocity record, appended after the
+            // bodies' (filled in solve(), after the impacts), so that rows on one wall do not
+            // chain through its record.
+            if (!a_moves) p.a = copy_of(c.a, s);
+            if (!b_moves) p.b = copy_of(c.b, s);
+            pending_.push_back(p);
+        }
     }
     void solve(Substep& s, int iterations);
 

@@ -1,7 +1,10 @@
 // The fixed-rate world: each step runs the broad phase once, then `substeps` substeps of
 // impacts (impacts.cpp), resting contact (contact_solver.cpp) and position projection.
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <span>
 #include <utility>
 
 #include "broad_phase.hpp"
@@ -26,6 +29,11 @@ constexpr int contact_iterations = 3;
 constexpr int projection_iterations = 2;
 
 V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
+
+// x where mask is all ones, +0 where it is zero.
+double masked(double x, std::uint64_t mask) {
+    return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) & mask);
+}
 
 Body make_disc(const DiscDef& d) {
     Body b;
@@ -132,50 +140,66 @@ void World::Impl::substep(double h, bool last) {
     // How far each body can travel in this substep, computed once rather than per contact.
     reach.resize(bodies.size());
     start.resize(disc_count);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        Body& b = bodies[i];
-        reach[i] = b.v.norm() * h + (b.falls() ? fall : 0.0);
-        if (i < disc_count) start[i] = b.x;
+    // Hoisted by hand: the stores below could alias the vectors' own pointers for all the
+    // compiler knows, so it would reload them for every body and contact.
+    Body* const body_at = bodies.data();
+    double* const reach_of = reach.data();
+    V2* const start_of = start.data();
+    const std::size_t body_count = bodies.size();
+    const std::size_t discs = disc_count;
+    const auto begin_substep = [&](std::size_t i) {
+        Body& b = body_at[i];
+        reach_of[i] = b.v.norm() * h + (b.falls() ? fall : 0.0);
         b.shift = V2::Zero();
         b.turn = 0.0;
         b.t_last = 0.0;
         b.changed_pass = -1;
         b.struck_pass = -1;
+    };
+    for (std::size_t i = 0; i < discs; ++i) {
+        begin_substep(i);
+        start_of[i] = body_at[i].x;
     }
+    for (std::size_t i = discs; i < body_count; ++i) begin_substep(i);
     detail::Substep s{bodies, disc_count, features, contacts, contacts_version, bodies_version,
                       active, gravity, h};
     impact_resolver.begin(s);
     contact_solver.begin(s);
     active.clear();
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-        Contact& c = contacts[i];
-        const Body& a = bodies[c.a];
-        const Body& b = bodies[c.b];
-        const double reach_sum = reach[c.a] + reach[c.b];
-        bool near;
-        if (c.b >= disc_count) {
-            c.gap = detail::disc_feature(a.x, a.radius, features[c.b - disc_count]).gap;
-            near = c.gap <= reach_sum;
-        } else {
-            // Most listed pairs are apart in a pile; rule them out without a square root.
-            near = !detail::certainly_farther((a.x - b.x).squaredNorm(), a.radius + b.radius,
-                                              reach_sum);
-            if (near) {
-                c.gap = detail::disc_disc(a.x, a.radius, b.x, b.radius).gap;
-                near = c.gap <= reach_sum;
-            }
+    // A block of contacts at a time, in two passes. The first finds every pair's gap without
+    // branching on whether it is near (that is data-dependent, about half the pairs in a pile,
+    // and a misprediction exposes the square root's latency), so it takes every pair's square
+    // root rather than ruling far ones out with certainly_farther (which never disagrees with
+    // the gap); the second hands the near ones to the stages while the block is in cache.
+    constexpr std::size_t block = 256;
+    std::array<std::uint32_t, block> near_in_block{};
+    Contact* const contact_at = contacts.data();
+    const detail::Feature* const feature_at = features.data();
+    const std::size_t contact_count = contacts.size();
+    for (std::size_t first = 0; first < contact_count; first += block) {
+        const std::size_t end = std::min(first + block, contact_count);
+        std::size_t near_count = 0;
+        for (std::size_t i = first; i < end; ++i) {
+            Contact& c = contact_at[i];
+            const Body& a = body_at[c.a];
+            const double reach_sum = reach_of[c.a] + reach_of[c.b];
+            // Only the gap is kept: the resting stage takes its normal at the end of the substep.
+            c.gap = c.b >= discs
+                        ? detail::disc_feature(a.x, a.radius, feature_at[c.b - discs]).gap
+                        : detail::disc_disc(a.x, a.radius, body_at[c.b].x, body_at[c.b].radius).gap;
+            const bool near = c.gap <= reach_sum;
+            // Apart for good this substep: nothing to warm-start from next time. Masked, as a
+            // select here turns back into the branch.
+            const std::uint64_t kept = std::uint64_t{0} - static_cast<std::uint64_t>(near);
+            c.normal_impulse = masked(c.normal_impulse, kept);
+            c.tangent_impulse = masked(c.tangent_impulse, kept);
+            near_in_block[near_count] = static_cast<std::uint32_t>(i);
+            near_count += static_cast<std::size_t>(near);
         }
-        // Only the gap is kept: the resting stage takes its normal at the end of the substep.
-        if (near) {
-            impact_resolver.screen(s, c, static_cast<std::uint32_t>(i),
-                                   static_cast<std::uint32_t>(active.size()));
-            contact_solver.list(s, c, static_cast<std::uint32_t>(i));
-            active.push_back(static_cast<std::uint32_t>(i));
-        } else {
-            // Apart for good this substep: nothing to warm-start from next time.
-            c.normal_impulse = 0.0;
-            c.tangent_impulse = 0.0;
-        }
+        const std::span<const std::uint32_t> listed(near_in_block.data(), near_count);
+        impact_resolver.screen(s, listed, active.size());
+        contact_solver.list(s, listed);
+        active.insert(active.end(), listed.begin(), listed.end());
     }
     impact_resolver.resolve(s);
     contact_solver.solve(s, contact_iterations);
