@@ -33,22 +33,28 @@
 
 namespace discreel::physics::detail {
 
+// A 4x4 transpose: lane l of column k is lane k of row l.
+inline void ContactSolver::transpose(const Lanes& r0, const Lanes& r1, const Lanes& r2,
+                                     const Lanes& r3, Lanes& c0, Lanes& c1, Lanes& c2,
+                                     Lanes& c3) {
+    const Lanes t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
+    const Lanes t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+    const Lanes t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+    const Lanes t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+    c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+    c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+    c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+    c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
 // Gathers the velocity records of one end of a block's rows into lanes, and scatters them back:
 // a 4x4 transpose of whole records, each read and written with one access of its own size
 // (fewer instructions than gathering the lanes one double at a time).
 inline void ContactSolver::load(const std::uint32_t (&records)[width], Lanes& x, Lanes& y,
                                 Lanes& w) const {
-    const Lanes& r0 = velocities_[records[0]].packed;
-    const Lanes& r1 = velocities_[records[1]].packed;
-    const Lanes& r2 = velocities_[records[2]].packed;
-    const Lanes& r3 = velocities_[records[3]].packed;
-    const Lanes xw01 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
-    const Lanes xw23 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
-    const Lanes y01 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
-    const Lanes y23 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
-    x = __builtin_shufflevector(xw01, xw23, 0, 1, 4, 5);
-    y = __builtin_shufflevector(y01, y23, 0, 1, 4, 5);
-    w = __builtin_shufflevector(xw01, xw23, 2, 3, 6, 7);
+    Lanes unused;  // inlined: the compiler drops the shuffles that only feed it
+    transpose(velocities_[records[0]].packed, velocities_[records[1]].packed,
+              velocities_[records[2]].packed, velocities_[records[3]].packed, x, y, w, unused);
 }
 
 inline void ContactSolver::store(const std::uint32_t (&records)[width], const Lanes& x,
@@ -210,20 +216,6 @@ void ContactSolver::solve(Substep& s, int iterations) {
         b.x += (b.v_begin + b.v) * half_h + b.shift;
         b.angle += (b.omega_begin + b.omega) * half_h + b.turn;
     }
-}
-
-// A 4x4 transpose: lane l of column k is lane k of row l.
-inline void ContactSolver::transpose(const Lanes& r0, const Lanes& r1, const Lanes& r2,
-                                     const Lanes& r3, Lanes& c0, Lanes& c1, Lanes& c2,
-                                     Lanes& c3) {
-    const Lanes t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
-    const Lanes t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
-    const Lanes t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
-    const Lanes t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
-    c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
-    c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
-    c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-    c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 
 // A block at a time, in lane order: its four rows' geometry and bias side by side in lanes (the
