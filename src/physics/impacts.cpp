@@ -95,7 +95,8 @@ void ImpactResolver::list_contacts_of_bodies(const Substep& s) {
         contacts_of_[fill_[c.a]++] = static_cast<std::uint32_t>(i);
         contacts_of_[fill_[c.b]++] = static_cast<std::uint32_t>(i);
     }
-    position_.assign(s.contacts.size(), 0);
+    // Entries left from the previous list carry an older listing_, so they read as stale.
+    position_.resize(s.contacts.size());
 }
 
 void ImpactResolver::begin(const Substep& s) {
@@ -126,7 +127,17 @@ void ImpactResolver::resolve(Substep& s) {
     // after max_passes full sweeps' worth of work.
     const std::size_t budget = static_cast<std::size_t>(max_passes) * std::max<std::size_t>(count, 64);
     std::size_t spent = 0;
+    // found_ and queued_ are stamped with sweep numbers that never repeat, so that no sweep
+    // resets them: a landing heap has impacts in almost every substep, and each substep with
+    // one used to clear a record per active contact.
+    const std::uint64_t first_sweep = sweeps_done_;
+    if (found_.size() < count) {
+        found_.resize(count);
+        queued_.resize(count, never);
+    }
     for (int pass = 0; spent < budget && pass < max_sweeps; ++pass) {
+        const std::uint64_t sweep = first_sweep + static_cast<std::uint64_t>(pass);
+        sweeps_done_ = sweep + 1;
         // This sweep's pairs, in active order: those that screen() did not rule out first, then
         // those of bodies changed in the previous sweep.
         candidates_.clear();
@@ -137,8 +148,8 @@ void ImpactResolver::resolve(Substep& s) {
                 for (std::uint32_t e = contacts_of_start_[body]; e < contacts_of_start_[body + 1];
                      ++e) {
                     std::uint32_t k;
-                    if (!active_position(contacts_of_[e], k) || queued_[k] == pass) continue;
-                    queued_[k] = pass;
+                    if (!active_position(contacts_of_[e], k) || queued_[k] == sweep) continue;
+                    queued_[k] = sweep;
                     candidates_.push_back(k);
                 }
             }
@@ -150,16 +161,15 @@ void ImpactResolver::resolve(Substep& s) {
         // A body's impacts must happen in time order, or a later one computed first would move
         // it through the earlier one's wall: find each body's earliest impact first.
         lowered_.clear();
-        first_hits_.clear();
         for (const std::uint32_t k : candidates_) {
             const Contact& c = s.contacts[s.active[k]];
-            const std::optional<Impact> hit = find_impact(s, c, slow);
-            // The first sweep's answers (mostly none) are kept only once it has found a hit.
-            if (pass == 0) {
-                if (hit) first_hits_.emplace_back(k, *hit);
-            } else {
-                found_[k] = FoundImpact{pass, hit};
-            }
+            // No body has changed since screen() passed the first sweep's pairs.
+            const std::optional<Impact> hit = pass == 0
+                                                  ? swept_impact(s, c, slowest_impact(s, c, slow))
+                                                  : find_impact(s, c, slow);
+            // The first sweep answers for every active pair, so only its hits are recorded:
+            // the others, tested or ruled out by screen(), have none (see `known` below).
+            if (pass > 0 || hit) found_[k] = FoundImpact{sweep, hit};
             if (!hit) continue;
             for (const std::uint32_t i : {c.a, c.b}) {
                 if (next_impact_[i] == s.h) lowered_.push_back(i);
@@ -167,15 +177,11 @@ void ImpactResolver::resolve(Substep& s) {
             }
         }
 
-        // A settled pile has no impacts at all: the per-contact records below are only built
-        // once the first sweep has found one.
+        // A settled pile has no impacts at all.
         if (pass == 0) {
             if (lowered_.empty()) break;
-            found_.assign(count, FoundImpact{0, std::nullopt});
-            for (const auto& [k, hit] : first_hits_) found_[k].hit = hit;
             // The pairs ruled out are listed too when an impact of this sweep changes a body.
-            queued_.assign(count, -1);
-            for (const std::uint32_t k : candidates_) queued_[k] = 0;
+            for (const std::uint32_t k : candidates_) queued_[k] = sweep;
         }
 
         // Visited in active order; a body changed during this sweep adds its later pairs to it
@@ -192,10 +198,10 @@ void ImpactResolver::resolve(Substep& s) {
             if (already_queued) return;
             for (std::uint32_t e = contacts_of_start_[i]; e < contacts_of_start_[i + 1]; ++e) {
                 std::uint32_t k;
-                if (!active_position(contacts_of_[e], k) || k <= after || queued_[k] == pass) {
+                if (!active_position(contacts_of_[e], k) || k <= after || queued_[k] == sweep) {
                     continue;
                 }
-                queued_[k] = pass;
+                queued_[k] = sweep;
                 queue_.push_back(k);
                 std::push_heap(queue_.begin(), queue_.end(), std::greater<>());
             }
@@ -217,9 +223,11 @@ void ImpactResolver::resolve(Substep& s) {
             Body& b = s.bodies[c.b];
             // The answer found above still holds unless an impact of this sweep moved a or b.
             const FoundImpact& found = found_[k];
+            const bool recorded = found.sweep == sweep;
+            const bool known = recorded || pass == 0;
             const std::optional<Impact> hit =
-                found.pass == pass && a.struck_pass != pass && b.struck_pass != pass
-                    ? found.hit
+                known && a.struck_pass != pass && b.struck_pass != pass
+                    ? (recorded ? found.hit : std::nullopt)
                     : find_impact(s, c, slow);
             if (!hit) continue;
             any = true;

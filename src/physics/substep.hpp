@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <optional>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "body.hpp"
@@ -76,10 +75,11 @@ private:
     // A pair already touching at the start of the substep (gap under this fraction of the
     // smaller radius) is part of a heap or a row, not a flight ending in a collision.
     static constexpr double touching_gap = 0.005;
+    static constexpr std::uint64_t never = ~std::uint64_t{0};  // a sweep number none has
     // The swept test's answer for an active contact in a sweep, reused while neither body has
     // been struck since (the test is the costly part).
     struct FoundImpact {
-        int pass = -1;             // the sweep it was computed in; -1: never
+        std::uint64_t sweep = never;  // the sweep it was computed in (see sweeps_done_)
         std::optional<Impact> hit;
     };
     void list_contacts_of_bodies(const Substep& s);
@@ -121,8 +121,8 @@ private:
     std::vector<double> settle_speed_;             // m/s per disc, see impacts.cpp
     double settle_h_ = 0.0;                        // s, the substep settle_speed_ is for
     std::vector<FoundImpact> found_;               // per active contact
-    std::vector<std::pair<std::uint32_t, Impact>> first_hits_;  // the first sweep's, in order
-    std::vector<int> queued_;                      // per active contact: last sweep listing it
+    std::vector<std::uint64_t> queued_;            // per active contact: last sweep listing it
+    std::uint64_t sweeps_done_ = 0;                // over all substeps, numbering the sweeps
     // Which contacts of the broad phase's list each body is in, rebuilt with the list, so a
     // sweep after the first visits only the pairs whose velocities just changed.
     std::vector<std::uint32_t> contacts_of_start_;  // per body, into contacts_of_
