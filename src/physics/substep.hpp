@@ -226,10 +226,10 @@ private:
         copied_.push_back(body);
         return static_cast<std::uint32_t>(s.bodies.size() + copied_.size() - 1);
     }
-    // The warm start and the iterations over rows_: the only code that runs on whole blocks,
-    // built for AVX2 and for baseline x86-64, the one the CPU can run chosen at load time.
+    // The code that runs on whole blocks, each built for AVX2 and for baseline x86-64, the one
+    // the CPU can run chosen at load time: the warm start and the iterations over rows_, and
+    // the row build.
     [[gnu::target_clones("avx2", "default")]] void solve_rows(int iterations);
-    // The row build, built the same two ways.
     [[gnu::target_clones("avx2", "default")]] void build_rows(const Substep& s, double inv_h);
     [[gnu::always_inline]] static void transpose(const Lanes& r0, const Lanes& r1,
                                                  const Lanes& r2, const Lanes& r3, Lanes& c0,
