@@ -9,7 +9,7 @@ flat in uint v_flags;
 
 out vec4 o_color;
 
-const uint kFlat = 1u;
+const uint kFlat = 1u;  // kCapsuleFlat in src/render/instances.hpp (ShaderConstantsTest)
 
 float coverage(float signed_distance) {
     return clamp(0.5 - signed_distance, 0.0, 1.0);

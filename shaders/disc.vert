@@ -30,6 +30,8 @@ flat out vec4 v_core;           // colour inside the ring; the spoke's strength
 flat out vec3 v_outline_color;
 flat out vec3 v_marker;
 
+// The instance record's flag bits and the two sizes below are also in src/render/instances.hpp;
+// ShaderConstantsTest checks that both say the same.
 const uint kStatic = 1u;
 const uint kNoOutline = 2u;
 const uint kNoSpinMarker = 4u;

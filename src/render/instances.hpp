@@ -16,7 +16,8 @@ struct DiscInstance {
     float color[4];
     std::uint32_t flags;
 };
-// Match the constants of the same names in disc.vert.
+// Match the constants of the same names in disc.vert (tests/render/shader_constants_test.cpp
+// checks them against the embedded shader).
 inline constexpr std::uint32_t kDiscStatic = 1;
 inline constexpr std::uint32_t kDiscNoOutline = 2;
 inline constexpr std::uint32_t kDiscNoSpinMarker = 4;
@@ -37,7 +38,7 @@ struct CapsuleInstance {
     float color[4];
     std::uint32_t flags;
 };
-inline constexpr std::uint32_t kCapsuleFlat = 1;   // matches kFlat in capsule.frag: no rim
+inline constexpr std::uint32_t kCapsuleFlat = 1;   // matches kFlat in capsule.frag (checked): no rim
 
 // Replaces the contents of `out` (its capacity is reused from frame to frame).
 void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
