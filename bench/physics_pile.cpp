@@ -69,8 +69,8 @@ int main(int argc, char** argv) {
     const char* rate_env = std::getenv("DISCREEL_RATE");
     const int rate = rate_env ? std::atoi(rate_env) : 480;
     if (rate <= 0 || substeps < 0 || !(seconds > 0.0)) {
-        std::fprintf(stderr, "physics_bench: seconds, DISCREEL_RATE and DISCREEL_SUBSTEPS must be "
-                             "positive\n");
+        std::fprintf(stderr, "physics_bench: seconds and DISCREEL_RATE must be positive, "
+                             "DISCREEL_SUBSTEPS not negative\n");
         return 2;
     }
     std::printf("pile scene, %.1f simulated s at %d Hz, one thread\n", seconds, rate);

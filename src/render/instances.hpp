@@ -38,7 +38,7 @@ struct CapsuleInstance {
     float color[4];
     std::uint32_t flags;
 };
-inline constexpr std::uint32_t kCapsuleFlat = 1;   // matches kFlat in capsule.frag (checked): no rim
+inline constexpr std::uint32_t kCapsuleFlat = 1;  // kFlat in capsule.frag (checked): no rim
 
 // Replaces the contents of `out` (its capacity is reused from frame to frame).
 void make_disc_instances(const FrameScene& frame, double pixels_per_metre,

@@ -31,19 +31,24 @@ std::optional<std::string> shader_constant(std::string_view source, std::string_
     return value;
 }
 
-std::optional<std::uint32_t> shader_uint(std::string_view source, std::string_view name) {
-    const std::optional<std::string> text = shader_constant(source, "uint", name);
+// The constant parsed as a T, or nothing if it is missing or not wholly a T.
+template <typename T>
+std::optional<T> parsed_constant(std::string_view source, std::string_view type,
+                                 std::string_view name) {
+    const std::optional<std::string> text = shader_constant(source, type, name);
     if (!text) return std::nullopt;
-    std::uint32_t value = 0;
+    T value{};
     const auto [end, error] = std::from_chars(text->data(), text->data() + text->size(), value);
     if (error != std::errc{} || end != text->data() + text->size()) return std::nullopt;
     return value;
 }
 
+std::optional<std::uint32_t> shader_uint(std::string_view source, std::string_view name) {
+    return parsed_constant<std::uint32_t>(source, "uint", name);
+}
+
 std::optional<float> shader_float(std::string_view source, std::string_view name) {
-    const std::optional<std::string> text = shader_constant(source, "float", name);
-    if (!text) return std::nullopt;
-    return std::stof(*text);
+    return parsed_constant<float>(source, "float", name);
 }
 
 TEST(ShaderConstantsTest, DiscFlagsMatchTheInstanceRecord) {
@@ -67,6 +72,7 @@ TEST(ShaderConstantsTest, AMissingOrMalformedConstantIsNotFound) {
     EXPECT_EQ(shader_uint("const uint kA = x1u;", "kA"), std::nullopt);
     EXPECT_EQ(shader_uint("const uint kA = 7u;", "kA"), 7u);
     EXPECT_EQ(shader_float("const float kA = 1.5;", "kA"), 1.5f);
+    EXPECT_EQ(shader_float("const float kA = 1.5x;", "kA"), std::nullopt);
 }
 
 }  // namespace
