@@ -80,9 +80,9 @@ int main(int argc, char** argv) {
     for (const int n : sizes) {
         physics::World world(pile(n, rate, substeps));
         const auto steps = static_cast<std::int64_t>(std::llround(seconds * rate));
-        // The overlap at one instant can be a lucky one (it moves by a factor of two from one
-        // step to the next while a pile settles), so the worst over the last simulated second
-        // is shown too, looked up after every step with the clock stopped.
+        // The overlap at one instant can be a lucky one (it moves by a factor of two within a
+        // quarter of a second while a pile settles), so the worst over the last simulated
+        // second is shown too, looked up after every step with the clock stopped.
         const std::int64_t last_second = std::max<std::int64_t>(0, steps - rate);
         double worst_late = 0.0;   // fraction of the radius
         std::clock_t looking = 0;  // CPU time spent looking, left out of the timings
