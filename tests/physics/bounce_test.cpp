@@ -87,5 +87,23 @@ TEST(Bounce, FreeFlightFollowsTheParabolaAndKeepsItsSpin) {
     }
 }
 
+// Box2D v3.2 clamps rotation to pi / 4 (an eighth of a turn) per step; angles here are
+// integrated and never limited, so 2 000 rad/s (4.2 rad per 480 Hz step) is kept exactly.
+TEST(Bounce, SpinOfMoreThanAQuarterTurnPerStepIsKept) {
+    WorldDef def;
+    DiscDef d = disc({1, 2}, {0, 0}, 0.2, 1.0);
+    d.angular_velocity = 2000.0;
+    def.discs.push_back(d);
+    World world(def);
+    const double box2d_limit = 3.141592653589793 / 4;  // rad per step
+    ASSERT_GT(2000.0 / def.rate, 5 * box2d_limit);
+    for (int k = 1; k <= 480; ++k) {
+        world.step();
+        const DiscState& s = world.discs()[0];
+        ASSERT_EQ(s.angular_velocity, 2000.0);
+        ASSERT_NEAR(s.angle, 2000.0 * world.time(), 1e-12 * 2000.0 * world.time()) << k;
+    }
+}
+
 }  // namespace
 }  // namespace discreel::physics
