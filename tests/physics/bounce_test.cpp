@@ -89,7 +89,7 @@ TEST(Bounce, FreeFlightFollowsTheParabolaAndKeepsItsSpin) {
 
 // Box2D v3.2 clamps rotation to pi / 4 (an eighth of a turn) per step; angles here are
 // integrated and never limited, so 2 000 rad/s (4.2 rad per 480 Hz step) is kept exactly.
-TEST(Bounce, SpinOfMoreThanAQuarterTurnPerStepIsKept) {
+TEST(Bounce, SpinBeyondBox2DsPerStepClampIsKept) {
     WorldDef def;
     DiscDef d = disc({1, 2}, {0, 0}, 0.2, 1.0);
     d.angular_velocity = 2000.0;
