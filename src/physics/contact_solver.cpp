@@ -1,8 +1,8 @@
 // Resting contact. Contact impulses here stand for forces spread over the substep (gravity,
 // weight of a pile, friction while sliding), so, like gravity, an impulse dv moves a body by
 // dv h / 2 within the substep: positions advance by the mean of the substep's start and end
-// velocities. A disc resting on the floor then ends every substep exactly where it began with
-// zero velocity, and a free disc follows the exact parabola.
+// velocities. A disc resting on the floor then ends every substep where it began (to the
+// rounding of the rows' floats, below), and a free disc follows the exact parabola.
 //
 // The normal row therefore constrains the displacement velocity w = (v_begin + v) / 2 + shift / h
 // so that the gap at the end of the substep is not negative. It is linearised around where the
@@ -14,17 +14,25 @@
 // Only the end velocity v changes while iterating (w moves by half of any change), so the row
 // is written as a bound on it. The iterations only read and write velocities, so they run on a
 // compact copy: one row per contact with everything constant over the substep folded in
-// (normal, masses, bound), and one small velocity record per body. That keeps the hot loop
-// inside a few cache lines per contact, even for 10 000 discs.
+// (normal, masses, bound), and one small record per body. That keeps the hot loop inside a
+// few cache lines per contact, even for 10 000 discs.
+//
+// The copy is in single precision, as Box2D's solver is, but only for what the iterations
+// change: each body's record holds the change of its velocity (zero at the start), and each
+// row has its bodies' start velocities folded into its bounds, in doubles, when it is built.
+// So the floats carry a pile's contact impulses, not its falling speed; positions and
+// velocities stay doubles, and a body no row pushes keeps its velocity bit for bit. Half the
+// bytes of doubles and twice the lanes per instruction took about 40 % off the iterations'
+// time at N = 10 000 (docs/physics-speed.md).
 //
 // Rows are solved grouped by colour, no two rows of a colour sharing a disc (greedy colouring
 // of the broad phase's whole pair list, redone when it is rebuilt, as Box2D's constraint graph
 // does): in active order consecutive rows share their first disc, so each row had to wait for
 // the previous one's velocity update; within a colour they are independent, so they are solved
-// four at a time in the lanes of an AVX register (two SSE registers on a CPU without AVX2), with
-// the same arithmetic per lane as one at a time. An immovable body (wall, peg, held disc) is
-// never changed by a row, so each of its rows reads it from a private copy instead of chaining
-// every floor row through one record.
+// eight at a time in the lanes of an AVX register (two SSE registers on a CPU without AVX2),
+// with the same arithmetic per lane as one at a time. An immovable body (wall, peg, held disc)
+// is never changed by a row, so each of its rows reads it from a private copy instead of
+// chaining every floor row through one record.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -48,27 +56,52 @@ inline void ContactSolver::transpose(const Lanes& r0, const Lanes& r1, const Lan
 }
 
 // Gathers the velocity records of one end of a block's rows into lanes, and scatters them back:
-// a 4x4 transpose of whole records, each read and written with one access of its own size
-// (fewer instructions than gathering the lanes one double at a time).
-inline void ContactSolver::load(const std::uint32_t (&records)[width], Lanes& x, Lanes& y,
-                                Lanes& w) const {
-    Lanes unused;  // inlined: the compiler drops the shuffles that only feed it
-    transpose(velocities_[records[0]].packed, velocities_[records[1]].packed,
-              velocities_[records[2]].packed, velocities_[records[3]].packed, x, y, w, unused);
+// records l and l + 4 share a register, and an in-lane 4x4 transpose of each half turns eight
+// records into four vectors of eight lanes; each record is read and written with one access of
+// its own size.
+inline void ContactSolver::load(const std::uint32_t (&records)[width], Floats& x, Floats& y,
+                                Floats& u, Floats& inv_mass) const {
+    const Velocity* const v = velocities_.data();
+    const Floats r04 = __builtin_shufflevector(v[records[0]].packed, v[records[4]].packed, 0, 1,
+                                               2, 3, 4, 5, 6, 7);
+    const Floats r15 = __builtin_shufflevector(v[records[1]].packed, v[records[5]].packed, 0, 1,
+                                               2, 3, 4, 5, 6, 7);
+    const Floats r26 = __builtin_shufflevector(v[records[2]].packed, v[records[6]].packed, 0, 1,
+                                               2, 3, 4, 5, 6, 7);
+    const Floats r37 = __builtin_shufflevector(v[records[3]].packed, v[records[7]].packed, 0, 1,
+                                               2, 3, 4, 5, 6, 7);
+    const Floats xy01 = __builtin_shufflevector(r04, r15, 0, 8, 1, 9, 4, 12, 5, 13);
+    const Floats uw01 = __builtin_shufflevector(r04, r15, 2, 10, 3, 11, 6, 14, 7, 15);
+    const Floats xy23 = __builtin_shufflevector(r26, r37, 0, 8, 1, 9, 4, 12, 5, 13);
+    const Floats uw23 = __builtin_shufflevector(r26, r37, 2, 10, 3, 11, 6, 14, 7, 15);
+    x = __builtin_shufflevector(xy01, xy23, 0, 1, 8, 9, 4, 5, 12, 13);
+    y = __builtin_shufflevector(xy01, xy23, 2, 3, 10, 11, 6, 7, 14, 15);
+    u = __builtin_shufflevector(uw01, uw23, 0, 1, 8, 9, 4, 5, 12, 13);
+    inv_mass = __builtin_shufflevector(uw01, uw23, 2, 3, 10, 11, 6, 7, 14, 15);
 }
 
-inline void ContactSolver::store(const std::uint32_t (&records)[width], const Lanes& x,
-                                 const Lanes& y, const Lanes& w) {
+inline void ContactSolver::store(const std::uint32_t (&records)[width], const Floats& x,
+                                 const Floats& y, const Floats& u, const Floats& inv_mass) {
     // The lanes of a block share no record but the scratch one: a colour shares no disc and
     // immovable ends have private copies; empty lanes all point at the scratch record, and all
-    // store back the zeros it holds. The unused lane of a record gets whatever is at hand.
-    const Lanes xy02 = __builtin_shufflevector(x, y, 0, 4, 2, 6);
-    const Lanes xy13 = __builtin_shufflevector(x, y, 1, 5, 3, 7);
-    const Lanes w_swapped = __builtin_shufflevector(w, w, 1, 0, 3, 2);
-    velocities_[records[0]].packed = __builtin_shufflevector(xy02, w, 0, 1, 4, 5);
-    velocities_[records[1]].packed = __builtin_shufflevector(xy13, w_swapped, 0, 1, 4, 5);
-    velocities_[records[2]].packed = __builtin_shufflevector(xy02, w, 2, 3, 6, 7);
-    velocities_[records[3]].packed = __builtin_shufflevector(xy13, w_swapped, 2, 3, 6, 7);
+    // store back the zeros it holds.
+    Velocity* const v = velocities_.data();
+    const Floats xy01 = __builtin_shufflevector(x, y, 0, 8, 1, 9, 4, 12, 5, 13);
+    const Floats uw01 = __builtin_shufflevector(u, inv_mass, 0, 8, 1, 9, 4, 12, 5, 13);
+    const Floats xy23 = __builtin_shufflevector(x, y, 2, 10, 3, 11, 6, 14, 7, 15);
+    const Floats uw23 = __builtin_shufflevector(u, inv_mass, 2, 10, 3, 11, 6, 14, 7, 15);
+    const Floats r04 = __builtin_shufflevector(xy01, uw01, 0, 1, 8, 9, 4, 5, 12, 13);
+    const Floats r15 = __builtin_shufflevector(xy01, uw01, 2, 3, 10, 11, 6, 7, 14, 15);
+    const Floats r26 = __builtin_shufflevector(xy23, uw23, 0, 1, 8, 9, 4, 5, 12, 13);
+    const Floats r37 = __builtin_shufflevector(xy23, uw23, 2, 3, 10, 11, 6, 7, 14, 15);
+    v[records[0]].packed = __builtin_shufflevector(r04, r04, 0, 1, 2, 3);
+    v[records[1]].packed = __builtin_shufflevector(r15, r15, 0, 1, 2, 3);
+    v[records[2]].packed = __builtin_shufflevector(r26, r26, 0, 1, 2, 3);
+    v[records[3]].packed = __builtin_shufflevector(r37, r37, 0, 1, 2, 3);
+    v[records[4]].packed = __builtin_shufflevector(r04, r04, 4, 5, 6, 7);
+    v[records[5]].packed = __builtin_shufflevector(r15, r15, 4, 5, 6, 7);
+    v[records[6]].packed = __builtin_shufflevector(r26, r26, 4, 5, 6, 7);
+    v[records[7]].packed = __builtin_shufflevector(r37, r37, 4, 5, 6, 7);
 }
 
 // Greedy colouring of the whole contact list, in pair order, redone only when the broad phase
@@ -95,16 +128,18 @@ void ContactSolver::colour_contacts(const Substep& s) {
 void ContactSolver::compute_masses(const Substep& s) {
     massed_contacts_ = s.contacts_version;
     massed_bodies_ = s.bodies_version;
+    double heaviest = 0.0;
+    for (std::size_t i = 0; i < s.disc_count; ++i) heaviest = std::max(heaviest, s.bodies[i].mass);
+    mass_unit_ = heaviest > 0.0 ? std::ldexp(1.0, std::ilogb(heaviest)) : 1.0;
     masses_.resize(s.contacts.size());
     for (std::size_t i = 0; i < s.contacts.size(); ++i) {
         const Body& a = s.bodies[s.contacts[i].a];
         const Body& b = s.bodies[s.contacts[i].b];
-        // Two immovable bodies give infinities here; they get no row. The angular terms are
-        // r times the rows' spin factor r / I, not tangent_mass_inverse's (r r) / I: the two
-        // can differ in the last bit, and the determinism hash pins this rounding.
-        masses_[i] = Masses{1.0 / normal_mass_inverse(a, b),
-                            1.0 / (a.inv_mass + b.inv_mass + a.radius * (a.radius * a.inv_inertia) +
-                                   b.radius * (b.radius * b.inv_inertia))};
+        // Two immovable bodies give infinities here; they get no row. A disc's r^2 / I is
+        // 2 / m (I = m r^2 / 2), which is how the iterations turn a tangential impulse into spin.
+        const double inverse = normal_mass_inverse(a, b);
+        masses_[i] = Masses{static_cast<float>(1.0 / (inverse * mass_unit_)),
+                            static_cast<float>(1.0 / (3.0 * inverse * mass_unit_))};
     }
 }
 
@@ -139,15 +174,14 @@ void ContactSolver::solve(Substep& s, int iterations) {
         b.v_begin = b.v;
         b.omega_begin = b.omega;
         if (b.falls()) b.v += fall;
-        velocities[i] = Velocity{{b.v.x(), b.v.y(), b.omega, 0.0}};
+        velocities[i] = Velocity{{0.0F, 0.0F, 0.0F, static_cast<float>(b.inv_mass * mass_unit_)}};
         // Where it ends up without contact forces: the integration at the bottom, with v.
         const V2 end = b.x + (b.v_begin + b.v) * half_h + b.shift;
         predicted[i] = Predicted{{end.x(), end.y(), b.v_begin.x(), b.v_begin.y()},
-                                 {b.radius, b.inv_mass, b.radius * b.inv_inertia, 0.0}};
+                                 {b.v.x(), b.v.y(), b.omega, b.radius}};
     }
-    for (std::size_t k = 0; k < copied_.size(); ++k) {
-        velocities_[s.bodies.size() + k] = velocities_[copied_[k]];
-    }
+    // Immovable ends change by nothing: their copies are all zeros, like the scratch record.
+    for (std::size_t k = 0; k < copied_.size(); ++k) velocities_[s.bodies.size() + k] = Velocity{};
 
     // Lanes: each colour starts on a block, and a row of the overflow group (whose rows may
     // share a disc) gets a block to itself.
@@ -188,10 +222,10 @@ void ContactSolver::solve(Substep& s, int iterations) {
         RowBlock& r = rows_[slot / width];
         const unsigned l = slot % width;
         r.a[l] = r.b[l] = scratch;
-        for (Lanes* field : {&r.normal_x, &r.normal_y, &r.bias, &r.normal_mass, &r.tangent_mass,
-                             &r.friction, &r.inv_mass_a, &r.inv_mass_b, &r.radius_a, &r.radius_b,
-                             &r.spin_a, &r.spin_b, &r.normal_impulse, &r.tangent_impulse}) {
-            (*field)[l] = 0.0;
+        for (Floats* field : {&r.normal_x, &r.normal_y, &r.bias, &r.slip, &r.normal_mass,
+                              &r.tangent_mass, &r.friction, &r.normal_impulse,
+                              &r.tangent_impulse}) {
+            (*field)[l] = 0.0F;
         }
     }
 
@@ -199,158 +233,181 @@ void ContactSolver::solve(Substep& s, int iterations) {
 
     // In contact order: the contacts are written in one forward sweep (in lane order they
     // were a scattered write each), and each row's two impulses lie side by side in its block.
+    const double unit = mass_unit_;
     for (std::size_t k = 0; k < pending_.size(); ++k) {
         const std::uint32_t slot = lane_of_[k];
         const RowBlock& r = rows_[slot / width];
         Contact& c = s.contacts[pending_[k].contact];
-        c.normal_impulse = r.normal_impulse[slot % width];
-        c.tangent_impulse = r.tangent_impulse[slot % width];
-        c.step_impulse += r.normal_impulse[slot % width];
+        c.normal_impulse = static_cast<double>(r.normal_impulse[slot % width]) * unit;
+        c.tangent_impulse = static_cast<double>(r.tangent_impulse[slot % width]) * unit;
+        c.step_impulse += c.normal_impulse;
     }
+    // A body no row changed gets back exactly the velocity it had (corrections of zero).
     const std::size_t disc_count = s.disc_count;
     for (std::size_t i = 0; i < disc_count; ++i) {
         Body& b = bodies[i];
         if (!b.moves()) continue;
-        b.v = velocities[i].v();
-        b.omega = velocities[i].omega();
+        const Quad dv = velocities[i].packed;
+        b.v += V2(static_cast<double>(dv[0]), static_cast<double>(dv[1]));
+        // (Only a tangential impulse changes r omega; a disc no row touched may have r = 0.)
+        b.omega += dv[2] == 0.0F ? 0.0 : static_cast<double>(dv[2]) / b.radius;
         b.x += (b.v_begin + b.v) * half_h + b.shift;
         b.angle += (b.omega_begin + b.omega) * half_h + b.turn;
     }
 }
 
-// A block at a time, in lane order: its four rows' geometry and bias side by side in lanes (the
-// same IEEE operations per lane as disc_disc and one row at a time), and each of its fields
-// written once, whole. Rows against a wall take their normal and gap from disc_feature, a lane
-// at a time.
+// A block at a time, in lane order, half a block (four rows) at a time in double lanes: the
+// rows' geometry and bias side by side (the same IEEE operations per lane as disc_disc and one
+// row at a time), then every field of the block rounded to floats and written once, whole. Rows
+// against a wall take their normal and gap from disc_feature, a lane at a time. The bodies'
+// start velocities are folded into the constants here, in doubles, so that the floats of the
+// iterations carry only the corrections (a pile's contact impulses, not its falling speed).
 [[gnu::target_clones("avx2", "default")]] void ContactSolver::build_rows(const Substep& s,
                                                                         double inv_h) {
     const Lanes zero = {};
     const Lanes one = zero + 1.0;
+    const double per_unit = 1.0 / mass_unit_;  // exact: a power of two
+    using Halves = float __attribute__((vector_size(16)));
+    // Writes through a reference: returning a vector would change the baseline build's ABI.
+    const auto join = [](Floats& field, const Lanes& first, const Lanes& second) {
+        field = __builtin_shufflevector(__builtin_convertvector(first, Halves),
+                                        __builtin_convertvector(second, Halves), 0, 1, 2, 3, 4,
+                                        5, 6, 7);
+    };
     for (std::size_t block = 0; block < rows_.size(); ++block) {
         RowBlock& r = rows_[block];
-        const Contact* contact[width];
-        const Predicted* a[width];
-        const Predicted* b[width];
-        Lanes allowed_overlap, restitution;
-        for (unsigned l = 0; l < width; ++l) {
-            const Pending& p = pending_[pending_of_lane_[block * width + l]];
-            const Contact& c = s.contacts[p.contact];
-            contact[l] = &c;
-            a[l] = &predicted_[c.a];
-            b[l] = &predicted_[c.b];
-            r.a[l] = p.a;
-            r.b[l] = p.b;
-            r.normal_mass[l] = masses_[p.contact].normal;
-            r.tangent_mass[l] = masses_[p.contact].tangent;
-            r.friction[l] = c.friction;
-            r.normal_impulse[l] = c.normal_impulse;
-            r.tangent_impulse[l] = c.tangent_impulse;
-            allowed_overlap[l] = std::min(c.gap, 0.0);
-            restitution[l] = c.restitution;
-        }
-        Lanes ax, ay, a_begin_x, a_begin_y, bx, by, b_begin_x, b_begin_y, unused;
-        transpose(a[0]->motion, a[1]->motion, a[2]->motion, a[3]->motion, ax, ay, a_begin_x,
-                  a_begin_y);
-        transpose(b[0]->motion, b[1]->motion, b[2]->motion, b[3]->motion, bx, by, b_begin_x,
-                  b_begin_y);
-        transpose(a[0]->mass, a[1]->mass, a[2]->mass, a[3]->mass, r.radius_a, r.inv_mass_a,
-                  r.spin_a, unused);
-        transpose(b[0]->mass, b[1]->mass, b[2]->mass, b[3]->mass, r.radius_b, r.inv_mass_b,
-                  r.spin_b, unused);
-        Lanes avx, avy, bvx, bvy;
-        load(r.a, avx, avy, unused);
-        load(r.b, bvx, bvy, unused);
-
-        const Lanes dx = ax - bx;
-        const Lanes dy = ay - by;
-        const Lanes squared = dx * dx + dy * dy;
-        Lanes dist;
-        for (unsigned l = 0; l < width; ++l) dist[l] = std::sqrt(squared[l]);
-        // Coincident centres have no direction; disc_disc's fixed one.
-        const auto apart = dist > zero;
-        Lanes normal_x = apart ? dx / dist : zero;
-        Lanes normal_y = apart ? dy / dist : one;
-        Lanes gap = dist - r.radius_a - r.radius_b;
-        for (unsigned l = 0; l < width; ++l) {
-            if (const Feature* f = s.feature_of(*contact[l])) {
-                const Proximity end =
-                    disc_feature(V2(a[l]->motion[0], a[l]->motion[1]), a[l]->mass[0], *f);
-                normal_x[l] = end.normal.x();
-                normal_y[l] = end.normal.y();
-                gap[l] = end.gap;
+        Lanes normal_x[2], normal_y[2], bias[2], slip[2];
+        for (unsigned part = 0; part < 2; ++part) {
+            const Contact* contact[half];
+            const Predicted* a[half];
+            const Predicted* b[half];
+            Lanes allowed_overlap, restitution;
+            for (unsigned l = 0; l < half; ++l) {
+                const unsigned lane = part * half + l;
+                const Pending& p = pending_[pending_of_lane_[block * width + lane]];
+                const Contact& c = s.contacts[p.contact];
+                contact[l] = &c;
+                a[l] = &predicted_[c.a];
+                b[l] = &predicted_[c.b];
+                r.a[lane] = p.a;
+                r.b[lane] = p.b;
+                r.normal_mass[lane] = masses_[p.contact].normal;
+                r.tangent_mass[lane] = masses_[p.contact].tangent;
+                r.friction[lane] = static_cast<float>(c.friction);
+                r.normal_impulse[lane] = static_cast<float>(c.normal_impulse * per_unit);
+                r.tangent_impulse[lane] = static_cast<float>(c.tangent_impulse * per_unit);
+                allowed_overlap[l] = std::min(c.gap, 0.0);
+                restitution[l] = c.restitution;
             }
+            Lanes ax, ay, a_begin_x, a_begin_y, bx, by, b_begin_x, b_begin_y;
+            Lanes avx, avy, a_omega, a_radius, bvx, bvy, b_omega, b_radius;
+            transpose(a[0]->motion, a[1]->motion, a[2]->motion, a[3]->motion, ax, ay, a_begin_x,
+                      a_begin_y);
+            transpose(b[0]->motion, b[1]->motion, b[2]->motion, b[3]->motion, bx, by, b_begin_x,
+                      b_begin_y);
+            transpose(a[0]->now, a[1]->now, a[2]->now, a[3]->now, avx, avy, a_omega, a_radius);
+            transpose(b[0]->now, b[1]->now, b[2]->now, b[3]->now, bvx, bvy, b_omega, b_radius);
+
+            const Lanes dx = ax - bx;
+            const Lanes dy = ay - by;
+            const Lanes squared = dx * dx + dy * dy;
+            Lanes dist;
+            for (unsigned l = 0; l < half; ++l) dist[l] = std::sqrt(squared[l]);
+            // Coincident centres have no direction; disc_disc's fixed one.
+            const auto apart = dist > zero;
+            Lanes nx = apart ? dx / dist : zero;
+            Lanes ny = apart ? dy / dist : one;
+            Lanes gap = dist - a_radius - b_radius;
+            for (unsigned l = 0; l < half; ++l) {
+                if (const Feature* f = s.feature_of(*contact[l])) {
+                    const Proximity end = disc_feature(V2(a[l]->motion[0], a[l]->motion[1]),
+                                                       a[l]->now[3], *f);
+                    nx[l] = end.normal.x();
+                    ny[l] = end.normal.y();
+                    gap[l] = end.gap;
+                }
+            }
+            // The normal row bounds the end velocity n.(v_a - v_b) from below so that the gap
+            // at the end is no smaller than allowed: with positions advancing by the mean
+            // velocity, a change dv in it moves the gap by dv h / 2, hence the factor 2.
+            const Lanes dvx = avx - bvx;
+            const Lanes dvy = avy - bvy;
+            const Lanes normal_speed = nx * dvx + ny * dvy;
+            const Lanes close = normal_speed - 2.0 * (gap - allowed_overlap) * inv_h;
+            // Never ask for more than a restitution bounce: the pair must not leave faster
+            // than e times its approach speed (after gravity, forces only ever stop a pair).
+            // Overlap that this cannot prevent is removed by PositionProjector, without
+            // creating velocity.
+            const Lanes approach = nx * (a_begin_x - b_begin_x) + ny * (a_begin_y - b_begin_y);
+            const Lanes bounce = -restitution * approach;
+            const Lanes leave = zero < bounce ? bounce : zero;  // std::max(0.0, bounce)
+            // As bounds on the corrections: less the start velocities' share.
+            bias[part] = (leave < close ? leave : close) - normal_speed;  // std::min
+            slip[part] = (-ny * dvx + nx * dvy) - a_radius * a_omega - b_radius * b_omega;
+            normal_x[part] = nx;
+            normal_y[part] = ny;
         }
-        // The normal row bounds the end velocity n.(v_a - v_b) from below so that the gap at
-        // the end is no smaller than allowed: with positions advancing by the mean velocity,
-        // a change dv in it moves the gap by dv h / 2, hence the factor 2.
-        const Lanes close = (normal_x * (avx - bvx) + normal_y * (avy - bvy)) -
-                            2.0 * (gap - allowed_overlap) * inv_h;
-        // Never ask for more than a restitution bounce: the pair must not leave faster than
-        // e times its approach speed (after gravity, forces only ever stop a pair). Overlap that
-        // this cannot prevent is removed by PositionProjector, without creating velocity.
-        const Lanes approach =
-            normal_x * (a_begin_x - b_begin_x) + normal_y * (a_begin_y - b_begin_y);
-        const Lanes bounce = -restitution * approach;
-        const Lanes leave = zero < bounce ? bounce : zero;  // std::max(0.0, bounce)
-        r.bias = leave < close ? leave : close;             // std::min(close, leave)
-        r.normal_x = normal_x;
-        r.normal_y = normal_y;
+        join(r.normal_x, normal_x[0], normal_x[1]);
+        join(r.normal_y, normal_y[0], normal_y[1]);
+        join(r.bias, bias[0], bias[1]);
+        join(r.slip, slip[0], slip[1]);
     }
 }
 
-// Warm start, then sequential impulses, a block of rows at a time. A normal impulse passes
-// through the centres, so only tangential impulses turn the discs. Each lane does the same IEEE
-// operations in the same order in both builds (and no FMA: -ffp-contract=off), so the AVX2 build
-// gives the same bits as the baseline one; it only does four rows per instruction instead of two.
+// Warm start, then sequential impulses, a block of rows at a time, on the velocity corrections
+// (see Velocity). A normal impulse passes through the centres, so only tangential impulses turn
+// the discs; for a disc (I = m r^2 / 2) an impulse j at the rim changes r omega by 2 j / m. Each
+// lane does the same IEEE operations in the same order in both builds (and no FMA:
+// -ffp-contract=off), so the AVX2 build gives the same bits as the baseline one; it only does
+// eight rows per instruction instead of four.
 [[gnu::target_clones("avx2", "default")]] void ContactSolver::solve_rows(int iterations) {
     for (const RowBlock& r : rows_) {
-        Lanes avx, avy, aw, bvx, bvy, bw;
-        load(r.a, avx, avy, aw);
-        load(r.b, bvx, bvy, bw);
-        const Lanes px = r.normal_x * r.normal_impulse - r.normal_y * r.tangent_impulse;
-        const Lanes py = r.normal_y * r.normal_impulse + r.normal_x * r.tangent_impulse;
-        avx += px * r.inv_mass_a;
-        avy += py * r.inv_mass_a;
-        bvx -= px * r.inv_mass_b;
-        bvy -= py * r.inv_mass_b;
-        aw -= r.spin_a * r.tangent_impulse;
-        bw -= r.spin_b * r.tangent_impulse;
-        store(r.a, avx, avy, aw);
-        store(r.b, bvx, bvy, bw);
+        Floats ax, ay, au, a_inv, bx, by, bu, b_inv;
+        load(r.a, ax, ay, au, a_inv);
+        load(r.b, bx, by, bu, b_inv);
+        const Floats px = r.normal_x * r.normal_impulse - r.normal_y * r.tangent_impulse;
+        const Floats py = r.normal_y * r.normal_impulse + r.normal_x * r.tangent_impulse;
+        ax += px * a_inv;
+        ay += py * a_inv;
+        bx -= px * b_inv;
+        by -= py * b_inv;
+        au -= (a_inv + a_inv) * r.tangent_impulse;
+        bu -= (b_inv + b_inv) * r.tangent_impulse;
+        store(r.a, ax, ay, au, a_inv);
+        store(r.b, bx, by, bu, b_inv);
     }
     // Both rows of a contact are solved from the same velocities: a normal impulse passes
     // through the centres along n, so it leaves the tangential relative velocity unchanged and
     // the friction row need not wait for it. One update per body per contact, and a dependency
     // chain half as long as solving the rows one after the other.
-    const Lanes zero = {};
+    const Floats zero = {};
     for (int it = 0; it < iterations; ++it) {
         for (RowBlock& r : rows_) {
-            Lanes avx, avy, aw, bvx, bvy, bw;
-            load(r.a, avx, avy, aw);
-            load(r.b, bvx, bvy, bw);
-            const Lanes dvx = avx - bvx;
-            const Lanes dvy = avy - bvy;
+            Floats ax, ay, au, a_inv, bx, by, bu, b_inv;
+            load(r.a, ax, ay, au, a_inv);
+            load(r.b, bx, by, bu, b_inv);
+            const Floats dvx = ax - bx;
+            const Floats dvy = ay - by;
             // n = (nx, ny), t = perp(n) = (-ny, nx).
-            const Lanes vn = r.normal_x * dvx + r.normal_y * dvy;
-            const Lanes vt = (-r.normal_y * dvx + r.normal_x * dvy) - r.radius_a * aw -
-                             r.radius_b * bw;
-            const Lanes jn_free = r.normal_impulse + (r.bias - vn) * r.normal_mass;
-            const Lanes jn = jn_free < zero ? zero : jn_free;
-            const Lanes limit = r.friction * jn;
-            const Lanes jt_free = r.tangent_impulse - vt * r.tangent_mass;
-            const Lanes jt = jt_free < -limit ? -limit : (limit < jt_free ? limit : jt_free);
-            const Lanes dn = jn - r.normal_impulse;
-            const Lanes dt = jt - r.tangent_impulse;
-            const Lanes px = r.normal_x * dn - r.normal_y * dt;
-            const Lanes py = r.normal_y * dn + r.normal_x * dt;
-            avx += px * r.inv_mass_a;
-            avy += py * r.inv_mass_a;
-            bvx -= px * r.inv_mass_b;
-            bvy -= py * r.inv_mass_b;
-            aw -= r.spin_a * dt;
-            bw -= r.spin_b * dt;
-            store(r.a, avx, avy, aw);
-            store(r.b, bvx, bvy, bw);
+            const Floats vn = r.normal_x * dvx + r.normal_y * dvy;
+            const Floats vt = ((-r.normal_y * dvx + r.normal_x * dvy) - au - bu) + r.slip;
+            const Floats jn_free = r.normal_impulse + (r.bias - vn) * r.normal_mass;
+            const Floats jn = jn_free < zero ? zero : jn_free;
+            const Floats limit = r.friction * jn;
+            const Floats jt_free = r.tangent_impulse - vt * r.tangent_mass;
+            const Floats jt = jt_free < -limit ? -limit : (limit < jt_free ? limit : jt_free);
+            const Floats dn = jn - r.normal_impulse;
+            const Floats dt = jt - r.tangent_impulse;
+            const Floats px = r.normal_x * dn - r.normal_y * dt;
+            const Floats py = r.normal_y * dn + r.normal_x * dt;
+            ax += px * a_inv;
+            ay += py * a_inv;
+            bx -= px * b_inv;
+            by -= py * b_inv;
+            au -= (a_inv + a_inv) * dt;
+            bu -= (b_inv + b_inv) * dt;
+            store(r.a, ax, ay, au, a_inv);
+            store(r.b, bx, by, bu, b_inv);
             r.normal_impulse = jn;
             r.tangent_impulse = jt;
         }

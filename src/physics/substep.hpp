@@ -176,42 +176,44 @@ public:
     void solve(Substep& s, int iterations);
 
 private:
-    // Four doubles, one per row of a block (GCC vector extension): one AVX register in the
-    // AVX2 build of solve_rows, two SSE registers in the baseline one. Where this file is not
-    // built for AVX, GCC aligns the type to 16 bytes only, so the structs holding it ask for
-    // the 32 that AVX loads need.
+    // Four doubles (GCC vector extension): the row build's geometry, half a block at a time, in
+    // double precision. Where this file is not built for AVX, GCC aligns the type to 16 bytes
+    // only, so the structs holding it ask for the 32 that AVX loads need.
     using Lanes = double __attribute__((vector_size(32)));
-    static constexpr unsigned width = 4;  // rows per block, the lanes of Lanes
-    // A body's velocity as the rows see it: v.x, v.y (m/s), omega (rad/s) and an unused lane,
-    // so that a block gathers each of its records with one aligned load (see load()).
-    struct alignas(32) Velocity {
-        Lanes packed = {};
-
-        V2 v() const { return {packed[0], packed[1]}; }
-        double omega() const { return packed[2]; }
+    // Eight floats, one per row of a block: one AVX register in the AVX2 build of solve_rows,
+    // two SSE registers in the baseline one.
+    using Floats = float __attribute__((vector_size(32)));
+    using Quad = float __attribute__((vector_size(16)));  // one velocity record
+    static constexpr unsigned width = 8;  // rows per block, the lanes of Floats
+    static constexpr unsigned half = 4;   // the lanes of Lanes
+    // What the iterations change of a body: the change of its velocity over the iterations,
+    // dv.x, dv.y (m/s) and r d(omega) (m/s), with its inverse mass in mass units (see
+    // mass_unit_), so that a block gathers each of its records with one aligned load (see
+    // load()). The velocities themselves stay in the bodies, in doubles; a row folds its bodies'
+    // start velocities into its constants, in doubles, so the floats carry only corrections.
+    struct alignas(16) Velocity {
+        Quad packed = {};
     };
-    // Four contacts of one colour (they share no moving body, so solving them side by side gives
+    // Eight contacts of one colour (they share no moving body, so solving them side by side gives
     // the same result as one after the other), with what stays constant over the substep
-    // precomputed. A lane without a contact points both ends at a scratch record, with zero
-    // coefficients, so it computes zero impulses.
+    // precomputed in doubles and rounded once. A lane without a contact points both ends at a
+    // scratch record, with zero coefficients, so it computes zero impulses.
     struct alignas(32) RowBlock {
         std::uint32_t a[width] = {}, b[width] = {};  // indices into velocities_
-        Lanes normal_x = {}, normal_y = {};  // unit, from b towards a, at the predicted end
-        Lanes bias = {};               // m/s, lower bound on n.(v_a - v_b)
-        Lanes normal_mass = {};        // kg
-        Lanes tangent_mass = {};       // kg
-        Lanes friction = {};
-        Lanes inv_mass_a = {}, inv_mass_b = {};  // 1/kg
-        Lanes radius_a = {}, radius_b = {};      // m
-        Lanes spin_a = {}, spin_b = {};          // r / I, 1/(kg m)
-        Lanes normal_impulse = {};     // N s, accumulated
-        Lanes tangent_impulse = {};    // N s, accumulated
+        Floats normal_x = {}, normal_y = {};  // unit, from b towards a, at the predicted end
+        Floats bias = {};            // m/s, lower bound on n.(dv_a - dv_b)
+        Floats slip = {};            // m/s, the contact points' tangential velocity at the start
+        Floats normal_mass = {};     // mass units
+        Floats tangent_mass = {};    // mass units
+        Floats friction = {};
+        Floats normal_impulse = {};  // mass units m/s, accumulated
+        Floats tangent_impulse = {}; // mass units m/s, accumulated
     };
-    // What the rows need of a body, in one cache line of two records that a block gathers with
-    // a transpose each (see build_rows()).
+    // What the row build needs of a body, in one cache line of two records that a half block
+    // gathers with a transpose each (see build_rows()).
     struct alignas(32) Predicted {
         Lanes motion = {};  // end x, y (m, where it ends up without contact forces); v_begin x, y
-        Lanes mass = {};    // radius (m), inverse mass (1/kg), spin factor r / I (1/(kg m)), unused
+        Lanes now = {};     // v x, y (m/s, after gravity), omega (rad/s), radius (m)
     };
     // A contact to solve: its velocity records and colour (see contact_solver.cpp).
     struct Pending {
@@ -235,10 +237,10 @@ private:
                                                  const Lanes& r2, const Lanes& r3, Lanes& c0,
                                                  Lanes& c1, Lanes& c2, Lanes& c3);
     // Inlined, so that they are built for the caller's instruction set.
-    [[gnu::always_inline]] void load(const std::uint32_t (&records)[width], Lanes& x, Lanes& y,
-                                     Lanes& w) const;
-    [[gnu::always_inline]] void store(const std::uint32_t (&records)[width], const Lanes& x,
-                                      const Lanes& y, const Lanes& w);
+    [[gnu::always_inline]] void load(const std::uint32_t (&records)[width], Floats& x,
+                                     Floats& y, Floats& u, Floats& inv_mass) const;
+    [[gnu::always_inline]] void store(const std::uint32_t (&records)[width], const Floats& x,
+                                      const Floats& y, const Floats& u, const Floats& inv_mass);
 
     std::vector<Predicted> predicted_;  // per body
     // Per body, then one per row end on an immovable body, then the empty lanes' scratch one.
@@ -252,11 +254,15 @@ private:
     // What a contact's rows need of its bodies' masses, which only change with the contact
     // list or a throw: two divisions per row less in every substep.
     struct Masses {
-        double normal = 0.0;           // kg
-        double tangent = 0.0;          // kg
+        float normal = 0.0F;           // mass units
+        float tangent = 0.0F;          // mass units
     };
     void compute_masses(const Substep& s);
     std::vector<Masses> masses_;       // per contact
+    // The rows' masses and impulses are in units of this many kg, a power of two near the
+    // heaviest moving disc's mass (so scaling by it is exact), which keeps them far inside the
+    // range of a float whatever the masses of a scene.
+    double mass_unit_ = 1.0;
     std::uint64_t massed_contacts_ = ~std::uint64_t{0};  // the versions masses_ is for
     std::uint64_t massed_bodies_ = ~std::uint64_t{0};
     std::vector<std::uint64_t> colours_used_;  // per disc, bit c: in a row of colour c
