@@ -1,11 +1,15 @@
 // The pile scene: N discs of radius 0.5 and density 1 on a grid with small seeded velocities,
-// in a box of side 1.4 ceil(sqrt N) m, g = -9.8, friction 0.6, restitution 0.5, at 480 Hz.
+// in a box of side 1.4 ceil(sqrt N) m, g = -9.8, friction 0.6, restitution 0.5, at 480 Hz
+// unless set otherwise (below).
 // Prints CPU time per simulated second (over the whole run, and second by second: the pile
 // costs little while it falls and most once it has landed), one thread, and the deepest overlap
 // at the end and after any step of the last simulated second.
 //     physics_bench [seconds=5] [N...]
-//     DISCREEL_RATE=r      steps per second (default 480)
-//     DISCREEL_SUBSTEPS=k  substeps per step (default: the world's, the fewest with h <= 1/480 s)
+//     DISCREEL_RATE=r        steps per second (default 480)
+//     DISCREEL_SUBSTEPS=k    substeps per step (default: the world's, the fewest with h <= 1/480 s)
+//     DISCREEL_ITERATIONS=i  resting-contact iterations per substep (default: the world's, 3)
+//     DISCREEL_SEED=s        seed of the initial velocities (default 12345)
+// The same settings are physics.rate, physics.substeps and physics.iterations in a scene file.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -29,13 +33,21 @@ double uniform(std::uint64_t& state, double lo, double hi) {
     return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
 }
 
-physics::WorldDef pile(int n, int rate, int substeps) {
+struct Settings {
+    int rate = 480;
+    int substeps = 0;         // 0: the world's default
+    int iterations = physics::WorldDef{}.iterations;
+    std::uint64_t seed = 12345;
+};
+
+physics::WorldDef pile(int n, const Settings& settings) {
     const double r = 0.5, spacing = 1.4;
     const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
     physics::WorldDef def;
     def.gravity = {0, -9.8};
-    def.rate = rate;
-    def.substeps = substeps;
+    def.rate = settings.rate;
+    def.substeps = settings.substeps;
+    def.iterations = settings.iterations;
     physics::WallDef box;
     box.shape = physics::WallDef::Shape::box;
     box.a = {0, 0};
@@ -43,7 +55,7 @@ physics::WorldDef pile(int n, int rate, int substeps) {
     box.restitution = 0.5;
     box.friction = 0.6;
     def.walls.push_back(box);
-    std::uint64_t seed = 12345;
+    std::uint64_t seed = settings.seed;
     for (int k = 0; k < n; ++k) {
         physics::DiscDef d;
         d.position = {spacing * (0.5 + k % columns), spacing * (0.5 + k / columns)};
@@ -65,20 +77,37 @@ int main(int argc, char** argv) {
     for (int k = 2; k < argc; ++k) sizes.push_back(std::atoi(argv[k]));
     if (sizes.empty()) sizes = {100, 1000, 10000};
 
-    const char* substeps_env = std::getenv("DISCREEL_SUBSTEPS");
-    const int substeps = substeps_env ? std::atoi(substeps_env) : 0;  // 0: the world's default
-    const char* rate_env = std::getenv("DISCREEL_RATE");
-    const int rate = rate_env ? std::atoi(rate_env) : 480;
-    if (rate <= 0 || substeps < 0 || !(seconds > 0.0)) {
-        std::fprintf(stderr, "physics_bench: seconds and DISCREEL_RATE must be positive, "
-                             "DISCREEL_SUBSTEPS not negative\n");
+    // An unset variable keeps the default; a set one must be a whole number in range.
+    const auto setting = [](const char* name, long long fallback, long long lowest) {
+        const char* text = std::getenv(name);
+        if (!text) return fallback;
+        char* end = nullptr;
+        const long long value = std::strtoll(text, &end, 10);
+        if (end == text || *end != '\0' || value < lowest) {
+            std::fprintf(stderr, "physics_bench: %s must be a whole number of at least %lld\n",
+                         name, lowest);
+            std::exit(2);
+        }
+        return value;
+    };
+    Settings settings;
+    settings.rate = static_cast<int>(setting("DISCREEL_RATE", settings.rate, 1));
+    settings.substeps = static_cast<int>(setting("DISCREEL_SUBSTEPS", settings.substeps, 0));
+    settings.iterations = static_cast<int>(setting("DISCREEL_ITERATIONS", settings.iterations, 1));
+    settings.seed = static_cast<std::uint64_t>(
+        setting("DISCREEL_SEED", static_cast<long long>(settings.seed), 0));
+    if (!(seconds > 0.0)) {
+        std::fprintf(stderr, "physics_bench: seconds must be positive\n");
         return 2;
     }
-    std::printf("pile scene, %.1f simulated s at %d Hz, one thread\n", seconds, rate);
+    std::printf("pile scene, %.1f simulated s at %d Hz, %d iterations, seed %llu, one thread\n",
+                seconds, settings.rate, settings.iterations,
+                static_cast<unsigned long long>(settings.seed));
     std::printf("%8s %9s %15s %15s %15s %9s   %s\n", "N", "substeps", "CPU ms / sim s",
                 "overlap at end", "worst, last s", "contacts", "CPU ms in each simulated second");
     for (const int n : sizes) {
-        physics::World world(pile(n, rate, substeps));
+        physics::World world(pile(n, settings));
+        const int rate = settings.rate;
         const auto steps = static_cast<std::int64_t>(std::llround(seconds * rate));
         // The overlap at one instant can be a lucky one (it moves by a factor of two within a
         // quarter of a second while a pile settles), so the worst over the last simulated

@@ -6,6 +6,8 @@ physics::WorldDef build_world(const scene::Scene& scene) {
     physics::WorldDef def;
     def.gravity = scene.physics.gravity;
     def.rate = scene.physics.rate;
+    def.substeps = scene.physics.substeps;
+    def.iterations = scene.physics.iterations;
     def.discs.reserve(scene.discs.size());
     for (const scene::Disc& d : scene.discs) {
         physics::DiscDef disc;

@@ -62,6 +62,12 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     out << "frames    " << timeline.frame_count << " at " << scene.video.fps << " fps ("
         << world.step_count() << " physics steps at " << scene.physics.rate << " Hz, t = "
         << world.time() << " s)\n";
+    const int substeps = world.substeps();
+    out << "solver    " << count_of(static_cast<std::size_t>(substeps), "substep", "substeps")
+        << " per step (1/" << scene.physics.rate * substeps << " s" << (substeps > 1 ? " each" : "")
+        << "), "
+        << count_of(static_cast<std::size_t>(scene.physics.iterations), "iteration", "iterations")
+        << " per substep\n";
     out << "contacts  " << contacts << " new contacts\n";
     out << "overlap   " << deepest.max_overlap << " m at most, " << 100 * deepest.max_overlap_ratio
         << " % of the smaller radius\n";

@@ -25,7 +25,6 @@ namespace {
 
 // Substeps are sized so that one lasts at most this long (documented in docs/physics.md).
 constexpr double longest_substep = 1.0 / 480.0;  // s
-constexpr int contact_iterations = 3;
 constexpr int projection_iterations = 2;
 
 V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
@@ -65,6 +64,7 @@ struct World::Impl {
           disc_count(def.discs.size()),
           features(detail::features_of(def.walls)),
           throws(def.throws) {
+        iterations = std::max(1, def.iterations);
         substeps = def.substeps > 0
                        ? def.substeps
                        : std::max(1, static_cast<int>(std::ceil(1.0 / (longest_substep * rate))));
@@ -90,6 +90,7 @@ struct World::Impl {
 
     int rate;
     int substeps = 1;
+    int iterations = 1;
     V2 gravity;
     std::size_t disc_count;
     std::vector<detail::Feature> features;
@@ -202,7 +203,7 @@ void World::Impl::substep(double h, bool last) {
         active.insert(active.end(), listed.begin(), listed.end());
     }
     impact_resolver.resolve(s);
-    contact_solver.solve(s, contact_iterations);
+    contact_solver.solve(s, iterations);
     projector.project(s, projection_iterations);
     // The last substep's runaways are left to end_step's pass over the discs.
     if (!last) detail::PositionProjector::contain_runaways(s, start, reach);

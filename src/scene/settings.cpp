@@ -16,6 +16,8 @@ namespace {
 constexpr int min_side = 16, max_width = 7680, max_height = 4320;
 constexpr int max_fps = 240;
 constexpr int max_rate = 100'000;      // physics steps per second
+constexpr int max_substeps = 1'000;    // per physics step
+constexpr int max_iterations = 100;    // resting-contact iterations per substep
 constexpr double max_follow_lag = 10;  // seconds
 
 // One side of video.size; `name` is "width" or "height".
@@ -110,8 +112,8 @@ void resolve_camera_follow(Loader& loader) {
 }
 
 void read_physics(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 5> known{"gravity", "rate", "restitution",
-                                                           "friction", "seed"};
+    static constexpr std::array<std::string_view, 7> known{
+        "gravity", "rate", "substeps", "iterations", "restitution", "friction", "seed"};
     auto& d = loader.diagnostics;
     Physics& physics = loader.scene.physics;
     const auto fields = Fields::open(value, known, d);
@@ -122,6 +124,16 @@ void read_physics(Loader& loader, const Value& value) {
         const auto v = read_integer(*rate, d);
         if (v && check_between(*rate, static_cast<double>(*v), 1, max_rate, d))
             physics.rate = static_cast<int>(*v);
+    }
+    if (const auto substeps = fields->get("substeps")) {
+        const auto v = read_integer(*substeps, d);
+        if (v && check_between(*substeps, static_cast<double>(*v), 1, max_substeps, d))
+            physics.substeps = static_cast<int>(*v);
+    }
+    if (const auto iterations = fields->get("iterations")) {
+        const auto v = read_integer(*iterations, d);
+        if (v && check_between(*iterations, static_cast<double>(*v), 1, max_iterations, d))
+            physics.iterations = static_cast<int>(*v);
     }
     if (const auto restitution = fields->get("restitution"))
         if (const auto v = read_between(*restitution, 0, 1, d)) physics.restitution = *v;

@@ -369,6 +369,28 @@ TEST(CliTest, EventsListNewContactsWithTheirImpulse) {
         << run.out;
 }
 
+// The solver's settings (physics.substeps and physics.iterations, discreel's own keys) reach
+// the world: simulate says what it ran, and a tuned scene moves differently.
+TEST(CliTest, SimulateRunsAndNamesTheSolverSettings) {
+    TempDir dir;
+    std::string tuned = read_file(short_scene);
+    tuned.replace(tuned.find("rate: 480"), 9, "rate: 400\n  substeps: 2\n  iterations: 5");
+    testing::write_file(dir / "tuned.yaml", tuned);
+    const auto plain = run_command({bin, "simulate", short_scene, "--trace", dir / "plain.csv"});
+    const auto run = run_command({bin, "simulate", dir / "tuned.yaml", "--trace", dir / "tuned.csv"});
+    ASSERT_EQ(plain.exit_code, 0) << plain.err;
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(plain.out.find("\nsolver    1 substep per step (1/480 s), 3 iterations per "
+                             "substep\n"),
+              std::string::npos)
+        << plain.out;
+    EXPECT_NE(run.out.find("\nsolver    2 substeps per step (1/800 s each), 5 iterations "
+                           "per substep\n"),
+              std::string::npos)
+        << run.out;
+    EXPECT_NE(read_file(dir / "plain.csv"), read_file(dir / "tuned.csv"));
+}
+
 // render and simulate drive the physics the same way, so their traces are the same bytes.
 TEST(CliGLTest, RenderWritesTheSameTraceAsSimulate) {
     TempDir dir;

@@ -21,6 +21,8 @@ TEST(Defaults, AMinimalSceneGetsTheDocumentedDefaults) {
     EXPECT_FALSE(s.camera.height.has_value());
     EXPECT_EQ(s.physics.gravity, (Vec2{0, -9.81}));
     EXPECT_EQ(s.physics.rate, 480);
+    EXPECT_EQ(s.physics.substeps, 0);     // automatic: each at or under 1/480 s
+    EXPECT_EQ(s.physics.iterations, 3);
     EXPECT_EQ(s.physics.restitution, 0.8);
     EXPECT_EQ(s.physics.friction, 0.2);
     EXPECT_EQ(s.physics.seed, 1u);
@@ -102,6 +104,14 @@ TEST(Defaults, GoldenFramesAreFirstMiddleLastWithoutRepeats) {
 TEST(Defaults, FrameCountRoundsDurationTimesFps) {
     EXPECT_EQ(load_ok("version: 1\nvideo: {fps: 30, duration: 0.05}\n").video.frame_count(), 2);
     EXPECT_EQ(load_ok("version: 1\nvideo: {fps: 24, duration: 1.02}\n").video.frame_count(), 24);
+}
+
+// Beyond the shared format: the solver's substeps and iterations, for tuning a heavy scene.
+TEST(Defaults, PhysicsSubstepsAndIterationsAreRead) {
+    const Scene s = load_ok("version: 1\nphysics: {rate: 400, substeps: 1, iterations: 5}\n");
+    EXPECT_EQ(s.physics.rate, 400);
+    EXPECT_EQ(s.physics.substeps, 1);
+    EXPECT_EQ(s.physics.iterations, 5);
 }
 
 TEST(Defaults, EmptySectionsAreAllowed) {

@@ -59,6 +59,11 @@ TEST(Errors, ValuesOutOfRangeStateTheRange) {
                      "s.yaml:3:17: physics.rate: must be between 1 and 100000, got 200000",
                      "s.yaml:3:38: physics.restitution: must be between 0 and 1, got -0.5",
                      "s.yaml:3:54: physics.friction: must be at least 0, got -1"}));
+    EXPECT_EQ(problems("version: 1\nphysics: {substeps: 0, iterations: 101}\n"),
+              (Lines{"s.yaml:2:21: physics.substeps: must be between 1 and 1000, got 0",
+                     "s.yaml:2:36: physics.iterations: must be between 1 and 100, got 101"}));
+    EXPECT_EQ(problems("version: 1\nphysics: {iterations: 2.5}\n"),
+              Lines{"s.yaml:2:23: physics.iterations: expected a whole number, got '2.5'"});
     EXPECT_EQ(problems("version: 1\ndiscs:\n  - {position: [0, 0], radius: -1, density: 0}\n"),
               (Lines{"s.yaml:3:32: discs[0].radius: must be greater than 0, got -1",
                      "s.yaml:3:45: discs[0].density: must be greater than 0, got 0"}));

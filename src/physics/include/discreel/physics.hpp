@@ -62,6 +62,8 @@ struct WorldDef {
     int rate = 480;                // steps per second; one step() advances 1/rate s
     int substeps = 0;              // solver substeps per step; 0: the fewest that keep a
                                    // substep at or under 1/480 s (docs/physics.md)
+    int iterations = 3;            // resting-contact iterations per substep, at least 1:
+                                   // more hold a tall pile tighter (docs/physics.md)
     std::vector<DiscDef> discs;
     std::vector<WallDef> walls;
     std::vector<ThrowDef> throws;

@@ -91,6 +91,9 @@ struct Style {
 struct Physics {
     Vec2 gravity{0.0, -9.81};      // m/s^2
     int rate = 480;                // physics steps per second, independent of video fps
+    int substeps = 0;              // solver substeps per step; 0: the fewest that keep a
+                                   // substep at or under 1/480 s
+    int iterations = 3;            // resting-contact iterations per substep
     double restitution = 0.8;      // default coefficient of restitution, 0..1
     double friction = 0.2;         // default Coulomb friction coefficient, >= 0
     std::uint64_t seed = 1;        // for generated discs
