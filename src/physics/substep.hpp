@@ -166,8 +166,8 @@ public:
             ++colour_start[colour + 1];
             Pending p{index, c.a, c.b, colour};
             // A row end on an immovable body gets its own velocity record, appended after the
-            // bodies' (filled in solve(), after the impacts), so that rows on one wall do not
-            // chain through its record.
+            // bodies' (all zeros: it never changes, and its velocity is folded into the row),
+            // so that rows on one wall do not chain through its record.
             if (!a_moves) p.a = copy_of(c.a, s);
             if (!b_moves) p.b = copy_of(c.b, s);
             pending_.push_back(p);
