@@ -126,11 +126,16 @@ void ContactSolver::colour_contacts(const Substep& s) {
 }
 
 void ContactSolver::compute_masses(const Substep& s) {
+    // The unit follows the bodies, not the contact list: it need not be found at every rebuild.
+    if (s.bodies_version != massed_bodies_) {
+        double heaviest = 0.0;
+        for (std::size_t i = 0; i < s.disc_count; ++i) {
+            heaviest = std::max(heaviest, s.bodies[i].mass);
+        }
+        mass_unit_ = heaviest > 0.0 ? std::ldexp(1.0, std::ilogb(heaviest)) : 1.0;
+    }
     massed_contacts_ = s.contacts_version;
     massed_bodies_ = s.bodies_version;
-    double heaviest = 0.0;
-    for (std::size_t i = 0; i < s.disc_count; ++i) heaviest = std::max(heaviest, s.bodies[i].mass);
-    mass_unit_ = heaviest > 0.0 ? std::ldexp(1.0, std::ilogb(heaviest)) : 1.0;
     masses_.resize(s.contacts.size());
     for (std::size_t i = 0; i < s.contacts.size(); ++i) {
         const Body& a = s.bodies[s.contacts[i].a];
@@ -151,13 +156,13 @@ void ContactSolver::begin(const Substep& s) {
     }
     colour_start_.assign(overflow + 2, 0);
     pending_.clear();
-    copied_.clear();
+    copies_ = 0;
 }
 
 void ContactSolver::solve(Substep& s, int iterations) {
     const double inv_h = 1.0 / s.h;
     // The bodies' records, the copies' and a scratch one for the empty lanes.
-    velocities_.resize(s.bodies.size() + copied_.size() + 1);
+    velocities_.resize(s.bodies.size() + copies_ + 1);
     const auto scratch = static_cast<std::uint32_t>(velocities_.size() - 1);
     velocities_[scratch] = Velocity{};
     predicted_.resize(s.bodies.size());
@@ -181,7 +186,7 @@ void ContactSolver::solve(Substep& s, int iterations) {
                                  {b.v.x(), b.v.y(), b.omega, b.radius}};
     }
     // Immovable ends change by nothing: their copies are all zeros, like the scratch record.
-    for (std::size_t k = 0; k < copied_.size(); ++k) velocities_[s.bodies.size() + k] = Velocity{};
+    for (std::uint32_t k = 0; k < copies_; ++k) velocities_[s.bodies.size() + k] = Velocity{};
 
     // Lanes: each colour starts on a block, and a row of the overflow group (whose rows may
     // share a disc) gets a block to itself.

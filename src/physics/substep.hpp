@@ -168,8 +168,8 @@ public:
             // A row end on an immovable body gets its own velocity record, appended after the
             // bodies' (all zeros: it never changes, and its velocity is folded into the row),
             // so that rows on one wall do not chain through its record.
-            if (!a_moves) p.a = copy_of(c.a, s);
-            if (!b_moves) p.b = copy_of(c.b, s);
+            if (!a_moves) p.a = fresh_copy(s);
+            if (!b_moves) p.b = fresh_copy(s);
             pending_.push_back(p);
         }
     }
@@ -224,9 +224,8 @@ private:
     // Rows whose discs have all 64 colours go to one last group, solved a row at a time.
     static constexpr unsigned overflow = 64;
     void colour_contacts(const Substep& s);
-    std::uint32_t copy_of(std::uint32_t body, const Substep& s) {
-        copied_.push_back(body);
-        return static_cast<std::uint32_t>(s.bodies.size() + copied_.size() - 1);
+    std::uint32_t fresh_copy(const Substep& s) {
+        return static_cast<std::uint32_t>(s.bodies.size() + copies_++);
     }
     // The code that runs on whole blocks, each built for AVX2 and for baseline x86-64, the one
     // the CPU can run chosen at load time: the warm start and the iterations over rows_, and
@@ -250,7 +249,8 @@ private:
     std::vector<std::uint32_t> lane_of_;  // per pending row, its lane in rows_
     std::vector<std::uint32_t> pending_of_lane_;  // per lane of rows_, index into pending_
     std::vector<std::uint32_t> empty_lanes_;      // lanes of rows_ without a row
-    std::vector<std::uint32_t> copied_;  // the body of each velocity record after the bodies'
+    std::uint32_t copies_ = 0;           // velocity records after the bodies', one per row end
+                                         // on an immovable body (all zeros)
     // What a contact's rows need of its bodies' masses, which only change with the contact
     // list or a throw: two divisions per row less in every substep.
     struct Masses {
