@@ -95,7 +95,14 @@ private:
         const bool wall = c.b >= s.disc_count;
         const double r = wall ? a.radius : std::min(a.radius, s.bodies[c.b].radius);
         if (c.gap > touching_gap * r) return slow;
-        return wall ? settle_speed_[c.a] : std::min(settle_speed_[c.a], settle_speed_[c.b]);
+        // Both speeds grow with the radius: the smaller disc's decide.
+        const Settle& settle = settle_[wall || a.radius <= s.bodies[c.b].radius ? c.a : c.b];
+        // Slower than bounce / e, its bounce would not show (with e = 0, never: only the
+        // tunnelling bound is left).
+        const double e = c.restitution;
+        const double visible =
+            settle.bounce < e * settle.tunnel ? settle.bounce / e : settle.tunnel;
+        return std::max(slow, visible);
     }
     // Cheap tests that rule out most pairs of a pile before the swept test.
     bool surely_no_impact(const Substep& s, const Contact& c, double slow) const {
@@ -118,8 +125,13 @@ private:
     double slow_ = 0.0;                            // m/s, slower approaches are resting contact
     double gravity_step_ = 0.0;                    // m/s, |g| h
     std::vector<std::uint32_t> screened_;          // the first sweep's pairs, from screen()
-    std::vector<double> settle_speed_;             // m/s per disc, see impacts.cpp
-    double settle_h_ = 0.0;                        // s, the substep settle_speed_ is for
+    // Per disc, what a touching pair's slowest timed approach is made of (see impacts.cpp).
+    struct Settle {
+        double bounce = 0.0;  // m/s, leaving this fast it rises visible_bounce radii
+        double tunnel = 0.0;  // m/s, covers tunnelling_step radii in a substep
+    };
+    std::vector<Settle> settle_;
+    double settle_h_ = 0.0;                        // s, the substep settle_ is for
     std::vector<FoundImpact> found_;               // per active contact
     std::vector<std::uint64_t> queued_;            // per active contact: last sweep listing it
     std::uint64_t sweeps_done_ = 0;                // over all substeps, numbering the sweeps
