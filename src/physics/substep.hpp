@@ -98,10 +98,10 @@ private:
         // Both speeds grow with the radius: the smaller disc's decide.
         const Settle& settle = settle_[wall || a.radius <= s.bodies[c.b].radius ? c.a : c.b];
         // Slower than bounce / e, its bounce would not show (with e = 0, never: only the
-        // tunnelling bound is left).
+        // closing bound is left).
         const double e = c.restitution;
         const double visible =
-            settle.bounce < e * settle.tunnel ? settle.bounce / e : settle.tunnel;
+            settle.bounce < e * settle.closing ? settle.bounce / e : settle.closing;
         return std::max(slow, visible);
     }
     // Cheap tests that rule out most pairs of a pile before the swept test.
@@ -128,7 +128,7 @@ private:
     // Per disc, what a touching pair's slowest timed approach is made of (see impacts.cpp).
     struct Settle {
         double bounce = 0.0;  // m/s, leaving this fast it rises visible_bounce radii
-        double tunnel = 0.0;  // m/s, covers tunnelling_step radii in a substep
+        double closing = 0.0;  // m/s, closes closing_step radii in a substep
     };
     std::vector<Settle> settle_;
     double settle_h_ = 0.0;                        // s, the substep settle_ is for
