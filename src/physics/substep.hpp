@@ -127,7 +127,7 @@ private:
     std::vector<std::uint32_t> screened_;          // the first sweep's pairs, from screen()
     // Per disc, what a touching pair's slowest timed approach is made of (see impacts.cpp).
     struct Settle {
-        double bounce = 0.0;  // m/s, leaving this fast it rises visible_bounce radii
+        double bounce = 0.0;   // m/s, leaving this fast it rises visible_bounce radii
         double closing = 0.0;  // m/s, closes closing_step radii in a substep
     };
     std::vector<Settle> settle_;
