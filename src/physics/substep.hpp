@@ -93,10 +93,11 @@ private:
     double slowest_impact(const Substep& s, const Contact& c, double slow) const {
         const Body& a = s.bodies[c.a];
         const bool wall = c.b >= s.disc_count;
-        const double r = wall ? a.radius : std::min(a.radius, s.bodies[c.b].radius);
+        // The pair's smaller disc decides, for the gap and for both speeds (they grow with r).
+        const std::uint32_t smaller = wall || a.radius <= s.bodies[c.b].radius ? c.a : c.b;
+        const double r = s.bodies[smaller].radius;
         if (c.gap > touching_gap * r) return slow;
-        // Both speeds grow with the radius: the smaller disc's decide.
-        const Settle& settle = settle_[wall || a.radius <= s.bodies[c.b].radius ? c.a : c.b];
+        const Settle& settle = settle_[smaller];
         // Slower than bounce / e, its bounce would not show (with e = 0, never: only the
         // closing bound is left).
         const double e = c.restitution;

@@ -157,4 +157,3 @@ TEST(Collisions, MixingRules) {
 
 }  // namespace
 }  // namespace discreel::physics
-
