@@ -171,22 +171,44 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
         // Each pair is met once: a disc meets the discs after it in its own cell and every disc
         // of the four neighbouring cells after it (right, and the three above), so half of
         // the neighbourhood is searched.
-        constexpr std::int64_t forward[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
-        for (std::size_t p = 0; p < items_.size(); ++p) {
-            const GridItem& item = items_[p];
-            for (const auto& [dx, dy] : forward) {
-                const std::int64_t cx = item.cell_x + dx, cy = item.cell_y + dy;
-                const std::uint64_t h = bucket(cx, cy);
-                const std::size_t first = dx == 0 && dy == 0 ? p + 1 : bucket_start_[h];
-                for (std::size_t k = first; k < bucket_start_[h + 1]; ++k) {
-                    const GridItem& other = items_[k];
-                    // Other cells sharing the bucket are skipped so no pair comes twice.
-                    if (other.cell_x != cx || other.cell_y != cy) continue;
-                    if (!item.moves && !other.moves) continue;
-                    const double reach_sum = item.fat + other.fat;
-                    if ((item.x - other.x).squaredNorm() > reach_sum * reach_sum) continue;
-                    pairs_.push_back(pair_key(std::min(item.body, other.body),
-                                              std::max(item.body, other.body)));
+        const auto meet = [&](const GridItem& item, const GridItem& other) {
+            if (!item.moves && !other.moves) return;
+            const double reach_sum = item.fat + other.fat;
+            if ((item.x - other.x).squaredNorm() > reach_sum * reach_sum) return;
+            pairs_.push_back(pair_key(std::min(item.body, other.body),
+                                      std::max(item.body, other.body)));
+        };
+        if (bucket.row != 0) {
+            // One cell per bucket: the neighbours are whole buckets at fixed offsets.
+            const std::uint64_t row = bucket.row;
+            const std::uint64_t after[4] = {1, row - 1, row, row + 1};
+            for (std::uint64_t h = 0; h < table; ++h) {
+                const std::uint32_t begin = bucket_start_[h], end = bucket_start_[h + 1];
+                for (std::uint32_t p = begin; p < end; ++p) {
+                    const GridItem& item = items_[p];
+                    for (std::uint32_t k = p + 1; k < end; ++k) meet(item, items_[k]);
+                    for (const std::uint64_t offset : after) {
+                        const std::uint64_t n = h + offset;
+                        for (std::uint32_t k = bucket_start_[n]; k < bucket_start_[n + 1]; ++k) {
+                            meet(item, items_[k]);
+                        }
+                    }
+                }
+            }
+        } else {
+            constexpr std::int64_t forward[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+            for (std::size_t p = 0; p < items_.size(); ++p) {
+                const GridItem& item = items_[p];
+                for (const auto& [dx, dy] : forward) {
+                    const std::int64_t cx = item.cell_x + dx, cy = item.cell_y + dy;
+                    const std::uint64_t h = bucket(cx, cy);
+                    const std::size_t first = dx == 0 && dy == 0 ? p + 1 : bucket_start_[h];
+                    for (std::size_t k = first; k < bucket_start_[h + 1]; ++k) {
+                        const GridItem& other = items_[k];
+                        // Other cells sharing the bucket are skipped so no pair comes twice.
+                        if (other.cell_x != cx || other.cell_y != cy) continue;
+                        meet(item, other);
+                    }
                 }
             }
         }
@@ -212,29 +234,30 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
     }
     sort_pairs(bodies.size());
 
-    // Merge with the previous list (both sorted) so surviving pairs keep their history.
+    // Merge with the previous list (both sorted) so surviving pairs keep their history. Its
+    // pairs are kept as keys too (listed_), which the merge compares without loading a contact.
     merged_.clear();
     merged_.reserve(pairs_.size());
+    // (A list this broad phase did not build has no history to keep.)
+    const std::size_t old_count = listed_.size() == contacts.size() ? listed_.size() : 0;
     std::size_t old = 0;
     for (const std::uint64_t key : pairs_) {
-        const auto a = static_cast<std::uint32_t>(key >> 32);
-        const auto b = static_cast<std::uint32_t>(key & 0xffffffffu);
-        while (old < contacts.size() && (contacts[old].a < a ||
-                                         (contacts[old].a == a && contacts[old].b < b))) {
-            ++old;
-        }
+        while (old < old_count && listed_[old] < key) ++old;
         // Copied straight into place: building the contact on the stack first and copying it
         // stalled on store forwarding.
-        if (old < contacts.size() && contacts[old].a == a && contacts[old].b == b) {
+        if (old < old_count && listed_[old] == key) {
             merged_.push_back(contacts[old]);
             continue;
         }
+        const auto a = static_cast<std::uint32_t>(key >> 32);
+        const auto b = static_cast<std::uint32_t>(key & 0xffffffffu);
         Contact& c = merged_.emplace_back();
         c.a = a;
         c.b = b;
         c.restitution = mix_restitution(bodies[a].restitution, bodies[b].restitution);
         c.friction = mix_friction(bodies[a].friction, bodies[b].friction);
     }
+    listed_.swap(pairs_);
     contacts.swap(merged_);
 }
 

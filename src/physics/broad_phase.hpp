@@ -75,6 +75,7 @@ private:
     std::vector<GridItem> items_;      // grouped by bucket
     std::vector<std::int64_t> cell_x_, cell_y_;
     std::vector<Contact> merged_;
+    std::vector<std::uint64_t> listed_;  // the pairs of the list last built, as pair keys
 };
 
 }  // namespace discreel::physics::detail
