@@ -24,6 +24,23 @@ Error not_applicable(const std::string& setting, const std::string& target) {
     return Error{setting + " does not apply to " + target};
 }
 
+// x264's AVX-512 routines make its bytes depend on memory it has not written: two encodes of
+// the same frames with the same settings in one process came out different on an AVX-512
+// machine (libx264 0.164.3095), and never with AVX2 or below, or with x264's C code. Where the
+// CPU has AVX-512, x264 is held to its AVX2 routines (the instruction sets every AVX-512 CPU
+// has), and elsewhere it picks its own as before.
+std::string_view x264_instruction_sets() {
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx2") &&
+        __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi") &&
+        __builtin_cpu_supports("bmi2")) {
+        return "AVX2";  // x264's name for AVX2 with FMA3, LZCNT, BMI1, BMI2 and all below
+    }
+#endif
+    return {};
+}
+
 Status check_threads(const SinkDef& def) {
     if (def.threads < 1) {
         return Error{"encoder threads must be at least 1, got " + std::to_string(def.threads)};
@@ -96,11 +113,19 @@ Expected<VideoFormat> h264_format(const SinkDef& def, const std::string& muxer) 
     // with 2 threads, so not at 720p and below), and veryfast's 10-frame lookahead is cut to 8
     // (its frame-type and rate decisions see two frames less). A 1080p render then stays
     // under 300 MB.
-    if (static_cast<long>(def.width) * def.height > 1280L * 720L) {
-        std::string x264_params = "sync-lookahead=0";
-        if (preset == "veryfast") x264_params += ":rc-lookahead=8";
-        format.encoder_options.push_back({"x264-params", x264_params});
+    std::string x264_params;
+    const auto add_param = [&](std::string_view name, std::string_view value) {
+        if (!x264_params.empty()) x264_params += ':';
+        x264_params.append(name).append("=").append(value);
+    };
+    if (const std::string_view sets = x264_instruction_sets(); !sets.empty()) {
+        add_param("asm", sets);
     }
+    if (static_cast<long>(def.width) * def.height > 1280L * 720L) {
+        add_param("sync-lookahead", "0");
+        if (preset == "veryfast") add_param("rc-lookahead", "8");
+    }
+    if (!x264_params.empty()) format.encoder_options.push_back({"x264-params", x264_params});
     return format;
 }
 
