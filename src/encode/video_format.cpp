@@ -107,12 +107,6 @@ Expected<VideoFormat> h264_format(const SinkDef& def, const std::string& muxer) 
     // them on) and x264 runs in its default deterministic mode.
     format.threads = def.threads;
     format.encoder_options = {{"preset", preset}, {"crf", std::to_string(def.crf.value_or(20))}};
-    // Memory above 720p, where an input frame costs x264 about 7 MiB (docs/performance.md):
-    // sync-lookahead=0 runs x264's lookahead on the calling thread instead of buffering frames
-    // for a thread of its own (the same pictures, four input frames less, but 25-35 % slower
-    // with 2 threads, so not at 720p and below), and veryfast's 10-frame lookahead is cut to 8
-    // (its frame-type and rate decisions see two frames less). A 1080p render then stays
-    // under 300 MB.
     std::string x264_params;
     const auto add_param = [&](std::string_view name, std::string_view value) {
         if (!x264_params.empty()) x264_params += ':';
@@ -121,6 +115,12 @@ Expected<VideoFormat> h264_format(const SinkDef& def, const std::string& muxer) 
     if (const std::string_view sets = x264_instruction_sets(); !sets.empty()) {
         add_param("asm", sets);
     }
+    // Memory above 720p, where an input frame costs x264 about 7 MiB (docs/performance.md):
+    // sync-lookahead=0 runs x264's lookahead on the calling thread instead of buffering frames
+    // for a thread of its own (the same pictures, four input frames less, but 25-35 % slower
+    // with 2 threads, so not at 720p and below), and veryfast's 10-frame lookahead is cut to 8
+    // (its frame-type and rate decisions see two frames less). A 1080p render then stays
+    // under 300 MB.
     if (static_cast<long>(def.width) * def.height > 1280L * 720L) {
         add_param("sync-lookahead", "0");
         if (preset == "veryfast") add_param("rc-lookahead", "8");
