@@ -25,9 +25,14 @@ void AtomicTextFile::flush() {
     buffer_.clear();
 }
 
-Status AtomicTextFile::commit() {
+Status AtomicTextFile::seal() {
     flush();
     if (!written_) return written_;
+    return file_.seal();
+}
+
+Status AtomicTextFile::commit() {
+    if (Status sealed = seal(); !sealed) return sealed;
     return file_.commit();
 }
 

@@ -14,8 +14,11 @@ class AtomicTextFile {
 public:
     static Expected<AtomicTextFile> create(const std::string& path);
 
-    // A failed write is remembered and reported by commit().
+    // A failed write is remembered and reported by seal() or commit().
     void write(std::string_view text);
+    // Writes what is buffered and seals the file, for commit_together() with other outputs.
+    Status seal();
+    OutputFile& file() { return file_; }
     Status commit();
 
 private:

@@ -4,6 +4,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "scene_source.hpp"
 
@@ -41,7 +42,13 @@ struct SimulateOptions {
     OutputFiles files;
 };
 
+struct ValidateOptions {
+    std::vector<std::string> scene_paths;
+    scene::Limits limits;
+};
+
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
+int run_validate(const ValidateOptions& options, std::ostream& out, std::ostream& err);
 int run_simulate(const SimulateOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace discreel::app

@@ -13,6 +13,8 @@
 #include <sstream>
 
 #include "build_world.hpp"
+#include "discreel/commit.hpp"
+#include "discreel/printable.hpp"
 #include "discreel/encode.hpp"
 #include "discreel/render.hpp"
 #include "exit_codes.hpp"
@@ -21,6 +23,7 @@
 #include "golden_junit.hpp"
 #include "golden_metadata.hpp"
 #include "progress.hpp"
+#include "signals.hpp"
 #include "run_support.hpp"
 #include "stepper.hpp"
 #include "trace.hpp"
@@ -104,15 +107,32 @@ Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedSce
                          update_command(o, loaded.path);
         return result;
     }
-    auto golden = encode::read_png(golden_png.string());
-    if (!golden) {
+    // The header first: a golden of another size is reported without decoding it, and a
+    // file that is no PNG (a directory, /dev/zero) is this frame's failure, not the run's.
+    const auto golden_size = encode::read_png_size(golden_png.string());
+    if (!golden_size) {
         result.passed = false;
-        result.message = golden.error().message + "; recreate it with: " +
+        result.message = golden_size.error().message + "; recreate it with: " +
                          update_command(o, loaded.path);
         return result;
     }
-    const golden::Comparison c =
-        golden::compare_images(actual, golden->view(), {.threshold = o.tolerance});
+    std::optional<Image> golden;
+    if (*golden_size == encode::ImageSize{actual.width, actual.height}) {
+        auto decoded = encode::read_png(golden_png.string());
+        if (!decoded) {
+            result.passed = false;
+            result.message = decoded.error().message + "; recreate it with: " +
+                             update_command(o, loaded.path);
+            return result;
+        }
+        golden = std::move(*decoded);
+    }
+    golden::Comparison c;
+    if (golden) {
+        c = golden::compare_images(actual, golden->view(), {.threshold = o.tolerance});
+    } else {
+        c.same_size = false;
+    }
     const std::int64_t allowed = allowed_differences(o, c.pixel_count);
     if (c.identical || (c.same_size && c.differing_pixels <= allowed)) {
         // A pass clears what an earlier failing run left, so what is there is current.
@@ -138,9 +158,12 @@ Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedSce
         if (Status s = encode::write_png(diff_png.string(), c.diff.view()); !s) return s.error();
         written += " and " + diff_png.string();
     } else {
+        const std::string golden_wxh =
+            std::to_string(golden_size->width) + "x" + std::to_string(golden_size->height);
         result.message = "the frame is " + std::to_string(actual.width) + "x" +
-                         std::to_string(actual.height) + " but the golden is " +
-                         std::to_string(golden->width) + "x" + std::to_string(golden->height);
+                         std::to_string(actual.height) + " but the golden is " + golden_wxh +
+                         "; check at the golden's size with --size " + golden_wxh +
+                         ", or rewrite the goldens with --update";
         remove_if_present(diff_png);
     }
     result.details = result.message + "\n" + written;
@@ -174,14 +197,30 @@ std::optional<std::vector<LoadedScene>> load_scenes(const GoldenOptions& o, std:
             continue;
         }
         if (auto problem = apply_overrides(loaded.scene, o.video, o.limits)) {
-            err << "discreel: " << *problem << '\n';
+            report_error(err, *problem);
             return std::nullopt;
+        }
+        // A check renders at the size the goldens were made at (golden.txt), unless --size
+        // says otherwise; --update renders what the scene (or --size) says now.
+        if (!o.video.width && !o.update) {
+            const auto stored = golden::read_metadata(fs::path(o.dir) / loaded.scene.name);
+            if (stored && stored->width > 0 && stored->height > 0) {
+                VideoOverrides recorded;
+                recorded.width = stored->width;
+                recorded.height = stored->height;
+                if (auto problem = apply_overrides(loaded.scene, recorded, o.limits)) {
+                    report_error(err, (fs::path(o.dir) / loaded.scene.name /
+                                       golden::metadata_file_name).string() +
+                                          ": the recorded size is not usable: " + *problem);
+                    return std::nullopt;
+                }
+            }
         }
         const auto [earlier, fresh] = path_of_name.emplace(loaded.scene.name, path);
         if (!fresh) {
-            err << "discreel: " << earlier->second << " and " << path << " are both named '"
-                << loaded.scene.name << "'; their goldens would share "
-                << (fs::path(o.dir) / loaded.scene.name).string() << '\n';
+            report_error(err, earlier->second + " and " + path + " are both named '" +
+                                  loaded.scene.name + "'; their goldens would share " +
+                                  (fs::path(o.dir) / loaded.scene.name).string());
             return std::nullopt;
         }
         scenes.push_back({path, std::move(loaded.scene)});
@@ -190,17 +229,37 @@ std::optional<std::vector<LoadedScene>> load_scenes(const GoldenOptions& o, std:
     return scenes;
 }
 
-// --update for one frame: the golden, with whatever an earlier failure left beside it removed.
+// What an --update run has written but not yet made visible. Every golden and golden.txt of
+// the run is committed together at its end, so a failure or Ctrl-C leaves the old set whole.
+struct PendingGoldens {
+    std::vector<OutputFile> images;
+    std::vector<AtomicTextFile> metadata;
+    std::vector<fs::path> stale;   // what an earlier failing check left beside a new golden
+
+    Status commit() {
+        std::vector<OutputFile*> files;
+        for (OutputFile& image : images) files.push_back(&image);
+        for (AtomicTextFile& text : metadata) files.push_back(&text.file());
+        if (Status committed = commit_together(files); !committed) return committed;
+        for (const fs::path& path : stale) remove_if_present(path);
+        return {};
+    }
+};
+
+// --update for one frame: the golden, prepared to be committed with all the others.
 Expected<golden::CaseResult> write_golden(const fs::path& scene_dir, const std::string& scene,
-                                          int frame, const ImageView& image) {
+                                          int frame, const ImageView& image,
+                                          PendingGoldens& pending) {
     const std::string stem = (scene_dir / ("frame_" + std::to_string(frame))).string();
-    if (Status s = encode::write_png(stem + ".png", image); !s) return s.error();
-    remove_if_present(stem + ".actual.png");
-    remove_if_present(stem + ".diff.png");
+    auto file = encode::prepare_png(stem + ".png", image);
+    if (!file) return file.error();
+    pending.images.push_back(std::move(*file));
+    pending.stale.emplace_back(stem + ".actual.png");
+    pending.stale.emplace_back(stem + ".diff.png");
     return golden::CaseResult{.scene = scene,
                               .name = "frame_" + std::to_string(frame),
                               .passed = true,
-                              .message = "wrote " + stem + ".png",
+                              .message = "wrote " + printable(stem) + ".png",
                               .details = {}};
 }
 
@@ -226,7 +285,8 @@ int frames_to_simulate(const LoadedScene& loaded) {
 }
 
 Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream& out,
-                 std::vector<golden::CaseResult>& results, GoldenProgress& progress) {
+                 std::vector<golden::CaseResult>& results, GoldenProgress& progress,
+                 PendingGoldens& pending) {
     const scene::Scene& scene = loaded.scene;
     auto renderer =
         render::Renderer::create({.width = scene.video.width, .height = scene.video.height});
@@ -249,6 +309,7 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
     for (const int frame : frames) {
         // Trails and the follow camera remember earlier frames: show them every one.
         for (; next_frame < frame; ++next_frame) {
+            if (stop_signal() != 0) return Error{"interrupted"};
             if (Status stepped = stepper.advance_to(next_frame); !stepped) return stepped.error();
             frame_builder.observe(next_frame, world.discs());
             progress.frame_done();
@@ -258,11 +319,12 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
         progress.frame_done();
         auto image = renderer->draw(frame_builder.build(frame, world.discs()));
         if (!image) return image.error();
-        auto result = o.update ? write_golden(scene_dir, scene.name, frame, *image)
+        if (stop_signal() != 0) return Error{"interrupted"};
+        auto result = o.update ? write_golden(scene_dir, scene.name, frame, *image, pending)
                                : check_frame(o, loaded, frame, *image, renderer->renderer_info());
         if (!result) return result.error();
         progress.meter.finish();   // a result line must not land in the middle of the bar
-        out << scene.name << " frame " << frame << ": ";
+        out << printable(scene.name) << " frame " << frame << ": ";
         if (o.update) {
             out << result->message << '\n';
         } else if (result->passed) {
@@ -273,28 +335,37 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
         results.push_back(std::move(*result));
     }
     if (!o.update) return {};
-    return golden::write_metadata(scene_dir, {.discreel_version = DISCREEL_VERSION,
-                                              .renderer = renderer->renderer_info(),
-                                              .width = scene.video.width,
-                                              .height = scene.video.height});
-}
-
-Status write_junit(const std::string& path, const std::vector<golden::CaseResult>& results) {
-    auto file = AtomicTextFile::create(path);
-    if (!file) return file.error();
-    file->write(golden::junit_xml("discreel golden", results));
-    return file->commit();
+    auto metadata = golden::prepare_metadata(scene_dir, {.discreel_version = DISCREEL_VERSION,
+                                                         .renderer = renderer->renderer_info(),
+                                                         .width = scene.video.width,
+                                                         .height = scene.video.height});
+    if (!metadata) return metadata.error();
+    pending.metadata.push_back(std::move(*metadata));
+    return {};
 }
 
 }  // namespace
 
 int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
     if (auto problem = check_options(o)) {
-        err << "discreel: " << *problem << '\n';
+        report_error(err, *problem);
         return exit_bad_input;
     }
     const auto scenes = load_scenes(o, err);
     if (!scenes) return exit_bad_input;
+    // The report's file is created now: a missing directory fails before any rendering.
+    std::optional<AtomicTextFile> junit;
+    if (o.junit) {
+        std::vector<NamedPath> inputs;
+        for (const std::string& path : o.scene_paths) inputs.push_back({"the scene", path});
+        if (!check_distinct_files(inputs, {{"--junit", *o.junit}}, err)) return exit_bad_input;
+        auto created = AtomicTextFile::create(*o.junit);
+        if (!created) {
+            report_error(err, created.error().message);
+            return exit_runtime_failure;
+        }
+        junit.emplace(std::move(*created));
+    }
 
     int total_frames = 0;
     for (const LoadedScene& loaded : *scenes) total_frames += frames_to_simulate(loaded);
@@ -302,24 +373,37 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
         .meter = ProgressMeter(err, pick_progress_style(false, o.progress, isatty(STDERR_FILENO) == 1),
                                total_frames)};
     std::vector<golden::CaseResult> results;
+    PendingGoldens pending;
     for (const LoadedScene& loaded : *scenes) {
-        if (Status s = run_scene(o, loaded, out, results, progress); !s) {
+        if (Status s = run_scene(o, loaded, out, results, progress, pending); !s) {
             progress.meter.finish();
-            err << "discreel: " << s.error().message << '\n';
+            if (stop_signal() != 0) {
+                err << "discreel: interrupted; "
+                    << (o.update ? "no golden was written" : "no report was written") << '\n';
+                return exit_interrupted_base + stop_signal();
+            }
+            report_error(err, s.error().message);
             return exit_runtime_failure;
         }
     }
     progress.meter.finish();
-    if (o.junit) {
-        if (Status s = write_junit(*o.junit, results); !s) {
-            err << "discreel: " << s.error().message << '\n';
+    if (o.update) {
+        if (Status s = pending.commit(); !s) {
+            report_error(err, s.error().message);
+            return exit_runtime_failure;
+        }
+    }
+    if (junit) {
+        junit->write(golden::junit_xml("discreel golden", results));
+        if (Status s = junit->commit(); !s) {
+            report_error(err, s.error().message);
             return exit_runtime_failure;
         }
     }
 
     if (o.update) {
         out << "golden: wrote " << frame_count_text(results.size()) << " of "
-            << scene_count_text(scenes->size()) << " to " << o.dir << '\n';
+            << scene_count_text(scenes->size()) << " to " << printable(o.dir) << '\n';
         return exit_ok;
     }
     const auto failed = static_cast<std::size_t>(std::count_if(

@@ -1,6 +1,6 @@
 #include "golden_metadata.hpp"
 
-#include <fstream>
+#include "discreel/read_file.hpp"
 #include <sstream>
 
 #include "trace.hpp"
@@ -8,8 +8,10 @@
 namespace discreel::golden {
 
 std::optional<Metadata> read_metadata(const std::filesystem::path& scene_dir) {
-    std::ifstream file(scene_dir / metadata_file_name);
-    if (!file) return std::nullopt;
+    constexpr std::uintmax_t max_bytes = 1 << 16;   // a few short lines; more is not ours
+    const auto text = read_file_bounded((scene_dir / metadata_file_name).string(), max_bytes);
+    if (!text || text->too_large) return std::nullopt;
+    std::istringstream file(text->bytes);
     Metadata m;
     std::string line;
     while (std::getline(file, line)) {
@@ -28,7 +30,8 @@ std::optional<Metadata> read_metadata(const std::filesystem::path& scene_dir) {
     return m;
 }
 
-Status write_metadata(const std::filesystem::path& scene_dir, const Metadata& m) {
+Expected<app::AtomicTextFile> prepare_metadata(const std::filesystem::path& scene_dir,
+                                               const Metadata& m) {
     auto file = app::AtomicTextFile::create((scene_dir / metadata_file_name).string());
     if (!file) return file.error();
     file->write("# Written by `discreel golden --update`: what the frame_<n>.png beside it were "
@@ -36,7 +39,8 @@ Status write_metadata(const std::filesystem::path& scene_dir, const Metadata& m)
     file->write("discreel: " + m.discreel_version + "\n");
     file->write("renderer: " + m.renderer + "\n");
     file->write("size: " + std::to_string(m.width) + "x" + std::to_string(m.height) + "\n");
-    return file->commit();
+    if (Status sealed = file->seal(); !sealed) return sealed.error();
+    return file;
 }
 
 }  // namespace discreel::golden

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "atomic_text_file.hpp"
 #include "discreel/expected.hpp"
 
 namespace discreel::golden {
@@ -18,8 +19,11 @@ struct Metadata {
 
 inline constexpr const char* metadata_file_name = "golden.txt";
 
-// None when the file does not exist or holds no renderer line (goldens made by hand).
+// None when the file does not exist, is not a small text file, or holds no renderer line
+// (goldens made by hand).
 std::optional<Metadata> read_metadata(const std::filesystem::path& scene_dir);
-Status write_metadata(const std::filesystem::path& scene_dir, const Metadata& metadata);
+// The file written under a temporary name, to be committed with the goldens it describes.
+Expected<app::AtomicTextFile> prepare_metadata(const std::filesystem::path& scene_dir,
+                                               const Metadata& metadata);
 
 }  // namespace discreel::golden

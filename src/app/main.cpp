@@ -3,8 +3,11 @@
 #include <CLI/CLI.hpp>
 
 #include <charconv>
+#include <cmath>
+#include <limits>
 #include <iostream>
 #include <new>
+#include <sstream>
 
 #include "commands.hpp"
 #include "discreel/temporary_files.hpp"
@@ -53,6 +56,31 @@ void add_output_files(CLI::App& cmd, OutputFiles& files) {
         ->option_text("FILE");
 }
 
+// A number option that must be finite (CLI11 reads "nan" and "inf" as doubles) and, where
+// given, within [low, high].
+CLI::Validator finite_number(double low = -std::numeric_limits<double>::max(),
+                              double high = std::numeric_limits<double>::max()) {
+    return CLI::Validator(
+        [low, high](std::string& text) -> std::string {
+            double value = 0;
+            try {
+                std::size_t used = 0;
+                value = std::stod(text, &used);
+                if (used != text.size()) return "expected a number, got '" + text + "'";
+            } catch (const std::exception&) {
+                return "expected a number, got '" + text + "'";
+            }
+            if (!std::isfinite(value)) return "expected a finite number, got '" + text + "'";
+            if (value < low || value > high) {
+                std::ostringstream range;
+                range << "must be between " << low << " and " << high << ", got " << text;
+                return range.str();
+            }
+            return {};
+        },
+        "NUMBER");
+}
+
 // The protective limits of docs/scene-format.md, raised (or lowered) per run.
 void add_limit_options(CLI::App& cmd, discreel::scene::Limits& limits) {
     cmd.add_option("--max-discs", limits.discs, "Most discs a scene may have")
@@ -60,27 +88,23 @@ void add_limit_options(CLI::App& cmd, discreel::scene::Limits& limits) {
         ->capture_default_str()
         ->group("Limits");
     cmd.add_option("--max-duration", limits.duration, "Longest video.duration, seconds")
-        ->check(CLI::PositiveNumber)
+        ->check(finite_number(1e-9, 1e9))
         ->capture_default_str()
         ->group("Limits");
     cmd.add_option("--max-scene-bytes", limits.file_bytes, "Largest scene file, bytes")
         ->check(CLI::PositiveNumber)
         ->capture_default_str()
         ->group("Limits");
-}
-
-int run_validate(const std::vector<std::string>& paths, const discreel::scene::Limits& limits) {
-    bool all_ok = true;
-    for (const std::string& path : paths) {
-        const auto loaded = discreel::scene::load_scene_file(path, limits);
-        if (report_diagnostics(loaded, std::cerr)) {
-            std::cout << path << ": ok (" << loaded.scene.discs.size() << " discs, "
-                      << loaded.scene.video.frame_count() << " frames)\n";
-        } else {
-            all_ok = false;
-        }
-    }
-    return all_ok ? exit_ok : exit_bad_input;
+    cmd.add_option("--max-scene-values", limits.values,
+                   "Most YAML values (scalars, lists, mappings) a scene file may hold")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str()
+        ->group("Limits");
+    cmd.add_option("--max-substeps", limits.substeps,
+                   "Most physics substeps a run may take (duration x rate x substeps)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str()
+        ->group("Limits");
 }
 
 }  // namespace
@@ -103,10 +127,12 @@ static int run_command_line(int argc, char** argv) {
                            "--format mp4)")
         ->required();
     render_cmd->add_option("--frame", render.frame, "Frame index for a .png still (default 0)");
-    render_cmd->add_option("--at", render.at, "Time in seconds for a .png still");
+    render_cmd->add_option("--at", render.at, "Time in seconds for a .png still")
+        ->check(finite_number(0, 1e9));
     add_size_option(*render_cmd, render.video, "Override the frame size, WIDTHxHEIGHT");
     render_cmd->add_option("--fps", render.video.fps, "Override frames per second");
-    render_cmd->add_option("--duration", render.video.duration, "Override duration in seconds");
+    render_cmd->add_option("--duration", render.video.duration, "Override duration in seconds")
+        ->check(finite_number(1e-9, 1e9));
     render_cmd->add_option("--crf", render.crf,
                            "Quality, lower is better: H.264 0..51 (default 20), VP9 0..63 "
                            "(default 32)");
@@ -139,16 +165,16 @@ static int run_command_line(int argc, char** argv) {
     CLI::App* simulate_cmd =
         app.add_subcommand("simulate", "Run the physics only and print a summary");
     simulate_cmd->add_option("scene", simulate.scene_path, "Scene file (YAML)")->required();
-    simulate_cmd->add_option("--duration", simulate.duration, "Override duration in seconds");
+    simulate_cmd->add_option("--duration", simulate.duration, "Override duration in seconds")
+        ->check(finite_number(1e-9, 1e9));
     add_output_files(*simulate_cmd, simulate.files);
     add_limit_options(*simulate_cmd, simulate.limits);
 
-    std::vector<std::string> validate_paths;
+    ValidateOptions validate;
     CLI::App* validate_cmd = app.add_subcommand(
         "validate", "Check scene files and print every problem; exit 2 if any");
-    validate_cmd->add_option("scenes", validate_paths, "Scene files (YAML)")->required();
-    discreel::scene::Limits validate_limits;
-    add_limit_options(*validate_cmd, validate_limits);
+    validate_cmd->add_option("scenes", validate.scene_paths, "Scene files (YAML)")->required();
+    add_limit_options(*validate_cmd, validate.limits);
 
     GoldenOptions golden;
     CLI::App* golden_cmd = app.add_subcommand(
@@ -161,11 +187,13 @@ static int run_command_line(int argc, char** argv) {
     golden_cmd->add_flag("--progress", golden.progress,
                          "Report progress on standard error even when it is not a terminal");
     golden_cmd->add_option("--tolerance", golden.tolerance,
-                           "Perceptual colour distance still counted as equal, 0..1 (default 0.1)");
+                           "Perceptual colour distance still counted as equal, 0..1 (default 0.1)")
+        ->check(finite_number());
     golden_cmd->add_option("--max-diff-pixels", golden.max_diff_pixels,
                            "Differing pixels allowed per frame (default 0)");
     golden_cmd->add_option("--max-diff-ratio", golden.max_diff_ratio,
-                           "Differing pixels allowed per frame, as a fraction of all, 0..1");
+                           "Differing pixels allowed per frame, as a fraction of all, 0..1")
+        ->check(finite_number());
     golden_cmd->add_option("--junit", golden.junit, "Also write a JUnit XML report to FILE")
         ->option_text("FILE");
     add_size_option(*golden_cmd, golden.video, "Override every scene's frame size, WIDTHxHEIGHT");
@@ -184,14 +212,16 @@ static int run_command_line(int argc, char** argv) {
     }
 
     ignore_file_size_signal();
-    if (render_cmd->parsed()) {
-        install_stop_handlers();
-        return run_render(render, std::cout, std::cerr);
-    }
-    if (simulate_cmd->parsed()) return run_simulate(simulate, std::cout, std::cerr);
-    if (validate_cmd->parsed()) return run_validate(validate_paths, validate_limits);
-    if (golden_cmd->parsed()) return run_golden(golden, std::cout, std::cerr);
-    return exit_bad_input;
+    install_stop_handlers();
+    int code = exit_bad_input;
+    if (render_cmd->parsed()) code = run_render(render, std::cout, std::cerr);
+    if (simulate_cmd->parsed()) code = run_simulate(simulate, std::cout, std::cerr);
+    if (validate_cmd->parsed()) code = run_validate(validate, std::cout, std::cerr);
+    if (golden_cmd->parsed()) code = run_golden(golden, std::cout, std::cerr);
+    // What a command printed may still sit in a buffer: a full disk or a closed pipe behind
+    // standard output is a failure, not a success with the output silently lost.
+    if (code == exit_ok && !standard_output_ok(std::cout, std::cerr)) return exit_runtime_failure;
+    return code;
 }
 
 // Library code returns its errors; what can still be thrown is the standard library running out

@@ -9,7 +9,9 @@
 
 #include "build_world.hpp"
 #include "commands.hpp"
+#include "discreel/commit.hpp"
 #include "discreel/encode.hpp"
+#include "discreel/printable.hpp"
 #include "discreel/render.hpp"
 #include "exit_codes.hpp"
 #include "frame_scene.hpp"
@@ -18,6 +20,7 @@
 #include "progress.hpp"
 #include "signals.hpp"
 #include "stepper.hpp"
+#include "trace.hpp"
 
 namespace discreel::app {
 namespace {
@@ -51,11 +54,16 @@ std::optional<FrameRange> pick_frames(const RenderOptions& o, const scene::Scene
     int frame = 0;
     if (o.frame) frame = *o.frame;
     if (o.at) {
-        if (!std::isfinite(*o.at)) {
-            err << "discreel: --at must be a number of seconds\n";
+        // Checked as a number before it becomes a frame index, which it could overflow. The
+        // clip's end (t = duration) shows its last frame.
+        const double duration = scene.video.duration;
+        if (!std::isfinite(*o.at) || *o.at < 0 || *o.at > duration) {
+            std::string text = "--at must be a time in the clip, 0 to ";
+            append_number(text, duration);
+            report_error(err, text + " seconds");
             return std::nullopt;
         }
-        frame = static_cast<int>(std::lround(*o.at * scene.video.fps));
+        frame = std::min(count - 1, static_cast<int>(std::lround(*o.at * scene.video.fps)));
     }
     if (frame < 0 || frame >= count) {
         err << "discreel: frame " << frame << " is outside the clip, which has " << count
@@ -137,13 +145,13 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
     if (auto problem = apply_overrides(scene, o.video, o.limits)) {
-        err << "discreel: " << *problem << '\n';
+        report_error(err, *problem);
         return exit_bad_input;
     }
 
     const auto output = encode::describe_output(o.output, o.stream_container);
     if (!output) {
-        err << "discreel: " << output.error().message << '\n';
+        report_error(err, output.error().message);
         return exit_bad_input;
     }
     const encode::SinkDef sink_def{.path = o.output,
@@ -158,7 +166,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
                                    .stream_container = o.stream_container,
                                    .key_colours = scene_colours(scene)};
     if (Status settings = encode::check_settings(sink_def); !settings) {
-        err << "discreel: " << settings.error().message << '\n';
+        report_error(err, settings.error().message);
         return exit_bad_input;
     }
     if (output->to_stdout && isatty(STDOUT_FILENO)) {
@@ -172,11 +180,17 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     // With -o - standard output carries the video, so the summary goes to standard error.
     std::ostream& summary = output->to_stdout ? err : out;
 
+    std::vector<NamedPath> inputs, output_paths;
+    if (o.scene_path) inputs.push_back({"the scene", *o.scene_path});
+    if (!output->to_stdout) output_paths.push_back({"-o", o.output});
+    add_output_paths(o.files, output_paths);
+    if (!check_distinct_files(inputs, output_paths, err)) return exit_bad_input;
+
     auto outputs = SideOutputs::open(o.files, scene, err);
     if (!outputs) return exit_runtime_failure;
     auto sink = encode::open_sink(sink_def);
     if (!sink) {
-        err << "discreel: " << sink.error().message << '\n';
+        report_error(err, sink.error().message);
         return exit_runtime_failure;
     }
 
@@ -221,35 +235,43 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
          .encoder_first = true},
         stages);
     progress.finish();
-    if (!simulated) {
-        err << "discreel: " << simulated.error().message << '\n';
-        return exit_runtime_failure;
-    }
-    if (!run.status) {
-        err << "discreel: " << run.status.error().message << '\n';
-        return exit_runtime_failure;
-    }
-    // A signal during the last frames may arrive after the simulate stage stopped polling.
-    if (run.stopped || stop_signal() != 0) {
+    // A signal is checked first: the write it broke (SIGPIPE's EPIPE) is not the story. One
+    // during the last frames may arrive after the simulate stage stopped polling.
+    const auto interrupted = [&] {
         err << "discreel: interrupted; "
             << (output->to_stdout ? "the stream on standard output ends early"
                                   : "nothing was written")
             << '\n';
         return exit_interrupted_base + stop_signal();
-    }
-    if (Status done = (*sink)->finish(); !done) {
-        err << "discreel: " << done.error().message << '\n';
+    };
+    if (stop_signal() != 0) return interrupted();
+    if (!simulated) {
+        report_error(err, simulated.error().message);
         return exit_runtime_failure;
     }
-    if (Status done = outputs->commit(); !done) {
-        err << "discreel: " << done.error().message << '\n';
+    if (!run.status) {
+        report_error(err, run.status.error().message);
+        return exit_runtime_failure;
+    }
+    if (run.stopped) return interrupted();
+    // The video, trace and events become visible together, or none of them.
+    Status sealed = (*sink)->seal();
+    if (sealed) sealed = outputs->seal();
+    if (stop_signal() != 0) return interrupted();
+    if (sealed) {
+        std::vector<OutputFile*> files = (*sink)->files();
+        for (OutputFile* file : outputs->files()) files.push_back(file);
+        sealed = commit_together(files);
+    }
+    if (!sealed) {
+        report_error(err, sealed.error().message);
         return exit_runtime_failure;
     }
 
     const double seconds = seconds_since(started);
     if (o.verbose) report_details(run, to_write, err);
     if (o.quiet) return exit_ok;
-    summary << "wrote " << o.output << ": " << to_write << (to_write == 1 ? " frame" : " frames")
+    summary << "wrote " << printable(o.output) << ": " << to_write << (to_write == 1 ? " frame" : " frames")
         << ", " << scene.video.width << 'x' << scene.video.height;
     if (!still) {
         summary << ", " << std::fixed << std::setprecision(2) << scene.video.duration << " s at "

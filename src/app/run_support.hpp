@@ -1,13 +1,17 @@
 #pragma once
-// Pieces `render` and `simulate` share: printing scene diagnostics, and the optional trace and
-// events files that both can write alongside their main work.
+// Pieces the commands share: printing errors and scene diagnostics, checking a run's files
+// before any work, and the optional trace and events files that `render` and `simulate` write
+// alongside their main work.
 #include <cstdint>
 #include <optional>
 #include <ostream>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "commands.hpp"
+#include "discreel/file_identity.hpp"
+#include "discreel/output_file.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/scene.hpp"
 #include "trace.hpp"
@@ -18,8 +22,24 @@ namespace discreel::app {
 // /proc does not say.
 std::optional<std::int64_t> peak_resident_bytes();
 
+// Prints "discreel: <message>" on a line of its own, with control bytes escaped (the message
+// may quote file names and ids, which come from users).
+void report_error(std::ostream& err, std::string_view message);
+
 // Prints every diagnostic as `file:line:column: message`; returns whether the scene loaded.
 bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err);
+
+// Refuses (prints why, returns false) a run that would write one of its inputs, or write two
+// of its outputs to the same file. Paths are compared by file identity, through links.
+bool check_distinct_files(const std::vector<NamedPath>& inputs,
+                          const std::vector<NamedPath>& outputs, std::ostream& err);
+
+// The trace and events files of `files`, named for check_distinct_files.
+void add_output_paths(const OutputFiles& files, std::vector<NamedPath>& outputs);
+
+// Flushes standard output; prints why and returns false when what was written there is lost
+// (a full disk behind a redirection, a closed pipe).
+bool standard_output_ok(std::ostream& out, std::ostream& err);
 
 class SideOutputs {
 public:
@@ -30,7 +50,10 @@ public:
 
     void record(int frame, double t, std::span<const physics::DiscState> discs,
                 std::span<const physics::ContactEvent> events);
-    Status commit();
+    // Writes what is buffered and seals the files; then files() are ready to be committed
+    // together with the run's other outputs.
+    Status seal();
+    std::vector<OutputFile*> files();
 
 private:
     std::optional<TraceWriter> trace_;

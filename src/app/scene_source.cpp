@@ -42,7 +42,8 @@ std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverr
         }
         scene.video.duration = *o.duration;
     }
-    return std::nullopt;
+    // A longer clip or another frame rate is more work than the file asked for.
+    return scene::check_work(scene, limits);
 }
 
 }  // namespace discreel::app

@@ -4,6 +4,9 @@
 
 #include <atomic>
 
+#include "discreel/commit.hpp"
+#include "discreel/temporary_files.hpp"
+
 namespace discreel::app {
 namespace {
 
@@ -11,18 +14,38 @@ namespace {
 std::atomic<int> received{0};
 static_assert(std::atomic<int>::is_always_lock_free);
 
-extern "C" void record_signal(int signal) { received.store(signal, std::memory_order_relaxed); }
+extern "C" void on_stop_signal(int signal_number) {
+    int none = 0;
+    const bool first = received.compare_exchange_strong(none, signal_number,
+                                                        std::memory_order_relaxed);
+    if (first || signal_number == SIGPIPE || commit_in_progress()) return;
+    delete_temporary_files_now();
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+}
+
+void catch_signal(int signal_number) {
+    struct sigaction current {};
+    // A signal the parent set to be ignored (nohup, a shell's background job) stays ignored.
+    if (sigaction(signal_number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) return;
+    struct sigaction action {};
+    action.sa_handler = on_stop_signal;
+    sigfillset(&action.sa_mask);   // one handler at a time: the second-signal test is exact
+    action.sa_flags = SA_RESTART;
+    sigaction(signal_number, &action, nullptr);
+}
 
 }  // namespace
 
 void install_stop_handlers() {
-    struct sigaction action {};
-    action.sa_handler = record_signal;
-    sigemptyset(&action.sa_mask);
-    // SA_RESETHAND: the first signal asks politely; the next one gets the default action.
-    action.sa_flags = SA_RESETHAND | SA_RESTART;
-    sigaction(SIGINT, &action, nullptr);
-    sigaction(SIGTERM, &action, nullptr);
+    for (const int signal_number : {SIGHUP, SIGINT, SIGQUIT, SIGTERM, SIGUSR1, SIGUSR2, SIGPIPE,
+                                    SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU, SIGIO, SIGPWR,
+                                    SIGSTKFLT}) {
+        catch_signal(signal_number);
+    }
+    for (int signal_number = SIGRTMIN; signal_number <= SIGRTMAX; ++signal_number) {
+        catch_signal(signal_number);
+    }
 }
 
 void ignore_file_size_signal() {

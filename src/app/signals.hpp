@@ -1,17 +1,21 @@
 #pragma once
-// SIGINT and SIGTERM as a request to stop, not an abrupt end: the handler only records the
-// signal, and the render loop polls it between frames, unwinds, and lets the sinks delete their
-// temporary files. A second signal of the same kind ends the process the default way, for a
-// user who does not want to wait for that.
+// Every catchable signal whose default would end the process (SIGINT, SIGTERM, SIGHUP, SIGQUIT,
+// SIGPIPE, SIGALRM, SIGUSR1, the real-time signals, ...) is a request to stop, not an abrupt
+// end: the handler only records the signal, and the commands poll it between frames, unwind,
+// and let the outputs delete their temporary files. A second such signal ends the process at
+// once, with that signal's default action, after deleting the temporary files itself; while
+// outputs are being committed (commit_in_progress()) it waits for the commit to finish.
+// SIGPIPE is only ever recorded: the write that raised it fails with EPIPE and the run stops.
+// Only SIGKILL (and a crash in the middle of a commit) can leave a temporary file behind.
 namespace discreel::app {
 
-// Installs the handlers; call once, from main(), before rendering.
+// Installs the handlers; call once, from main(), before any work or thread starts.
 void install_stop_handlers();
 
-// The signal that asked to stop (SIGINT, SIGTERM), or 0 while none has arrived.
 // Makes writes past a file-size limit fail (EFBIG) instead of killing the process.
 void ignore_file_size_signal();
 
+// The signal that asked to stop, or 0 while none has arrived.
 int stop_signal();
 
 }  // namespace discreel::app

@@ -2,6 +2,9 @@
 #include <iomanip>
 
 #include "build_world.hpp"
+#include "discreel/commit.hpp"
+#include "discreel/printable.hpp"
+#include "signals.hpp"
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "run_support.hpp"
@@ -24,9 +27,13 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     VideoOverrides overrides;
     overrides.duration = o.duration;
     if (auto problem = apply_overrides(scene, overrides, o.limits)) {
-        err << "discreel: " << *problem << '\n';
+        report_error(err, *problem);
         return exit_bad_input;
     }
+    std::vector<NamedPath> output_paths;
+    add_output_paths(o.files, output_paths);
+    if (!check_distinct_files({{"the scene", o.scene_path}}, output_paths, err))
+        return exit_bad_input;
     auto outputs = SideOutputs::open(o.files, scene, err);
     if (!outputs) return exit_runtime_failure;
 
@@ -37,8 +44,12 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     std::size_t contacts = 0;
     physics::WorldStats deepest;   // the frame with the deepest overlap
     for (int frame = 0; frame < timeline.frame_count; ++frame) {
+        if (stop_signal() != 0) {
+            err << "discreel: interrupted; nothing was written\n";
+            return exit_interrupted_base + stop_signal();
+        }
         if (Status stepped = stepper.advance_to(frame); !stepped) {
-            err << "discreel: " << stepped.error().message << '\n';
+            report_error(err, stepped.error().message);
             return exit_runtime_failure;
         }
         const std::vector<physics::ContactEvent> events = stepper.take_events();
@@ -47,8 +58,10 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
         const physics::WorldStats stats = world.stats();
         if (stats.max_overlap > deepest.max_overlap) deepest = stats;
     }
-    if (Status done = outputs->commit(); !done) {
-        err << "discreel: " << done.error().message << '\n';
+    Status done = outputs->seal();
+    if (done) done = commit_together(outputs->files());
+    if (!done) {
+        report_error(err, done.error().message);
         return exit_runtime_failure;
     }
     const double energy_end = world.energy();
@@ -56,7 +69,7 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
     out << std::setprecision(6);
-    out << "scene     " << scene.name << ": " << count_of(scene.discs.size(), "disc", "discs")
+    out << "scene     " << printable(scene.name) << ": " << count_of(scene.discs.size(), "disc", "discs")
         << ", " << count_of(scene.walls.size(), "wall", "walls") << ", "
         << count_of(scene.throws.size(), "throw", "throws") << '\n';
     out << "frames    " << timeline.frame_count << " at " << scene.video.fps << " fps ("

@@ -1,5 +1,5 @@
 #pragma once
-// The CSV trace and contact-event files of SCENE_FORMAT.md. Numbers are written in the shortest
+// The CSV trace and contact-event files (docs/cli.md). Numbers are written in the shortest
 // form that reads back to the same double, so a trace can be compared bit for bit.
 #include <memory>
 #include <span>
@@ -18,7 +18,7 @@ public:
     // frame,t,id,x,y,angle,vx,vy,omega,radius,mass — one row per disc per frame.
     static Expected<TraceWriter> create(const std::string& path, const scene::Scene& scene);
     void write_frame(int frame, double t, std::span<const physics::DiscState> discs);
-    Status commit() { return file_.commit(); }
+    AtomicTextFile& file() { return file_; }
 
 private:
     TraceWriter(AtomicTextFile file, const scene::Scene& scene);
@@ -32,7 +32,7 @@ public:
     // t,a,b,impulse — one row per new contact; b is a disc id or wall:<index>.
     static Expected<EventWriter> create(const std::string& path, const scene::Scene& scene);
     void write(std::span<const physics::ContactEvent> events);
-    Status commit() { return file_.commit(); }
+    AtomicTextFile& file() { return file_; }
 
 private:
     EventWriter(AtomicTextFile file, const scene::Scene& scene);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "discreel/commit.hpp"
 #include "discreel/encode.hpp"
 #include "frame_pattern.hpp"
 #include "discreel/output_file.hpp"
@@ -117,6 +118,11 @@ Status check_settings(const SinkDef& def) {
         return resolved.error();
     }
     return check_resolved(*resolved, def);
+}
+
+Status Sink::finish() {
+    if (Status sealed = seal(); !sealed) return sealed;
+    return commit_together(files());
 }
 
 Expected<std::unique_ptr<Sink>> open_sink(const SinkDef& def) {

@@ -40,7 +40,14 @@ public:
         return {};
     }
 
-    Status finish() override {
+    std::vector<OutputFile*> files() override {
+        std::vector<OutputFile*> all;
+        all.reserve(files_.size());
+        for (OutputFile& file : files_) all.push_back(&file);
+        return all;
+    }
+
+    Status seal() override {
         if (auto status = usable(); !status) {
             return status;
         }
@@ -48,15 +55,7 @@ public:
             failed_ = true;
             return write_error(def_.path, "no frames were written");
         }
-        finished_ = true;
-        for (std::size_t i = 0; i < files_.size(); ++i) {
-            if (auto committed = files_[i].commit(); !committed) {
-                for (std::size_t done = 0; done < i; ++done) {
-                    std::remove(files_[done].target_path().c_str());
-                }
-                return committed;
-            }
-        }
+        finished_ = true;   // every frame was sealed as it was written
         return {};
     }
 

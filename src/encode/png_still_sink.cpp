@@ -37,7 +37,9 @@ public:
         return {};
     }
 
-    Status finish() override {
+    std::vector<OutputFile*> files() override { return {&file_}; }
+
+    Status seal() override {
         if (finished_) {
             return write_error(def_.path, "the sink is already finished");
         }
@@ -45,7 +47,7 @@ public:
             return write_error(def_.path, "a PNG still takes exactly one frame, got none");
         }
         finished_ = true;
-        return file_.commit();
+        return file_.seal();
     }
 
 private:

@@ -65,7 +65,11 @@ public:
           packet_(std::move(packet)) {}
 
     Status write(const ImageView& frame) override;
-    Status finish() override;
+    Status seal() override;
+    std::vector<OutputFile*> files() override {
+        if (!file_) return {};
+        return {&*file_};
+    }
 
 private:
     Error failure(const std::string& what, int error_code) {
@@ -149,7 +153,7 @@ Status VideoSink::encode(const AVFrame* frame) {
     }
 }
 
-Status VideoSink::finish() {
+Status VideoSink::seal() {
     begin_libav_call();
     if (auto status = usable(); !status) {
         return status;
@@ -169,7 +173,7 @@ Status VideoSink::finish() {
         return failure("closing the file failed", result);
     }
     finished_ = true;
-    return file_ ? file_->commit() : Status{};
+    return file_ ? file_->seal() : Status{};
 }
 
 }  // namespace

@@ -111,6 +111,8 @@ void unregister_temporary_file(std::size_t handle) {
     r.free_slots.push_back(handle);
 }
 
+void delete_temporary_files_now() { delete_registered_files(); }
+
 void delete_temporary_files_on_crash() {
     registry();   // created now, not in the handler
     for (const int signal_number : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT}) {

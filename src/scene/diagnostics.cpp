@@ -1,5 +1,7 @@
 #include "diagnostics.hpp"
 
+#include "discreel/printable.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -8,8 +10,10 @@
 namespace discreel::scene {
 
 std::string Diagnostic::to_string() const {
-    if (line <= 0) return file + ": " + message;  // about the file as a whole (unreadable)
-    return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message;
+    // File names, keys and ids come from users: their control bytes are shown escaped.
+    if (line <= 0) return printable(file + ": " + message);  // about the file as a whole
+    return printable(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
+                     message);
 }
 
 namespace detail {

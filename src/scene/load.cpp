@@ -12,6 +12,7 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
+#include "discreel/read_file.hpp"
 #include "loader.hpp"
 
 namespace discreel::scene {
@@ -25,6 +26,10 @@ using detail::Value;
 constexpr std::array<std::string_view, 9> top_level_keys{
     "version", "video", "camera", "style", "physics", "walls", "discs", "throws", "golden"};
 constexpr int supported_version = 1;
+// Values under unknown top-level keys beyond which a file is refused before it is parsed into
+// nodes: a misspelt section of an ordinary scene holds fewer, and is reported with the file's
+// other problems instead.
+constexpr std::size_t max_unknown_values = 10'000;
 
 Location mark_location(const YAML::Mark& mark) {
     if (mark.is_null() || mark.line < 0 || mark.column < 0) return {};
@@ -68,15 +73,27 @@ bool version_supported(const Value& root, Diagnostics& d) {
 // than copying it, but the loader reads every use: a few kilobytes of nested aliases (a
 // "billion laughs") or ten thousand throws aliasing one long path would otherwise cost hours
 // and gigabytes, where the file-size limit bounds everything written out.
+//
+// The pass also refuses, before a single node is built, what cannot be a scene: more values
+// than limits.values, more entries in discs, walls or throws than their limits, and unknown
+// top-level keys that hold more than max_unknown_values. It stops reading at the first such
+// finding, so a huge file of junk costs one partial read of events.
 class DocumentScan final : public YAML::EventHandler {
 public:
-    explicit DocumentScan(std::string_view text) {
+    DocumentScan(std::string_view text, const Limits& limits) : limits_(limits) {
         std::istringstream stream{std::string(text)};
         YAML::Parser parser(stream);
         // A second document is an error, more add nothing; but a stuck token right after the
         // first document shows only as a third that starts where the second did.
-        while (count_ <= 2 && !stuck_ && parser.HandleNextDocument(*this)) {}
+        try {
+            while (count_ <= 2 && !stuck_ && parser.HandleNextDocument(*this)) {}
+        } catch (const Refused&) {
+            // refusal_ says why
+        }
     }
+
+    // Why the file cannot be a scene, and where, when the pass found out.
+    const std::optional<std::pair<Location, std::string>>& refusal() const { return refusal_; }
 
     bool first_is_empty() const { return count_ == 0 || first_is_null_; }
     // Where the second document's root is, when there is one.
@@ -100,10 +117,12 @@ public:
     }
     void OnDocumentEnd() override {}
     void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+        begin_node(mark, nullptr);
         root(mark, true);
         leaf(anchor, 1);
     }
     void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+        begin_node(mark, nullptr);
         root(mark, false);
         const std::size_t size = anchor < anchored_sizes_.size() ? anchored_sizes_[anchor] : 1;
         aliased_ = capped_sum(aliased_, size);
@@ -111,20 +130,23 @@ public:
         leaf(0, size);
     }
     void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
-                  const std::string&) override {
+                  const std::string& value) override {
+        begin_node(mark, &value);
         root(mark, false);
         leaf(anchor, 1);
     }
     void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
                          YAML::EmitterStyle::value) override {
+        begin_node(mark, nullptr);
         root(mark, false);
-        open_.push_back({anchor, 1});
+        open_.push_back({anchor, 1, false, 0});
     }
     void OnSequenceEnd() override { close(); }
     void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
                     YAML::EmitterStyle::value) override {
+        begin_node(mark, nullptr);
         root(mark, false);
-        open_.push_back({anchor, 1});
+        open_.push_back({anchor, 1, true, 0});
     }
     void OnMapEnd() override { close(); }
 
@@ -134,6 +156,8 @@ private:
     struct Open {
         YAML::anchor_t anchor;
         std::size_t size;
+        bool is_map;
+        std::size_t children;   // nodes directly inside so far (a map's keys and values)
     };
 
     static std::size_t capped_sum(std::size_t a, std::size_t b) {
@@ -158,6 +182,58 @@ private:
         if (count_ == 2) second_root_ = mark_location(mark);
     }
 
+    struct Refused {};
+    void refuse(const YAML::Mark& mark, std::string message) {
+        refusal_.emplace(mark_location(mark), std::move(message));
+        throw Refused{};
+    }
+
+    // Every node of the first document passes here as it starts, before root() and before it
+    // joins its parent; `scalar` is its text when it is a scalar.
+    void begin_node(const YAML::Mark& mark, const std::string* scalar) {
+        if (count_ != 1) return;
+        if (++values_ > limits_.values) {
+            refuse(mark, "the file holds more than " + std::to_string(limits_.values) +
+                             " YAML values (scalars, lists and mappings), the limit; raise it "
+                             "with --max-scene-values");
+        }
+        if (open_.empty()) return;
+        Open& parent = open_.back();
+        const std::size_t index = parent.children++;
+        if (open_.size() == 1 && parent.is_map) {
+            if (index % 2 == 0) {   // a top-level key
+                section_.clear();
+                key_mark_ = mark;
+                if (scalar) section_ = *scalar;
+                known_section_ = std::find(top_level_keys.begin(), top_level_keys.end(),
+                                           section_) != top_level_keys.end();
+            }
+            return;
+        }
+        if (!known_section_ && ++unknown_values_ > max_unknown_values) {
+            refuse(key_mark_, "unknown top-level key '" + section_ +
+                                  "', holding more values than any scene needs; expected one "
+                                  "of: version, video, camera, style, physics, walls, discs, "
+                                  "throws, golden");
+        }
+        if (open_.size() == 2 && !parent.is_map) {   // an entry of a top-level list
+            const std::size_t entries = index + 1;
+            if (section_ == "discs" && entries > limits_.discs) {
+                refuse(mark, "discs: more than " + std::to_string(limits_.discs) +
+                                 " entries, and each makes at least one disc; the limit is " +
+                                 std::to_string(limits_.discs) + " (raise it with --max-discs)");
+            }
+            if (section_ == "walls" && entries > max_walls) {
+                refuse(mark, "walls: too many walls (more than " + std::to_string(max_walls) +
+                                 "); the limit is " + std::to_string(max_walls));
+            }
+            if (section_ == "throws" && entries > max_throws) {
+                refuse(mark, "throws: too many throws (more than " + std::to_string(max_throws) +
+                                 "); the limit is " + std::to_string(max_throws));
+            }
+        }
+    }
+
     std::size_t count_ = 0;
     bool at_root_ = false;
     bool first_is_null_ = false;
@@ -168,6 +244,13 @@ private:
     std::vector<std::size_t> anchored_sizes_;  // by anchor number
     std::size_t aliased_ = 0;                  // values repeated by aliases, capped
     std::optional<YAML::Mark> too_many_aliased_;
+    const Limits& limits_;
+    std::size_t values_ = 0;          // nodes of the first document so far
+    std::string section_;             // the top-level key being read
+    YAML::Mark key_mark_;
+    bool known_section_ = true;
+    std::size_t unknown_values_ = 0;  // nodes under unknown top-level keys
+    std::optional<std::pair<Location, std::string>> refusal_;
 };
 
 std::string stuck_token_message(std::string_view text, const YAML::Mark& mark) {
@@ -193,7 +276,15 @@ void read_scene(const Value& root, detail::Loader& loader) {
     // camera.follow refer to discs, golden frames are checked against the video's length.
     if (const auto v = fields->get("video")) detail::read_video(loader, *v);
     if (const auto v = fields->get("camera")) detail::read_camera(loader, *v);
-    if (const auto v = fields->get("physics")) detail::read_physics(loader, *v);
+    const auto physics = fields->get("physics");
+    if (physics) detail::read_physics(loader, *physics);
+    if (d.empty()) {
+        // The work the clip asks for, pointed at the setting most likely to be the cause.
+        if (auto problem = check_work(loader.scene, loader.limits)) {
+            const auto video = fields->get("video");
+            d.error(physics ? physics->where : video ? video->where : root.where, *problem);
+        }
+    }
     if (const auto v = fields->get("walls")) detail::read_walls(loader, *v);
     if (const auto v = fields->get("discs")) detail::read_discs(loader, *v);
     detail::check_discs(loader);
@@ -204,20 +295,34 @@ void read_scene(const Value& root, detail::Loader& loader) {
     detail::read_golden(loader, fields->get("golden"));
 }
 
+// yaml-cpp breaks lines at "\n" and "\r\n" only; a file with old Mac line ends ("\r" alone)
+// would be one long line, and every position in it wrong. Same length: columns stay true.
+std::string with_line_feeds(std::string_view text) {
+    std::string out(text);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        if (out[i] == '\r' && (i + 1 == out.size() || out[i + 1] != '\n')) out[i] = '\n';
+    }
+    return out;
+}
+
 }  // namespace
 
-LoadResult load_scene_text(std::string_view text, std::string_view display_name,
+LoadResult load_scene_text(std::string_view original_text, std::string_view display_name,
                            const Limits& limits) {
-    if (text.size() > limits.file_bytes)
-        return whole_file_problem(display_name, too_large(text.size(), limits));
+    if (original_text.size() > limits.file_bytes)
+        return whole_file_problem(display_name, too_large(original_text.size(), limits));
+    const std::string normalised = with_line_feeds(original_text);
+    const std::string_view text = normalised;
     LoadResult result;
     result.scene.name = std::filesystem::path(display_name).stem().string();
     Diagnostics d;
     YAML::Node document;
     std::optional<Location> second_document;
     try {
-        const DocumentScan scan(text);
-        if (const auto stuck = scan.stuck()) {
+        const DocumentScan scan(text, limits);
+        if (const auto& refusal = scan.refusal()) {
+            d.error(refusal->first, refusal->second);
+        } else if (const auto stuck = scan.stuck()) {
             d.error(mark_location(*stuck), stuck_token_message(text, *stuck));
         } else if (const auto alias = scan.too_many_aliased()) {
             d.error(mark_location(*alias),
@@ -263,11 +368,17 @@ LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limi
     if (!std::filesystem::exists(path, ec)) return whole_file_problem(display, "no such file");
     const auto size = std::filesystem::file_size(path, ec);
     if (!ec && size > limits.file_bytes) return whole_file_problem(display, too_large(size, limits));
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return whole_file_problem(display, "cannot open the file for reading");
-    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    if (in.bad()) return whole_file_problem(display, "cannot read the file");
-    return load_scene_text(text, display, limits);
+    // Whatever the file is (a pipe, /dev/zero, a file still growing), no more than the limit
+    // and one byte is read.
+    auto read = read_file_bounded(display, limits.file_bytes);
+    if (!read) return whole_file_problem(display, "cannot read the file: " + read.error().message);
+    if (read->too_large) {
+        return whole_file_problem(display, "the input holds more than " +
+                                               std::to_string(limits.file_bytes) +
+                                               " bytes, the limit (raise it with "
+                                               "--max-scene-bytes)");
+    }
+    return load_scene_text(read->bytes, display, limits);
 }
 
 }  // namespace discreel::scene

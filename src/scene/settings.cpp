@@ -1,4 +1,5 @@
 // The scalar sections: video, camera, physics and golden.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string_view>
@@ -9,6 +10,29 @@
 namespace discreel::scene {
 
 int Video::frame_count() const { return static_cast<int>(std::lround(duration * fps)); }
+
+std::optional<std::string> check_work(const Scene& scene, const Limits& limits) {
+    const double frames = scene.video.duration * scene.video.fps;
+    if (!(frames <= max_frames)) {
+        return detail::format_number(scene.video.duration) + " seconds at " +
+               std::to_string(scene.video.fps) + " fps is more than " +
+               detail::format_number(max_frames) + " frames, the most a clip may have";
+    }
+    // substeps 0 asks the physics for the fewest that keep a substep at or under 1/480 s.
+    const int per_step = scene.physics.substeps > 0
+                             ? scene.physics.substeps
+                             : std::max(1, static_cast<int>(std::ceil(480.0 / scene.physics.rate)));
+    const double substeps = scene.video.duration * scene.physics.rate * per_step;
+    if (substeps > static_cast<double>(limits.substeps)) {
+        return detail::format_number(scene.video.duration) + " seconds at " +
+               std::to_string(scene.physics.rate) + " steps per second and " +
+               std::to_string(per_step) + (per_step == 1 ? " substep" : " substeps") +
+               " per step is " + detail::format_number(std::ceil(substeps)) +
+               " physics substeps, more than the limit of " +
+               std::to_string(limits.substeps) + " (raise it with --max-substeps)";
+    }
+    return std::nullopt;
+}
 
 namespace detail {
 namespace {
@@ -73,6 +97,11 @@ void read_video(Loader& loader, const Value& value) {
                                          format_number(loader.limits.duration) + " seconds, got " +
                                          format_number(*v) +
                                          (*v > 0 ? " (raise the limit with --max-duration)" : ""));
+            loader.frames_known = false;
+        } else if (v && *v * video.fps > max_frames) {
+            d.error(duration->where, duration->path + ": " + format_number(*v) + " seconds at " +
+                                         std::to_string(video.fps) + " fps is more than " +
+                                         format_number(max_frames) + " frames, the most a clip may have");
             loader.frames_known = false;
         } else if (v) {
             video.duration = *v;

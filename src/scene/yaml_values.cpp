@@ -10,8 +10,11 @@
 namespace discreel::scene::detail {
 namespace {
 
-// A quoted scalar ("3") is text even when it looks like a number; yaml-cpp tags it "!".
-bool is_quoted(const YAML::Node& node) { return node.Tag() == "!"; }
+// A quoted scalar ("3") is text even when it looks like a number; yaml-cpp tags it "!". So is
+// one tagged as a string (!!str 3), which YAML's own rules make text.
+bool is_quoted(const YAML::Node& node) {
+    return node.Tag() == "!" || node.Tag() == "tag:yaml.org,2002:str";
+}
 
 std::string_view without_plus(std::string_view text) {
     return (!text.empty() && text[0] == '+') ? text.substr(1) : text;
@@ -56,9 +59,12 @@ bool explain_non_number(const Value& value, std::string_view what, Diagnostics& 
     const std::string& text = value.node.Scalar();
     double number = 0;
     if (is_quoted(value.node) && parse_double(text, number) == Parsed::ok) {
+        const bool tagged = value.node.Tag() != "!";
         diagnostics.error(value.where, value.path + ": expected " + std::string(what) +
-                                           ", got the quoted text " + describe(value.node) +
-                                           "; remove the quotes");
+                                           (tagged ? ", got the text " : ", got the quoted text ") +
+                                           describe(value.node) +
+                                           (tagged ? " (tagged !!str); remove the tag"
+                                                   : "; remove the quotes"));
         return true;
     }
     if (!is_quoted(value.node) &&

@@ -194,9 +194,18 @@ TEST_F(GoldenCliGLTest, ASizeMismatchIsAFailureWithTheActualFrame) {
     const auto check = golden({"--size", "320x240"});
     EXPECT_EQ(check.exit_code, 1);
     EXPECT_EQ(check.out.substr(0, check.out.find('\n')),
-              "ball frame 0: FAILED: the frame is 320x240 but the golden is 160x120");
+              "ball frame 0: FAILED: the frame is 320x240 but the golden is 160x120; check at "
+              "the golden's size with --size 160x120, or rewrite the goldens with --update");
     EXPECT_TRUE(fs::exists(goldens_ + "/ball/frame_0.actual.png"));
     EXPECT_FALSE(fs::exists(goldens_ + "/ball/frame_0.diff.png"));
+}
+
+// Goldens made with --size are checked at that size (golden.txt records it) without it.
+TEST_F(GoldenCliGLTest, TheRecordedSizeIsUsedWhenNoSizeIsGiven) {
+    ASSERT_EQ(golden({"--update", "--size", "320x240"}).exit_code, 0);
+    const auto check = golden({});
+    EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+    EXPECT_EQ(check.out.substr(0, check.out.find('\n')), "ball frame 0: ok (identical)");
 }
 
 TEST_F(GoldenCliGLTest, BadOptionsAndScenesAreExit2BeforeAnyWork) {

@@ -1,9 +1,11 @@
 #pragma once
 // Frames in, files out (libavformat/libavcodec/libswscale behind this header). A Sink writes to
-// a temporary file beside the target and renames it onto the target only in finish(): a sink
-// destroyed without a successful finish() deletes its temporary file, so the target path holds
-// either the complete new output or whatever was there before. The exception is "-" (standard
-// output), which is a stream: bytes leave as they are encoded.
+// temporary files beside its targets (discreel/output_file.hpp) and renames them onto the
+// targets only when committed: a sink destroyed before that deletes its temporary files, so the
+// target paths hold either the complete new output or whatever was there before. A run with
+// several outputs seals the sink and commits its files() together with the others
+// (discreel/commit.hpp). The exception is "-" (standard output), which is a stream: bytes leave
+// as they are encoded.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -13,6 +15,7 @@
 
 #include "discreel/expected.hpp"
 #include "discreel/image.hpp"
+#include "discreel/output_file.hpp"
 
 namespace discreel::encode {
 
@@ -41,7 +44,13 @@ class Sink {
 public:
     virtual ~Sink() = default;
     virtual Status write(const ImageView& frame) = 0;   // frames in presentation order
-    virtual Status finish() = 0;                        // flush, close, rename into place
+    // Flushes the encoder and closes the output under its temporary name(s): nothing is
+    // visible at the target yet.
+    virtual Status seal() = 0;
+    // After seal(): the files to commit, in order (none for a stream on standard output).
+    virtual std::vector<OutputFile*> files() = 0;
+    // seal(), then commit_together(files()): for a sink that is its run's only output.
+    Status finish();
 };
 
 // What an output path will be written as.
@@ -70,7 +79,18 @@ Status check_settings(const SinkDef& def);
 Expected<std::unique_ptr<Sink>> open_sink(const SinkDef& def);
 
 // PNG stills for goldens and single frames: decoded/encoded with libavcodec's PNG codec.
+// Reading trusts nothing about the file: the header is read first (a file that is no PNG, or
+// whose pixels would outnumber the largest frame discreel renders, 7680x4320, is refused
+// before anything else is read), then at most as many bytes as a PNG of that size can hold.
+struct ImageSize {
+    int width = 0;    // pixels
+    int height = 0;   // pixels
+    friend bool operator==(const ImageSize&, const ImageSize&) = default;
+};
+Expected<ImageSize> read_png_size(const std::string& path);
 Expected<Image> read_png(const std::string& path);
 Status write_png(const std::string& path, const ImageView& image);   // atomic: temp + rename
+// The PNG written and sealed under a temporary name, for commit_together() with other files.
+Expected<OutputFile> prepare_png(const std::string& path, const ImageView& image);
 
 }  // namespace discreel::encode

@@ -17,4 +17,8 @@ void unregister_temporary_file(std::size_t handle);
 // libraries: call it once from main(), before any thread starts.
 void delete_temporary_files_on_crash();
 
+// Deletes every registered file now. Async-signal-safe: for a handler that is about to end the
+// process (a second Ctrl-C) and must not leave temporary files behind.
+void delete_temporary_files_now();
+
 }  // namespace discreel

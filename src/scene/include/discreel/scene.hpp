@@ -16,12 +16,24 @@ namespace discreel::scene {
 
 // Limits that protect the machine from a scene that asks too much (memory, time, disk). A scene
 // beyond one is rejected with a message that states the limit and the command-line option that
-// raises it; the CLI fills this from --max-discs, --max-duration and --max-scene-bytes.
+// raises it; the CLI fills this from --max-discs, --max-duration, --max-scene-bytes,
+// --max-scene-values and --max-substeps. At the defaults any input is judged in well under
+// 1 GiB of memory (docs/reliability.md).
 struct Limits {
     std::size_t discs = 100'000;
     double duration = 3600;                   // seconds of video
-    std::uintmax_t file_bytes = 64u << 20;    // size of the scene file
+    std::uintmax_t file_bytes = 64u << 20;    // size of the scene file; more is never read
+    // YAML values (scalars, lists, mappings, keys included) in the file: each costs about half
+    // a kilobyte once parsed, so this bounds the parser's memory. 100 000 discs written out
+    // one by one with an id and a colour take 1.1 million.
+    std::size_t values = 1'200'000;
+    // Physics substeps a run may take: duration x physics.rate x physics.substeps. One hour at
+    // the default 480 Hz x 3 takes 5.2 million.
+    std::uint64_t substeps = 50'000'000;
 };
+
+// Frames a clip may have: its index must fit an int, with room to spare.
+inline constexpr double max_frames = 1e9;
 
 // Fixed limits on the shape of a file: beyond them it is malformed rather than ambitious.
 inline constexpr std::size_t max_walls = 10'000;
@@ -173,5 +185,11 @@ struct LoadResult {
 LoadResult load_scene_text(std::string_view text, std::string_view display_name,
                            const Limits& limits = {});
 LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limits = {});
+
+// The work a scene asks for against `limits`: more frames than max_frames, or more physics
+// substeps than limits.substeps. The problem in words, naming the option that raises the limit;
+// nullopt when within. The loader checks this; so must whoever changes the video or physics
+// settings after loading (command-line overrides).
+std::optional<std::string> check_work(const Scene& scene, const Limits& limits);
 
 }  // namespace discreel::scene

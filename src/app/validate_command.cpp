@@ -1,0 +1,26 @@
+#include <iostream>
+
+#include "commands.hpp"
+#include "exit_codes.hpp"
+#include "run_support.hpp"
+
+#include "discreel/printable.hpp"
+
+namespace discreel::app {
+
+int run_validate(const ValidateOptions& o, std::ostream& out, std::ostream& err) {
+    bool all_ok = true;
+    for (const std::string& path : o.scene_paths) {
+        const auto loaded = scene::load_scene_file(path, o.limits);
+        if (report_diagnostics(loaded, err)) {
+            out << printable(path) << ": ok (" << loaded.scene.discs.size() << " discs, "
+                << loaded.scene.video.frame_count() << " frames)\n";
+        } else {
+            all_ok = false;
+        }
+    }
+    if (!standard_output_ok(out, err)) return exit_runtime_failure;
+    return all_ok ? exit_ok : exit_bad_input;
+}
+
+}  // namespace discreel::app
