@@ -10,14 +10,17 @@
 //     DISCREEL_ITERATIONS=i  resting-contact iterations per substep (default: the world's, 3)
 //     DISCREEL_SEED=s        seed of the initial velocities (default 12345)
 // The same settings are physics.rate, physics.substeps and physics.iterations in a scene file.
+// Each N's figures are also appended to bench/results/physics_bench.csv (bench_results.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <string>
 #include <vector>
 
+#include "bench_results.hpp"
 #include "discreel/physics.hpp"
 
 namespace {
@@ -105,6 +108,10 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(settings.seed));
     std::printf("%8s %9s %15s %15s %15s %9s   %s\n", "N", "substeps", "CPU ms / sim s",
                 "overlap at end", "worst, last s", "contacts", "CPU ms in each simulated second");
+    bench::ResultsFile results(
+        "physics_bench",
+        {"simulated_s", "discs", "rate_hz", "substeps", "iterations", "seed", "cpu_ms_per_sim_s",
+         "overlap_end_pct_r", "overlap_worst_last_s_pct_r", "contacts", "cpu_ms_each_sim_s"});
     for (const int n : sizes) {
         physics::World world(pile(n, settings));
         const int rate = settings.rate;
@@ -139,8 +146,22 @@ int main(int argc, char** argv) {
         std::printf("%8d %9d %15.1f %14.3f%% %14.3f%% %9zu  ", n, world.substeps(),
                     1000.0 * cpu / seconds, 100.0 * s.max_overlap_ratio, 100.0 * worst_late,
                     s.contact_count);
-        for (const long long ms : by_second) std::printf(" %lld", ms);
+        std::string each;
+        for (const long long ms : by_second) {
+            std::printf(" %lld", ms);
+            if (!each.empty()) each += ' ';
+            each += std::to_string(ms);
+        }
         std::printf("\n");
+        std::fflush(stdout);
+        results.append({bench::csv_number(seconds, 1), std::to_string(n),
+                        std::to_string(settings.rate), std::to_string(world.substeps()),
+                        std::to_string(settings.iterations), std::to_string(settings.seed),
+                        bench::csv_number(1000.0 * cpu / seconds, 1),
+                        bench::csv_number(100.0 * s.max_overlap_ratio, 3),
+                        bench::csv_number(100.0 * worst_late, 3), std::to_string(s.contact_count),
+                        each});
     }
+    if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());
     return 0;
 }

@@ -12,6 +12,8 @@
 //                    [--hd-seconds 0]
 // --repeat K runs the three encoding columns K times in turn and reports each one's median.
 // --hd-seconds S also renders S seconds of 1 000 discs at 1920x1080 and reports peak memory.
+// Each row is also appended to bench/results/pipeline_bench.csv (bench_results.hpp); the
+// 1080p run is a row of its own with only the pipeline's fps and peak memory.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/prctl.h>
@@ -32,6 +34,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_results.hpp"
 #include "build_world.hpp"
 #include "discreel/encode.hpp"
 #include "discreel/render.hpp"
@@ -275,6 +278,25 @@ int main(int argc, char** argv) {
     std::printf("| discs | render only | encode only | render \\| ffmpeg | pipeline | "
                 "pipeline / encode | pipeline / ffmpeg | pipeline peak memory |\n");
     std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    const char* lp_threads = std::getenv("LP_NUM_THREADS");
+    const std::string load_start = bench::csv_number(load[0], 2);
+    bench::ResultsFile results(
+        "pipeline_bench",
+        {"frames", "width", "height", "discs", "repeat", "lp_num_threads", "load_avg_start",
+         "load_avg_end", "render_only_fps", "render_only_cpu_ms_per_frame", "encode_only_fps",
+         "encode_only_cpu_ms_per_frame", "render_ffmpeg_fps", "render_ffmpeg_cpu_ms_per_frame",
+         "pipeline_fps", "pipeline_cpu_ms_per_frame", "pipeline_over_encode",
+         "pipeline_over_ffmpeg", "pipeline_peak_mib"});
+    const auto number = [](double value, int decimals) {
+        return bench::csv_number(value, decimals);
+    };
+    // The 1-minute load average when a row is written: on a shared machine, how much other
+    // work the row was measured beside.
+    const auto load_now = [] {
+        double now[1] = {0};
+        getloadavg(now, 1);
+        return bench::csv_number(now[0], 2);
+    };
     for (const int discs : settings.disc_counts) {
         const std::string scene_path = (dir / ("gas" + std::to_string(discs) + ".yaml")).string();
         std::ofstream(scene_path) << gas_scene(discs, settings.width, settings.height,
@@ -302,7 +324,7 @@ int main(int argc, char** argv) {
             stored.insert(stored.end(), image.rgba.begin(), image.rgba.end());
         });
         const double render_cpu = cpu_ms_per_frame();
-        // The VM's speed drifts by 10-20 % within minutes, so the three encoding columns are
+        // A shared machine's speed drifts within minutes, so the three encoding columns are
         // run in turn `repeat` times and each reports its median run.
         std::vector<Run> encoded, piped, pipelined;
         double peak_mib = 0;
@@ -332,6 +354,14 @@ int main(int argc, char** argv) {
                     pipe.cpu_ms, pipeline_fps, pipeline.cpu_ms, pipeline_fps / encode_fps,
                     pipeline_fps / piped_fps, peak_mib);
         std::fflush(stdout);
+        results.append({std::to_string(frames), std::to_string(settings.width),
+                        std::to_string(settings.height), std::to_string(discs),
+                        std::to_string(settings.repeat), lp_threads ? lp_threads : "",
+                        load_start, load_now(), number(fps / draw_seconds, 1),
+                        number(render_cpu, 1), number(encode_fps, 1), number(encode.cpu_ms, 1),
+                        number(piped_fps, 1), number(pipe.cpu_ms, 1), number(pipeline_fps, 1),
+                        number(pipeline.cpu_ms, 1), number(pipeline_fps / encode_fps, 3),
+                        number(pipeline_fps / piped_fps, 3), number(peak_mib, 1)});
     }
 
     if (settings.hd_seconds > 0) {
@@ -344,9 +374,14 @@ int main(int argc, char** argv) {
         std::printf("\n1920x1080, 1 000 discs, %d s (%d frames): %.1f fps, peak memory %.0f MiB\n",
                     settings.hd_seconds, settings.hd_seconds * 60,
                     settings.hd_seconds * 60 / hd.seconds, hd.peak_mib);
+        results.append({std::to_string(settings.hd_seconds * 60), "1920", "1080", "1000", "1",
+                        lp_threads ? lp_threads : "", load_start, load_now(), "", "", "", "",
+                        "", "", number(settings.hd_seconds * 60 / hd.seconds, 1), "", "", "",
+                        number(hd.peak_mib, 1)});
     }
     getloadavg(load, 1);
     std::printf("\nload average %.1f at the end\n", load[0]);
+    if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());
     std::filesystem::remove_all(dir);
     return 0;
 }

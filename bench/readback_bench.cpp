@@ -6,7 +6,8 @@
 //           coherent), then a fence and a wait: the pixels are in the mapped memory, where an
 //           encoder could read them
 // and checks that both give the draw's bytes. Plain program; prints milliseconds per frame
-// (thread CPU time; the readback runs on one thread). See docs/performance.md.
+// (thread CPU time; the readback runs on one thread) and appends them to
+// bench/results/readback_bench.csv (bench_results.hpp). See docs/performance.md.
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -16,8 +17,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 
+#include "bench_results.hpp"
 #include "discreel/render.hpp"
 
 namespace {
@@ -45,7 +48,7 @@ render::FrameScene discs(int frame) {
     return scene;
 }
 
-void measure(int width, int height) {
+void measure(int width, int height, bench::ResultsFile& results) {
     render::set_rasterizer_threads(0);
     auto renderer = render::Renderer::create({.width = width, .height = height});
     if (!renderer) {
@@ -96,13 +99,21 @@ void measure(int width, int height) {
     std::printf("%dx%d  direct %6.3f  PBO %6.3f  (frames whose bytes differ: %d)\n", width,
                 height, 1000.0 * direct_seconds / frames, 1000.0 * pbo_seconds / frames,
                 mismatches);
+    results.append({std::to_string(width), std::to_string(height), std::to_string(frames),
+                    bench::csv_number(1000.0 * direct_seconds / frames, 3),
+                    bench::csv_number(1000.0 * pbo_seconds / frames, 3),
+                    std::to_string(mismatches)});
 }
 
 }  // namespace
 
 int main() {
     std::printf("ms per frame of readback, %d frames, thread CPU time\n", frames);
-    measure(1280, 720);
-    measure(1920, 1080);
+    bench::ResultsFile results("readback_bench",
+                               {"width", "height", "frames", "direct_ms_per_frame",
+                                "pbo_ms_per_frame", "frames_differing"});
+    measure(1280, 720, results);
+    measure(1920, 1080, results);
+    if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());
     return 0;
 }

@@ -5,8 +5,9 @@
 //   B  two GL passes (BT.709 limited range: Y at full size, U and V from 2x2 averages at half
 //      size) and glReadPixels of the 1.5 bytes per pixel
 //   C  glReadPixels RGBA, then discreel's own integer converter (Bt709Converter, what the
-//      sinks use for yuv420p and yuv444p now)
-// Plain program; prints milliseconds per frame. See docs/performance.md.
+//      sinks use for yuv420p and yuv444p)
+// Plain program; prints wall milliseconds per frame and appends them to
+// bench/results/yuv_conversion_bench.csv (bench_results.hpp). See docs/performance.md.
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/osmesa.h>
 
@@ -15,12 +16,14 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include "bench_results.hpp"
 #include "bt709_converter.hpp"
 
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 namespace {
@@ -190,6 +193,14 @@ int main() {
     std::printf("B  GL passes + readback     %6.2f\n", gl_ms);
     std::printf("C  Bt709Converter           %6.2f\n", ours_ms);
     std::printf("C  total                    %6.2f\n", read_ms + ours_ms);
+    discreel::bench::ResultsFile results(
+        "yuv_conversion_bench",
+        {"width", "height", "frames", "readback_ms_per_frame", "swscale_ms_per_frame",
+         "gl_passes_and_readback_ms_per_frame", "bt709_converter_ms_per_frame"});
+    const auto ms = [](double value) { return discreel::bench::csv_number(value, 3); };
+    results.append({std::to_string(width), std::to_string(height), std::to_string(frames),
+                    ms(read_ms), ms(sws_ms), ms(gl_ms), ms(ours_ms)});
+    if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());
     sws_freeContext(sws);
     av_frame_free(&yuv);
     OSMesaDestroyContext(context);

@@ -137,7 +137,7 @@ static int run_command_line(int argc, char** argv) {
                            "Quality, lower is better: H.264 0..51 (default 20), VP9 0..63 "
                            "(default 32)");
     render_cmd->add_option("--preset", render.preset,
-                           "x264 preset, ultrafast .. veryslow (default veryfast)");
+                           "x264 preset, ultrafast .. placebo (default veryfast)");
     render_cmd->add_option("--codec", render.codec,
                            "Video codec: h264 (.mp4, .mkv), vp9 (.webm, .mkv), ffv1 (.mkv)");
     render_cmd->add_option("--pix-fmt", render.pixel_format,

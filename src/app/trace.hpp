@@ -1,6 +1,7 @@
 #pragma once
-// The CSV trace and contact-event files (docs/cli.md). Numbers are written in the shortest
-// form that reads back to the same double, so a trace can be compared bit for bit.
+// The CSV trace and contact-event files (docs/cli.md, "Trace and events"). Numbers are written
+// in the shortest form that reads back to the same double, so a trace can be compared bit for
+// bit.
 #include <memory>
 #include <span>
 #include <string>

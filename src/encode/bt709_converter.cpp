@@ -69,7 +69,7 @@ inline std::uint8_t chroma_r(const Rgb32& c, int extra_bits) {
 
 // Integer arithmetic gives the same bytes whichever instructions compute it, so the row
 // loops are also compiled for AVX2 and the loader picks that version where the CPU has it
-// (2-3x faster than SSE2, which lacks 32-bit vector multiplies).
+// (SSE2 lacks 32-bit vector multiplies, which the baseline version then does piecewise).
 #if defined(__x86_64__) && defined(__GNUC__)
 #define DISCREEL_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
 #else

@@ -1,8 +1,8 @@
 #pragma once
 // RGBA8 frames into BT.709 limited-range yuv420p or yuv444p, the pixel formats every H.264 and
 // VP9 clip uses, without libswscale: integer arithmetic with 16 fractional bits that the
-// compiler vectorises, about 5x faster than libswscale's bit-exact path at 720p
-// (bench/yuv_conversion_bench) and the same bytes on every CPU. yuv420p chroma is the average
+// compiler vectorises, much faster than libswscale's bit-exact path (bench/yuv_conversion_bench,
+// docs/performance.md) and the same bytes on every CPU. yuv420p chroma is the average
 // of each 2x2 block (centre-sited, as libswscale places it). Alpha is ignored: frames are
 // opaque. Every other format and tagging goes through RgbaConverter.
 #include "frame_converter.hpp"

@@ -28,7 +28,7 @@ Error not_applicable(const std::string& setting, const std::string& target) {
 // the same frames with the same settings in one process came out different on an AVX-512
 // machine (libx264 0.164.3095), and never with AVX2 or below, or with x264's C code. Where the
 // CPU has AVX-512, x264 is held to its AVX2 routines (the instruction sets every AVX-512 CPU
-// has), and elsewhere it picks its own as before.
+// has), and elsewhere it picks its own.
 std::string_view x264_instruction_sets() {
 #if defined(__x86_64__) && defined(__GNUC__)
     __builtin_cpu_init();
@@ -115,12 +115,12 @@ Expected<VideoFormat> h264_format(const SinkDef& def, const std::string& muxer) 
     if (const std::string_view sets = x264_instruction_sets(); !sets.empty()) {
         add_param("asm", sets);
     }
-    // Memory above 720p, where an input frame costs x264 about 7 MiB (docs/performance.md):
+    // Memory above 720p, where x264's input frames dominate the peak (docs/performance.md):
     // sync-lookahead=0 runs x264's lookahead on the calling thread instead of buffering frames
-    // for a thread of its own (the same pictures, four input frames less, but 25-35 % slower
-    // with 2 threads, so not at 720p and below), and veryfast's 10-frame lookahead is cut to 8
-    // (its frame-type and rate decisions see two frames less). A 1080p render then stays
-    // under 300 MB.
+    // for a thread of its own (the same pictures, four input frames less, but with 2 threads the
+    // encoder then waits on it, so not at 720p and below, where memory is no concern), and
+    // veryfast's 10-frame lookahead is cut to 8 (its frame-type and rate decisions see two
+    // frames less). A 1080p render then stays under 300 MB.
     if (static_cast<long>(def.width) * def.height > 1280L * 720L) {
         add_param("sync-lookahead", "0");
         if (preset == "veryfast") add_param("rc-lookahead", "8");

@@ -29,19 +29,17 @@ constexpr double min_approach_speed = 1e-9;  // m/s
 
 // Such a pair is timed only if its bounce would be worth it: leaving fast enough (e times its
 // approach speed) to rise `visible_bounce` radii against gravity ((e v)^2 / 2|g| = f r), or
-// approaching fast enough to close `closing_step` radii within the substep (left untimed, such a
-// squeeze sinks in visibly where the resting stage's few iterations do not stop it at once: with
-// 10 % of r here, beads of r = 0.045 m at e = 0.2 in a jammed hopper overlapped by 2.3 % of r in
-// the median frame, against 1.3 % with 2 %, and 1.2 % when the bounce was judged by the approach
-// speed; docs/physics-speed.md). A landing heap has hundreds of these squeezes per substep, each
-// fanning out over several sweeps; the resting stage stops them instead and lets them leave at
-// most e times as fast, untimed (Box2D times nothing and gives no bounce at all under 1 m/s).
-// Judging the bounce by the speed it leaves with, not the approach speed, keeps every elastic row
-// timed as before while a heap of e = 0.5 times only the squeezes that would bounce visibly: that
-// took about 13 % off the 10 000-disc pile at the default settings (docs/physics-speed.md). A row
-// of touching discs struck at speed (Newton's cradle) and every pair that starts apart keep the
-// exact timed impact; without gravity every touching approach with e > 0 is timed (an elastic
-// gas).
+// approaching fast enough to close `closing_step` radii within the substep. A landing heap has
+// hundreds of slower squeezes per substep, each fanning out over several sweeps; the resting
+// stage stops them instead and lets them leave at most e times as fast, untimed (Box2D times
+// nothing and gives no bounce at all under 1 m/s). The bounce is judged by the speed the pair
+// leaves with, not the one it approaches with, so every elastic row stays timed while a heap of
+// low restitution times only the squeezes that would bounce visibly. The closing bound keeps a
+// fast squeeze of low-restitution discs in a jam timed, which the resting stage's few iterations
+// would not stop before it sank in visibly. A row of touching discs struck at speed (Newton's
+// cradle) and every pair that starts apart keep the exact timed impact; without gravity every
+// touching approach with e > 0 is timed (an elastic gas). What each bound costs and saves:
+// docs/tried.md.
 constexpr double visible_bounce = 0.05;
 constexpr double closing_step = 0.02;
 
@@ -130,8 +128,8 @@ void ImpactResolver::resolve(Substep& s) {
     const std::size_t budget = static_cast<std::size_t>(max_passes) * std::max<std::size_t>(count, 64);
     std::size_t spent = 0;
     // found_ and queued_ are stamped with sweep numbers that never repeat, so that no sweep
-    // resets them: a landing heap has impacts in almost every substep, and each substep with
-    // one used to clear a record per active contact.
+    // resets them: a landing heap has impacts in almost every substep, and clearing a record
+    // per active contact in each of them would be a pass over all the contacts.
     const std::uint64_t first_sweep = sweeps_done_;
     if (found_.size() < count) {
         found_.resize(count);

@@ -36,8 +36,8 @@ bool push_if_overlapping(Body& a, Body& b, const Feature* f, double smaller) {
 
 // Overlap under tolerated_overlap is left alone, and a push leaves kept_overlap (a fifth of
 // it), so a pair of a pile that the unconverged resting stage lets sink a little every substep
-// is pushed every few substeps rather than nudged in every one (that was 3 of 4 pairs). This
-// test rules out most disc pairs without a square root.
+// is pushed every few substeps rather than nudged in every one (with one threshold for both,
+// most pairs of a pile would be). This test rules out most disc pairs without a square root.
 bool certainly_tolerated(const Body& a, const Body& b, double smaller) {
     return certainly_farther((a.x - b.x).squaredNorm(), a.radius + b.radius,
                              -tolerated_overlap * smaller);

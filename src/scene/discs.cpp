@@ -22,8 +22,8 @@ constexpr std::array<std::string_view, 14> entry_keys{
     "id",       "position",    "velocity", "angle", "angular_velocity", "radius", "mass",
     "density",  "restitution", "friction", "color", "static",           "grid",   "random"};
 // A generator's own keys, followed by the per-disc keys it applies to every disc. Those may be
-// written inside `grid:` (as SCENE_FORMAT.md shows) or beside it; `position` is recognised only
-// so that the message can say what to use instead.
+// written inside `grid:` (as docs/scene-format.md shows) or beside it; `position` is recognised
+// only so that the message can say what to use instead.
 constexpr std::array<std::string_view, 10> shared_disc_keys{
     "id",   "velocity", "angle",       "angular_velocity", "mass",
     "density", "restitution", "friction", "color",          "static"};

@@ -115,18 +115,18 @@ TEST(CliPipelineGLTest, PeakMemoryIsBoundedAndFlatInClipLength) {
     const double long_peak = peak_mib(sixty.err);
     ASSERT_GT(short_peak, 0) << ten.err;
     ASSERT_GT(long_peak, 0) << sixty.err;
-    // Measured about 120 MiB, most of it Mesa's llvmpipe and LLVM; 3 frame slots at 320x180
-    // are 0.7 MiB. The bound leaves room for other Mesa builds.
+    // Most of the peak is Mesa's llvmpipe and LLVM; 3 frame slots at 320x180 are 0.7 MiB. The
+    // bound leaves room for other Mesa builds.
     EXPECT_LT(long_peak, 200.0);
     // Holding the clip would add 0.23 MiB per frame, 580 MiB for the extra 2 500 frames;
     // 8 MiB allows for allocator noise.
     EXPECT_LT(long_peak - short_peak, 8.0) << short_peak << " MiB vs " << long_peak << " MiB";
 }
 
-// The bound for a 1080p render: 300 MB (286.1 MiB). x264 holds most of it, about 7 MiB
-// per input frame in flight; docs/performance.md lists what keeps it under (measured 280.5 MiB
-// for 1 000 discs). Half a second of frames fills every queue and x264's lookahead, and the
-// flat-in-length test above covers longer clips.
+// The required bound for a 1080p render: 300 MB (286.1 MiB). x264 holds most of it, for every
+// input frame in flight; docs/performance.md lists what keeps it under and the current peak.
+// Half a second of frames fills every queue and x264's lookahead, and the flat-in-length test
+// above covers longer clips.
 TEST(CliPipelineGLTest, PeakMemoryOfA1080pRenderIsUnder300MB) {
     TempDir dir;
     const auto run = run_command({bin, "render", gas_scene, "-o", dir / "hd.mp4", "--size",

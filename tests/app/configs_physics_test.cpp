@@ -62,8 +62,8 @@ TEST(ConfigsEnergyTest, EnergyNeverRisesBetweenFramesWithoutThrows) {
             }
             previous = energy;
         });
-        // 0.1 % of the start value, as the physics issue demands; a scene starting at rest at
-        // the origin's height has no scale of its own, so 1 mJ is the floor.
+        // 0.1 % of the start value, the bound of every energy test (docs/physics.md); a scene
+        // starting at rest at the origin's height has no scale of its own, so 1 mJ is the floor.
         const double allowed_rise = std::max(1e-3 * std::abs(start), 1e-3);
         EXPECT_LE(worst_rise, allowed_rise)
             << "energy rose by " << worst_rise << " J at frame " << worst_frame
@@ -75,9 +75,7 @@ TEST(ConfigsEnergyTest, EnergyNeverRisesBetweenFramesWithoutThrows) {
 // relative to its smaller disc) stays under 2 % of the radius in the median frame and under 20 %
 // in every frame, throws included. A transient of a few per cent is a fraction of a pixel at the
 // scenes' scale; a pile that settles 2 % deep, or a frame a fifth of a radius deep, is not.
-// Measured (2026-11-22): medians 0-1.34 % (galton's beads in their jammed hopper the most),
-// worst frames up to 10.1 %; a resting stage left to stop the beads' squeezes up to 1 m/s gave
-// galton a median of 2.3 % (docs/physics-speed.md).
+// Galton's beads in their jammed hopper come closest (docs/physics.md gives the figures).
 TEST(ConfigsOverlapTest, DiscsDoNotSinkIntoEachOtherInAnyFrame) {
     const auto scenes = shipped_scenes();
     ASSERT_FALSE(scenes.empty());

@@ -112,9 +112,8 @@ TEST(Collisions, NewtonsCradleOnAFloorUnderGravity) {
 // 9.8 m/s^2) or if it closes 2 % of r within the substep (0.48 m/s for r = 0.05 at 480 Hz);
 // slower, the resting stage stops it and lets it leave e times as fast, which gives the same
 // velocities but not the exact timing: the gap, measured 0.05 s later, is short of
-// (v_b - v_a) t by under one substep's travel. Under the rule before (v itself at least
-// 0.70 m/s, or closing 10 % of r) the e = 0.5 case at 1 m/s was timed and the small discs'
-// was not.
+// (v_b - v_a) t by under one substep's travel. The cases sit on both sides of each bound: a
+// rule judged by the approach speed, or a looser closing bound, fails them.
 TEST(Collisions, TouchingPairIsTimedWhenItsBounceWouldShowOrItClosesFast) {
     struct Case {
         double e, speed, radius;

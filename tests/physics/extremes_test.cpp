@@ -84,11 +84,11 @@ TEST_P(ExtremeTest, StaysFiniteAndInsideItsBox) {
     // thousandth of its radius left untested (docs/physics.md), at any mass or speed.
     EXPECT_LT(deepest, 1.5e-3);
     if (!e.in_envelope) return;
-    // Measured at most 0.11 inside the envelope (docs/physics.md); 0.3 leaves room for
-    // other seeds, not for discs passing through each other (up to 2, beyond it).
+    // Inside the envelope the overlap stays near a tenth of the radius (docs/physics.md,
+    // "Limits"); 0.3 leaves room for other seeds, not for discs passing through each other.
     EXPECT_LT(overlap, 0.3);
     // Restitution 0.5 and friction only ever take energy out; the energy tests allow a rise of
-    // 0.1 % between frames for rounding, and the envelope stays within 0.03 % (mass ratio 1e3).
+    // 0.1 % between frames for rounding, and the envelope stays well within that.
     EXPECT_LT(rise, 1e-3);
     EXPECT_LE(world.energy(), start + 1e-3 * std::abs(start));
 }

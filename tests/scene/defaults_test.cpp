@@ -106,7 +106,7 @@ TEST(Defaults, FrameCountRoundsDurationTimesFps) {
     EXPECT_EQ(load_ok("version: 1\nvideo: {fps: 24, duration: 1.02}\n").video.frame_count(), 24);
 }
 
-// Beyond the shared format: the solver's substeps and iterations, for tuning a heavy scene.
+// discreel's own keys: the solver's substeps and iterations, for tuning a heavy scene.
 TEST(Defaults, PhysicsSubstepsAndIterationsAreRead) {
     const Scene s = load_ok("version: 1\nphysics: {rate: 400, substeps: 1, iterations: 5}\n");
     EXPECT_EQ(s.physics.rate, 400);

@@ -55,7 +55,7 @@ discs:
     }
 }
 
-// SCENE_FORMAT.md writes the shared keys inside `grid:`; beside it works the same.
+// docs/scene-format.md writes the shared keys inside `grid:`; beside it works the same.
 TEST(Grid, SharedDiscKeysMayBeWrittenInsideTheGenerator) {
     const Scene s = load_ok(R"(version: 1
 discs:

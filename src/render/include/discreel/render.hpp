@@ -68,7 +68,7 @@ struct FrameScene {
     Rgba background;                      // its alpha is ignored: frames are opaque
     Camera camera;
     bool disc_outlines = true;            // a darker rim on every disc
-    bool spin_markers = true;             // the spoke on moving discs
+    bool spin_markers = true;             // the spoke on every non-static disc
     // Drawn in this order, each list in its own order, later on top.
     std::vector<CapsuleGeom> capsules;
     std::vector<LineGeom> trails;

@@ -59,7 +59,8 @@ struct Video {
 };
 
 struct Camera {
-    // Absent: the app frames the bounding box of all walls with a 5 % margin.
+    // Absent: the app frames the walls (or, without walls, the discs at t = 0) with a 5 % margin
+    // (app::fit_camera).
     std::optional<Vec2> center;    // metres
     std::optional<double> height;  // metres visible vertically
     // A disc the view tracks (index into Scene::discs); its centre replaces `center`.
@@ -94,7 +95,7 @@ struct Clock {
 
 struct Style {
     bool outline = true;           // a darker rim on discs
-    bool spin_marker = true;       // a contrasting spoke on moving discs, so rotation shows
+    bool spin_marker = true;       // a contrasting spoke on every non-static disc, so spin shows
     VelocityArrows velocity_arrows;
     Trails trails;
     Clock clock;
