@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "progress.hpp"
 #include "scene_source.hpp"
 
 namespace discreel::app {
@@ -18,8 +19,10 @@ struct OutputFiles {
 struct RenderOptions {
     std::optional<std::string> scene_path;   // none: the built-in demo
     std::string output;                      // extension picks the format; "-": stdout
-    std::optional<int> frame;                // for a .png still
+    std::optional<int> frame;                // for a .png still; negative counts from the end
     std::optional<double> at;                // seconds, for a .png still
+    std::optional<std::string> frames;       // "A-B" or "A-": a range of frames, any format
+    std::optional<std::string> quality;      // low, medium, high, 4k: size, fps and crf
     scene::Limits limits;                    // --max-discs, --max-duration, --max-scene-bytes
     VideoOverrides video;
     std::optional<int> crf;                  // none: the codec's default
@@ -30,7 +33,8 @@ struct RenderOptions {
     std::string stream_container;            // -o -: "mkv" (empty) or "mp4" (fragmented)
     OutputFiles files;
     bool sequential = false;                 // every stage on one thread: same bytes, slower
-    bool progress = false;                   // progress lines even when stderr is no terminal
+    ProgressRequest progress = ProgressRequest::none;   // --progress [json]
+    bool no_overwrite = false;               // refuse an existing output
     bool quiet = false;                      // errors only: no progress, no summary
     bool verbose = false;                    // settings, stage timings and peak memory too
 };

@@ -22,6 +22,7 @@
 #include "golden_compare.hpp"
 #include "golden_junit.hpp"
 #include "golden_metadata.hpp"
+#include "golden_report.hpp"
 #include "progress.hpp"
 #include "signals.hpp"
 #include "run_support.hpp"
@@ -87,25 +88,55 @@ void remove_if_present(const fs::path& path) {
     fs::remove(path, ignored);
 }
 
+// One frame's check: its result, whether the golden was missing, and its images for the HTML
+// report (filled only when a report is asked for and the frame failed).
+struct FrameCheck {
+    golden::CaseResult result;
+    bool missing = false;
+    std::string golden_image, actual_image, diff_image;   // data: URIs
+};
+
 // Compares one rendered frame with its golden; writes .actual.png and .diff.png beside a
 // golden it does not match. Fails (run-time error) only when those files cannot be written.
-Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedScene& loaded,
-                                         int frame, const ImageView& actual,
-                                         const std::string& renderer) {
+Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& loaded, int frame,
+                                 const ImageView& actual, const std::string& renderer) {
     const std::string name = loaded.scene.name;
     const fs::path scene_dir = fs::path(o.dir) / name;
     const std::string stem = "frame_" + std::to_string(frame);
     const fs::path golden_png = scene_dir / (stem + ".png");
     const fs::path actual_png = scene_dir / (stem + ".actual.png");
     const fs::path diff_png = scene_dir / (stem + ".diff.png");
-    golden::CaseResult result{.scene = name, .name = stem, .passed = true, .message = {}, .details = {}};
+    FrameCheck check;
+    check.result = {.scene = name, .name = stem, .passed = true, .message = {}, .details = {}};
+    golden::CaseResult& result = check.result;
+    // The report shows the actual frame, and the golden where there is one to show.
+    const auto add_images = [&](const std::optional<Image>& golden_image,
+                                const Image* diff) -> Status {
+        if (!o.report) return {};
+        auto uri = encode::png_data_uri(actual);
+        if (!uri) return uri.error();
+        check.actual_image = std::move(*uri);
+        if (golden_image) {
+            auto golden_uri = encode::png_data_uri(golden_image->view());
+            if (!golden_uri) return golden_uri.error();
+            check.golden_image = std::move(*golden_uri);
+        }
+        if (diff) {
+            auto diff_uri = encode::png_data_uri(diff->view());
+            if (!diff_uri) return diff_uri.error();
+            check.diff_image = std::move(*diff_uri);
+        }
+        return {};
+    };
 
     std::error_code exists_error;
     if (!fs::exists(golden_png, exists_error)) {
         result.passed = false;
+        check.missing = true;
         result.message = "no golden image " + golden_png.string() + "; create it with: " +
                          update_command(o, loaded.path);
-        return result;
+        if (Status s = add_images(std::nullopt, nullptr); !s) return s.error();
+        return check;
     }
     // The header first: a golden of another size is reported without decoding it, and a
     // file that is no PNG (a directory, /dev/zero) is this frame's failure, not the run's.
@@ -114,7 +145,8 @@ Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedSce
         result.passed = false;
         result.message = golden_size.error().message + "; recreate it with: " +
                          update_command(o, loaded.path);
-        return result;
+        if (Status s = add_images(std::nullopt, nullptr); !s) return s.error();
+        return check;
     }
     std::optional<Image> golden;
     if (*golden_size == encode::ImageSize{actual.width, actual.height}) {
@@ -123,7 +155,8 @@ Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedSce
             result.passed = false;
             result.message = decoded.error().message + "; recreate it with: " +
                              update_command(o, loaded.path);
-            return result;
+            if (Status s = add_images(std::nullopt, nullptr); !s) return s.error();
+            return check;
         }
         golden = std::move(*decoded);
     }
@@ -143,7 +176,7 @@ Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedSce
                                            std::to_string(allowed) + " allowed; " +
                                            std::to_string(c.anti_aliased_pixels) +
                                            " anti-aliased pixels ignored";
-        return result;
+        return check;
     }
 
     result.passed = false;
@@ -157,6 +190,7 @@ Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedSce
                          std::to_string(c.anti_aliased_pixels) + " anti-aliased pixels ignored)";
         if (Status s = encode::write_png(diff_png.string(), c.diff.view()); !s) return s.error();
         written += " and " + diff_png.string();
+        if (Status s = add_images(golden, &c.diff); !s) return s.error();
     } else {
         const std::string golden_wxh =
             std::to_string(golden_size->width) + "x" + std::to_string(golden_size->height);
@@ -165,6 +199,11 @@ Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedSce
                          "; check at the golden's size with --size " + golden_wxh +
                          ", or rewrite the goldens with --update";
         remove_if_present(diff_png);
+        std::optional<Image> other_size;
+        if (o.report) {
+            if (auto decoded = encode::read_png(golden_png.string())) other_size = std::move(*decoded);
+        }
+        if (Status s = add_images(other_size, nullptr); !s) return s.error();
     }
     result.details = result.message + "\n" + written;
     if (const auto stored = golden::read_metadata(scene_dir); stored && stored->renderer != renderer) {
@@ -173,7 +212,7 @@ Expected<golden::CaseResult> check_frame(const GoldenOptions& o, const LoadedSce
         result.message += "; " + note;
         result.details += "\n" + note;
     }
-    return result;
+    return check;
 }
 
 std::string frame_count_text(std::size_t n) {
@@ -201,8 +240,8 @@ std::optional<std::vector<LoadedScene>> load_scenes(const GoldenOptions& o, std:
             return std::nullopt;
         }
         // A check renders at the size the goldens were made at (golden.txt), unless --size
-        // says otherwise; --update renders what the scene (or --size) says now.
-        if (!o.video.width && !o.update) {
+        // says otherwise; --update (all) renders what the scene (or --size) says now.
+        if (!o.video.width && o.update != UpdateMode::all) {
             const auto stored = golden::read_metadata(fs::path(o.dir) / loaded.scene.name);
             if (stored && stored->width > 0 && stored->height > 0) {
                 VideoOverrides recorded;
@@ -285,14 +324,16 @@ int frames_to_simulate(const LoadedScene& loaded) {
 }
 
 Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream& out,
-                 std::vector<golden::CaseResult>& results, GoldenProgress& progress,
+                 std::vector<golden::CaseResult>& results,
+                 std::vector<golden::ReportFrame>& report, GoldenProgress& progress,
                  PendingGoldens& pending) {
     const scene::Scene& scene = loaded.scene;
     auto renderer =
         render::Renderer::create({.width = scene.video.width, .height = scene.video.height});
     if (!renderer) return renderer.error();
     const fs::path scene_dir = fs::path(o.dir) / scene.name;
-    if (o.update) {
+    const bool writes = o.update != UpdateMode::none;
+    if (writes) {
         std::error_code made;
         fs::create_directories(scene_dir, made);
         if (made) return Error{"cannot create '" + scene_dir.string() + "': " + made.message()};
@@ -306,6 +347,7 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
     FrameStepper stepper(world, timeline, scene);
     FrameSceneBuilder frame_builder(scene);
     int next_frame = 0;
+    bool wrote_any = false;
     for (const int frame : frames) {
         // Trails and the follow camera remember earlier frames: show them every one.
         for (; next_frame < frame; ++next_frame) {
@@ -320,21 +362,48 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
         auto image = renderer->draw(frame_builder.build(frame, world.discs()));
         if (!image) return image.error();
         if (stop_signal() != 0) return Error{"interrupted"};
-        auto result = o.update ? write_golden(scene_dir, scene.name, frame, *image, pending)
-                               : check_frame(o, loaded, frame, *image, renderer->renderer_info());
-        if (!result) return result.error();
+        FrameCheck check;
+        if (o.update != UpdateMode::all) {
+            auto checked = check_frame(o, loaded, frame, *image, renderer->renderer_info());
+            if (!checked) return checked.error();
+            check = std::move(*checked);
+        }
+        // --update writes every golden; =changed those missing or no longer matching;
+        // =missing those missing. A frame checked and passed is left as it is.
+        const bool write = o.update == UpdateMode::all ||
+                           (!check.result.passed && (o.update == UpdateMode::changed ||
+                                                     (o.update == UpdateMode::missing &&
+                                                      check.missing)));
+        if (write) {
+            auto written = write_golden(scene_dir, scene.name, frame, *image, pending);
+            if (!written) return written.error();
+            if (!check.result.passed) written->message += " (was: " + check.result.message + ")";
+            check = FrameCheck{};
+            check.result = std::move(*written);
+            wrote_any = true;
+        }
+        golden::CaseResult& result = check.result;
         progress.meter.finish();   // a result line must not land in the middle of the bar
         out << printable(scene.name) << " frame " << frame << ": ";
-        if (o.update) {
-            out << result->message << '\n';
-        } else if (result->passed) {
-            out << "ok (" << result->message << ")\n";
+        if (write) {
+            out << result.message << '\n';
+        } else if (result.passed) {
+            out << "ok (" << result.message << ")\n";
         } else {
-            out << "FAILED: " << result->message << '\n';
+            out << "FAILED: " << result.message << '\n';
         }
-        results.push_back(std::move(*result));
+        report.push_back({.scene = scene.name,
+                          .frame = result.name,
+                          .passed = result.passed,
+                          .written = write,
+                          .message = result.message,
+                          .golden_image = std::move(check.golden_image),
+                          .actual_image = std::move(check.actual_image),
+                          .diff_image = std::move(check.diff_image)});
+        results.push_back(std::move(result));
     }
-    if (!o.update) return {};
+    // golden.txt records how the goldens were made: rewritten whenever one of them is.
+    if (!writes || (o.update != UpdateMode::all && !wrote_any)) return {};
     auto metadata = golden::prepare_metadata(scene_dir, {.discreel_version = DISCREEL_VERSION,
                                                          .renderer = renderer->renderer_info(),
                                                          .width = scene.video.width,
@@ -353,19 +422,25 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
     }
     const auto scenes = load_scenes(o, err);
     if (!scenes) return exit_bad_input;
-    // The report's file is created now: a missing directory fails before any rendering.
-    std::optional<AtomicTextFile> junit;
-    if (o.junit) {
-        std::vector<NamedPath> inputs;
-        for (const std::string& path : o.scene_paths) inputs.push_back({"the scene", path});
-        if (!check_distinct_files(inputs, {{"--junit", *o.junit}}, err)) return exit_bad_input;
-        auto created = AtomicTextFile::create(*o.junit);
+    // The reports' files are created now: a missing directory fails before any rendering.
+    std::vector<NamedPath> inputs, reports;
+    for (const std::string& path : o.scene_paths) inputs.push_back({"the scene", path});
+    if (o.junit) reports.push_back({"--junit", *o.junit});
+    if (o.report) reports.push_back({"--report", *o.report});
+    if (!check_distinct_files(inputs, reports, err)) return exit_bad_input;
+    const auto create = [&](const std::optional<std::string>& path,
+                            std::optional<AtomicTextFile>& file) {
+        if (!path) return true;
+        auto created = AtomicTextFile::create(*path);
         if (!created) {
             report_error(err, created.error().message);
-            return exit_runtime_failure;
+            return false;
         }
-        junit.emplace(std::move(*created));
-    }
+        file.emplace(std::move(*created));
+        return true;
+    };
+    std::optional<AtomicTextFile> junit, html;
+    if (!create(o.junit, junit) || !create(o.report, html)) return exit_runtime_failure;
 
     int total_frames = 0;
     for (const LoadedScene& loaded : *scenes) total_frames += frames_to_simulate(loaded);
@@ -373,13 +448,15 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
         .meter = ProgressMeter(err, pick_progress_style(false, o.progress, isatty(STDERR_FILENO) == 1),
                                total_frames)};
     std::vector<golden::CaseResult> results;
+    std::vector<golden::ReportFrame> report;
     PendingGoldens pending;
+    const bool writes = o.update != UpdateMode::none;
     for (const LoadedScene& loaded : *scenes) {
-        if (Status s = run_scene(o, loaded, out, results, progress, pending); !s) {
+        if (Status s = run_scene(o, loaded, out, results, report, progress, pending); !s) {
             progress.meter.finish();
             if (stop_signal() != 0) {
                 err << "discreel: interrupted; "
-                    << (o.update ? "no golden was written" : "no report was written") << '\n';
+                    << (writes ? "no golden was written" : "no report was written") << '\n';
                 return exit_interrupted_base + stop_signal();
             }
             report_error(err, s.error().message);
@@ -387,21 +464,33 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
         }
     }
     progress.meter.finish();
-    if (o.update) {
+    if (writes) {
         if (Status s = pending.commit(); !s) {
             report_error(err, s.error().message);
             return exit_runtime_failure;
         }
     }
-    if (junit) {
-        junit->write(golden::junit_xml("discreel golden", results));
-        if (Status s = junit->commit(); !s) {
+    const auto commit_report = [&](std::optional<AtomicTextFile>& file, const std::string& text) {
+        if (!file) return true;
+        file->write(text);
+        if (Status s = file->commit(); !s) {
             report_error(err, s.error().message);
-            return exit_runtime_failure;
+            return false;
         }
+        return true;
+    };
+    if (!commit_report(junit, golden::junit_xml("discreel golden", results)) ||
+        !commit_report(html, golden::html_report("discreel golden: " + o.dir, scenes->size(),
+                                                 report))) {
+        return exit_runtime_failure;
     }
+    progress.meter.done(std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                      progress.started)
+                            .count());
 
-    if (o.update) {
+    const auto written = static_cast<std::size_t>(std::count_if(
+        report.begin(), report.end(), [](const golden::ReportFrame& f) { return f.written; }));
+    if (o.update == UpdateMode::all) {
         out << "golden: wrote " << frame_count_text(results.size()) << " of "
             << scene_count_text(scenes->size()) << " to " << printable(o.dir) << '\n';
         return exit_ok;
@@ -409,8 +498,10 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
     const auto failed = static_cast<std::size_t>(std::count_if(
         results.begin(), results.end(), [](const golden::CaseResult& r) { return !r.passed; }));
     out << "golden: " << frame_count_text(results.size()) << " of "
-        << scene_count_text(scenes->size()) << ": " << results.size() - failed << " passed, "
-        << failed << " failed\n";
+        << scene_count_text(scenes->size()) << ": " << results.size() - failed - written
+        << " passed, " << failed << " failed";
+    if (writes) out << ", " << written << " written";
+    out << '\n';
     return failed == 0 ? exit_ok : exit_golden_mismatch;
 }
 

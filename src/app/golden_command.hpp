@@ -7,20 +7,30 @@
 #include <string>
 #include <vector>
 
+#include "progress.hpp"
 #include "scene_source.hpp"
 
 namespace discreel::app {
 
+// --update: which goldens a run writes. `changed` and `missing` check the others as usual.
+enum class UpdateMode {
+    none,      // check every frame
+    all,       // write every golden
+    changed,   // write the goldens that are missing or no longer match
+    missing,   // write the goldens that are missing
+};
+
 struct GoldenOptions {
     std::vector<std::string> scene_paths;
     std::string dir;                              // goldens live in dir/<scene name>/
-    bool update = false;                          // write the goldens instead of comparing
+    UpdateMode update = UpdateMode::none;
     double tolerance = 0.1;                       // perceptual colour distance, 0..1
     std::optional<std::int64_t> max_diff_pixels;  // per frame; none (and no ratio): 0
     std::optional<double> max_diff_ratio;         // per frame, of all its pixels, 0..1
     std::optional<std::string> junit;             // write a JUnit XML report here
+    std::optional<std::string> report;            // write an HTML report here
     VideoOverrides video;                         // --size only
-    bool progress = false;                        // report progress even when not on a TTY
+    ProgressRequest progress = ProgressRequest::none;   // --progress [json]
     scene::Limits limits;                         // --max-discs, --max-duration, ...
 };
 

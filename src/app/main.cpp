@@ -2,14 +2,17 @@
 // lives in discreel_app so tests can call it without a process.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <iostream>
 #include <new>
 #include <sstream>
 
 #include "commands.hpp"
+#include "discreel/did_you_mean.hpp"
 #include "discreel/temporary_files.hpp"
 #include "exit_codes.hpp"
 #include "golden_command.hpp"
@@ -107,6 +110,114 @@ void add_limit_options(CLI::App& cmd, discreel::scene::Limits& limits) {
         ->group("Limits");
 }
 
+CLI::CheckedTransformer progress_values() {
+    return CLI::CheckedTransformer(std::map<std::string, ProgressRequest>{
+        {"lines", ProgressRequest::lines}, {"json", ProgressRequest::json}});
+}
+
+// --frame N, negative counting from the end, or `last` (= -1).
+void add_frame_option(CLI::App& cmd, std::optional<int>& frame) {
+    cmd.add_option_function<std::string>(
+           "--frame",
+           [&frame](const std::string& text) {
+               if (text == "last") {
+                   frame = -1;
+                   return;
+               }
+               int value = 0;
+               const auto [end, problem] =
+                   std::from_chars(text.data(), text.data() + text.size(), value);
+               if (problem != std::errc() || end != text.data() + text.size()) {
+                   throw CLI::ValidationError(
+                       "--frame", "expected a frame number (negative counts from the end) or "
+                                  "'last', got '" + text + "'");
+               }
+               frame = value;
+           },
+           "Frame of a .png still: 0 (default) is the first, -1 or 'last' the last")
+        ->option_text("N|last");
+}
+
+// Options that take an optional value: `--progress` alone means lines and `--progress json`
+// asks for JSON; `--update`/`-u` alone rewrites every golden and `--update=changed` only what
+// changed. The value is joined to the option here, so a scene path after a bare option is
+// never taken for its value.
+std::vector<std::string> normalise_arguments(int argc, char** argv) {
+    struct Optional {
+        std::string_view name, fallback;
+        std::vector<std::string_view> values;   // also taken as the value when they follow
+    };
+    const std::vector<Optional> options{{"--progress", "lines", {"lines", "json"}},
+                                        {"--update", "all", {"all", "changed", "missing"}},
+                                        {"-u", "all", {"all", "changed", "missing"}}};
+    std::vector<std::string> args(argv + 1, argv + argc);
+    std::vector<std::string> out;
+    for (std::size_t k = 0; k < args.size(); ++k) {
+        if (args[k] == "--") {
+            out.insert(out.end(), args.begin() + static_cast<std::ptrdiff_t>(k), args.end());
+            break;
+        }
+        const auto match = std::find_if(options.begin(), options.end(),
+                                        [&](const Optional& o) { return args[k] == o.name; });
+        if (match == options.end()) {
+            out.push_back(args[k]);
+            continue;
+        }
+        const std::string name = match->name == "-u" ? "--update" : std::string(match->name);
+        if (k + 1 < args.size() &&
+            std::find(match->values.begin(), match->values.end(), args[k + 1]) !=
+                match->values.end()) {
+            out.push_back(name + "=" + args[++k]);
+        } else {
+            out.push_back(name + "=" + std::string(match->fallback));
+        }
+    }
+    std::reverse(out.begin(), out.end());   // CLI11 parses a vector from its back
+    return out;
+}
+
+std::vector<std::string> option_names(const CLI::App& cmd) {
+    std::vector<std::string> names;
+    for (const CLI::Option* option : cmd.get_options()) {
+        for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+    }
+    return names;
+}
+
+// The first word that is no command or option the command line knows, with a suggestion:
+// "unknown command 'rendr'; did you mean 'render'?".
+std::optional<std::string> unknown_word(CLI::App& app, const std::vector<std::string>& args) {
+    if (args.empty()) return std::nullopt;
+    const std::string& first = args.back();   // reversed: the first argument is last
+    if (first.empty() || first[0] == '-') return std::nullopt;
+    std::vector<std::string> commands;
+    for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
+    if (std::find(commands.begin(), commands.end(), first) != commands.end()) {
+        CLI::App* cmd = app.get_subcommand(first);
+        const std::vector<std::string> known = option_names(*cmd);
+        for (auto it = args.rbegin() + 1; it != args.rend(); ++it) {
+            if (*it == "--") break;
+            if (it->size() < 3 || it->compare(0, 2, "--") != 0) continue;
+            const std::string name = it->substr(0, it->find('='));
+            if (name == "--help" ||
+                std::find(known.begin(), known.end(), name) != known.end()) {
+                continue;
+            }
+            std::string message = "unknown option '" + name + "' for '" + first + "'";
+            if (const auto guess = discreel::closest_match(name, known)) {
+                message += "; did you mean '" + *guess + "'?";
+            }
+            return message + " (discreel " + first + " --help lists its options)";
+        }
+        return std::nullopt;
+    }
+    std::string message = "unknown command '" + first + "'";
+    if (const auto guess = discreel::closest_match(first, commands)) {
+        message += "; did you mean '" + *guess + "'?";
+    }
+    return message + " (discreel --help lists the commands)";
+}
+
 }  // namespace
 
 static int run_command_line(int argc, char** argv) {
@@ -126,9 +237,20 @@ static int run_command_line(int argc, char** argv) {
                            "a stream on standard output (Matroska, or fragmented MP4 with "
                            "--format mp4)")
         ->required();
-    render_cmd->add_option("--frame", render.frame, "Frame index for a .png still (default 0)");
-    render_cmd->add_option("--at", render.at, "Time in seconds for a .png still")
+    add_frame_option(*render_cmd, render.frame);
+    render_cmd->add_option("--at", render.at,
+                           "Time in seconds for a .png still; the duration gives the last frame")
         ->check(finite_number(0, 1e9));
+    render_cmd->add_option("--frames", render.frames,
+                           "Render frames A to B (inclusive, from 0), or A- to the end, into "
+                           "any format")
+        ->option_text("A-B|A-");
+    render_cmd->add_option("--quality", render.quality,
+                           "low (480p, 15 fps), medium (720p, 30 fps), high (1080p, 60 fps) or "
+                           "4k (2160p, 60 fps), with a crf to match; --size, --fps and --crf "
+                           "still win")
+        ->option_text("low|medium|high|4k")
+        ->check(CLI::IsMember({"low", "medium", "high", "4k"}));
     add_size_option(*render_cmd, render.video, "Override the frame size, WIDTHxHEIGHT");
     render_cmd->add_option("--fps", render.video.fps, "Override frames per second");
     render_cmd->add_option("--duration", render.video.duration, "Override duration in seconds")
@@ -149,9 +271,13 @@ static int run_command_line(int argc, char** argv) {
                          "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);
     add_limit_options(*render_cmd, render.limits);
-    render_cmd->add_flag("--progress", render.progress,
-                         "Report progress on standard error even when it is not a terminal "
-                         "(one line per second)");
+    render_cmd->add_option("--progress", render.progress,
+                           "Report progress on standard error even when it is not a terminal: "
+                           "one line per second, or with 'json' one JSON object per line")
+        ->option_text("[json]")
+        ->transform(progress_values());
+    render_cmd->add_flag("--no-overwrite", render.no_overwrite,
+                         "Refuse to replace an existing output file (exit 2, before any work)");
     render_cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
     render_cmd->add_flag("-v,--verbose", render.verbose,
                          "Also print the settings, the renderer, time per stage and peak memory");
@@ -182,10 +308,25 @@ static int run_command_line(int argc, char** argv) {
     golden_cmd->add_option("scenes", golden.scene_paths, "Scene files (YAML)")->required();
     golden_cmd->add_option("--dir", golden.dir, "Directory of the goldens, one folder per scene")
         ->required();
-    golden_cmd->add_flag("--update", golden.update, "Write (or refresh) the goldens instead");
+    golden_cmd->add_option("-u,--update", golden.update,
+                           "Write the goldens instead of checking them: every one (all, the "
+                           "default), only those that are missing, or those missing or no "
+                           "longer matching (changed)")
+        ->option_text("[all|changed|missing]")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, UpdateMode>{{"all", UpdateMode::all},
+                                              {"changed", UpdateMode::changed},
+                                              {"missing", UpdateMode::missing}}));
+    golden_cmd->add_option("--report", golden.report,
+                           "Also write one self-contained HTML page showing each failing "
+                           "frame: golden, actual and difference, with the numbers")
+        ->option_text("FILE.html");
     add_limit_options(*golden_cmd, golden.limits);
-    golden_cmd->add_flag("--progress", golden.progress,
-                         "Report progress on standard error even when it is not a terminal");
+    golden_cmd->add_option("--progress", golden.progress,
+                           "Report progress on standard error even when it is not a terminal: "
+                           "one line per second, or with 'json' one JSON object per line")
+        ->option_text("[json]")
+        ->transform(progress_values());
     golden_cmd->add_option("--tolerance", golden.tolerance,
                            "Perceptual colour distance still counted as equal, 0..1 (default 0.1)")
         ->check(finite_number());
@@ -198,8 +339,13 @@ static int run_command_line(int argc, char** argv) {
         ->option_text("FILE");
     add_size_option(*golden_cmd, golden.video, "Override every scene's frame size, WIDTHxHEIGHT");
 
+    std::vector<std::string> args = normalise_arguments(argc, argv);
+    if (const auto unknown = unknown_word(app, args)) {
+        std::cerr << "discreel: " << *unknown << '\n';
+        return exit_bad_input;
+    }
     try {
-        app.parse(argc, argv);
+        app.parse(args);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
@@ -207,7 +353,14 @@ static int run_command_line(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        app.exit(e);
+        // Every message starts with "discreel:", as the commands' own do, and says where
+        // help is: the command's own page when one was named.
+        std::string command;
+        for (const CLI::App* sub : app.get_subcommands({})) {
+            if (sub->parsed()) command = " " + sub->get_name();
+        }
+        std::cerr << "discreel: " << e.what() << "\nRun 'discreel" << command
+                  << " --help' for more information.\n";
         return exit_bad_input;
     }
 

@@ -1,6 +1,10 @@
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -30,19 +34,69 @@ struct FrameRange {
     int last = 0;   // inclusive
 };
 
+std::string outside_clip(int frame, int count) {
+    return "frame " + std::to_string(frame) + " is outside the clip, which has " +
+           std::to_string(count) + " frames (0.." + std::to_string(count - 1) +
+           ", or -" + std::to_string(count) + "..-1 counted from the end)";
+}
+
+// "A-B" or "A-" (to the end) of a clip of `count` frames; a message when it is not one.
+Expected<FrameRange> parse_range(const std::string& text, int count) {
+    const Error malformed{"--frames takes A-B (frames A to B, inclusive) or A- (A to the end), "
+                          "got '" + text + "'"};
+    const auto dash = text.find('-');
+    if (dash == std::string::npos || dash == 0) return malformed;
+    const auto number = [](std::string_view digits) -> std::optional<int> {
+        int value = 0;
+        const auto [end, problem] =
+            std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (digits.empty() || problem != std::errc() || end != digits.data() + digits.size())
+            return std::nullopt;
+        return value;
+    };
+    const std::string_view all = text;
+    const auto first = number(all.substr(0, dash));
+    const auto last = dash + 1 == text.size() ? std::optional<int>(count - 1)
+                                              : number(all.substr(dash + 1));
+    if (!first || !last) return malformed;
+    if (*first >= count) return Error{outside_clip(*first, count)};
+    if (*last >= count) return Error{outside_clip(*last, count)};
+    if (*last < *first) {
+        return Error{"--frames " + text + " ends before it starts; give the first frame first"};
+    }
+    return FrameRange{*first, *last};
+}
+
 // A .png output is one still; everything else (a numbered .png sequence included) is the
-// whole clip.
+// whole clip, or the frames --frames names.
 std::optional<FrameRange> pick_frames(const RenderOptions& o, const scene::Scene& scene,
                                       const encode::OutputDescription& output,
                                       std::ostream& err) {
     const int count = scene.video.frame_count();
+    if (o.frames && (o.frame || o.at)) {
+        report_error(err, "give either --frames or a single --frame or --at, not both");
+        return std::nullopt;
+    }
+    if (o.frames) {
+        const auto range = parse_range(*o.frames, count);
+        if (!range) {
+            report_error(err, range.error().message);
+            return std::nullopt;
+        }
+        if (output.one_frame && range->last != range->first) {
+            report_error(err, "a .png name is one still; for frames " + *o.frames +
+                                  " give a numbered name such as frame_%04d.png");
+            return std::nullopt;
+        }
+        return *range;
+    }
     if (!output.one_frame) {
         if (o.frame || o.at) {
             err << (output.format == "png sequence"
                         ? "discreel: --frame and --at select a still; a numbered .png name "
-                          "writes every frame\n"
+                          "writes every frame (--frames A-B writes some)\n"
                         : "discreel: --frame and --at select a still; use them with a .png "
-                          "output\n");
+                          "output, or --frames A-B for part of the clip\n");
             return std::nullopt;
         }
         return FrameRange{0, count - 1};
@@ -52,7 +106,7 @@ std::optional<FrameRange> pick_frames(const RenderOptions& o, const scene::Scene
         return std::nullopt;
     }
     int frame = 0;
-    if (o.frame) frame = *o.frame;
+    if (o.frame) frame = *o.frame < 0 ? count + *o.frame : *o.frame;   // -1: the last
     if (o.at) {
         // Checked as a number before it becomes a frame index, which it could overflow. The
         // clip's end (t = duration) shows its last frame.
@@ -66,11 +120,87 @@ std::optional<FrameRange> pick_frames(const RenderOptions& o, const scene::Scene
         frame = std::min(count - 1, static_cast<int>(std::lround(*o.at * scene.video.fps)));
     }
     if (frame < 0 || frame >= count) {
-        err << "discreel: frame " << frame << " is outside the clip, which has " << count
-            << " frames (0.." << count - 1 << ")\n";
+        report_error(err, outside_clip(o.frame ? *o.frame : frame, count));
         return std::nullopt;
     }
     return FrameRange{frame, frame};
+}
+
+// GIF frame delays are whole hundredths of a second, and readers play delays under 2 as 10:
+// the frame rates a GIF shows at their true speed are 100/k for k >= 2 that are whole numbers.
+constexpr std::array<int, 8> gif_rates{50, 25, 20, 10, 5, 4, 2, 1};
+
+bool gif_can_show(int fps) {
+    return std::find(gif_rates.begin(), gif_rates.end(), fps) != gif_rates.end();
+}
+
+// --quality: Manim's -ql/-qm/-qh/-qk. The height, with the width that keeps the scene's aspect
+// (rounded to even), a frame rate, and a crf for the codec in use; explicit options win.
+struct Quality {
+    int height = 720;   // pixels
+    int fps = 30;
+    int h264_crf = 23;
+    int vp9_crf = 32;
+};
+
+Quality quality_of(const std::string& name) {
+    if (name == "low") return {.height = 480, .fps = 15, .h264_crf = 28, .vp9_crf = 40};
+    if (name == "medium") return {.height = 720, .fps = 30, .h264_crf = 23, .vp9_crf = 34};
+    if (name == "high") return {.height = 1080, .fps = 60, .h264_crf = 20, .vp9_crf = 31};
+    return {.height = 2160, .fps = 60, .h264_crf = 18, .vp9_crf = 24};   // 4k
+}
+
+// The codec a render will use, where a crf applies: "h264", "vp9", or empty.
+std::string crf_codec(const RenderOptions& o, const encode::OutputDescription& output) {
+    if (o.lossless) return {};
+    if (!o.codec.empty()) return o.codec == "h264" || o.codec == "vp9" ? o.codec : "";
+    if (output.format == "mp4" || output.format == "mkv") return "h264";
+    if (output.format == "webm") return "vp9";
+    return {};
+}
+
+// The command line's size, fps and crf with --quality filled in where they were not given.
+struct Settings {
+    VideoOverrides video;
+    std::optional<int> crf;
+};
+
+Settings settings_for(const RenderOptions& o, const scene::Scene& scene,
+                      const encode::OutputDescription& output) {
+    Settings s{o.video, o.crf};
+    if (!o.quality) return s;
+    const Quality q = quality_of(*o.quality);
+    if (!s.video.width) {
+        const double aspect = static_cast<double>(scene.video.width) / scene.video.height;
+        s.video.height = q.height;
+        s.video.width = 2 * static_cast<int>(std::lround(q.height * aspect / 2));
+    }
+    if (!s.video.fps) s.video.fps = q.fps;
+    if (!s.crf) {
+        const std::string codec = crf_codec(o, output);
+        if (codec == "h264") s.crf = q.h264_crf;
+        if (codec == "vp9") s.crf = q.vp9_crf;
+    }
+    return s;
+}
+
+// --no-overwrite: the first output that already exists, if any.
+std::optional<std::string> existing_output(const RenderOptions& o,
+                                           const encode::OutputDescription& output,
+                                           const FrameRange& frames) {
+    std::vector<std::string> paths;
+    if (output.format == "png sequence") {
+        for (int n = frames.first; n <= frames.last; ++n) paths.push_back(output.frame_path(n));
+    } else if (!output.to_stdout) {
+        paths.push_back(o.output);
+    }
+    if (o.files.trace) paths.push_back(*o.files.trace);
+    if (o.files.events) paths.push_back(*o.files.events);
+    for (const std::string& path : paths) {
+        struct stat info{};
+        if (lstat(path.c_str(), &info) == 0) return path;
+    }
+    return std::nullopt;
 }
 
 // The colours frames are drawn in; a GIF palette starts with them so they come out exact.
@@ -144,29 +274,56 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
-    if (auto problem = apply_overrides(scene, o.video, o.limits)) {
-        report_error(err, *problem);
-        return exit_bad_input;
-    }
-
     const auto output = encode::describe_output(o.output, o.stream_container);
     if (!output) {
         report_error(err, output.error().message);
         return exit_bad_input;
     }
+    const Settings settings = settings_for(o, scene, *output);
+    if (auto problem = apply_overrides(scene, settings.video, o.limits)) {
+        report_error(err, *problem);
+        return exit_bad_input;
+    }
+    // A GIF plays at the scene's speed only at a frame rate its delays can express.
+    std::optional<int> gif_fps_from;   // the frame rate a GIF could not show
+    if (output->format == "gif" && !gif_can_show(scene.video.fps)) {
+        if (o.video.fps) {
+            report_error(err, "a GIF cannot play at " + std::to_string(scene.video.fps) +
+                                  " fps (its frame delays are whole hundredths of a second); "
+                                  "use --fps 50, 25, 20 or 10");
+            return exit_bad_input;
+        }
+        gif_fps_from = scene.video.fps;
+        scene.video.fps = *std::find_if(gif_rates.begin(), gif_rates.end(),
+                                        [&](int fps) { return fps <= scene.video.fps; });
+        if (auto problem = scene::check_work(scene, o.limits)) {
+            report_error(err, *problem);
+            return exit_bad_input;
+        }
+    }
+    // Only PNG keeps a transparent background; the others show its colour, opaque.
+    if (scene.video.background.a < 255 && !output->alpha) {
+        if (!o.quiet) {
+            err << "discreel: note: " << output->format
+                << " has no alpha channel; the background is drawn opaque (write .png stills "
+                   "or a frame_%04d.png sequence for transparency)\n";
+        }
+        scene.video.background.a = 255;
+    }
+
     const encode::SinkDef sink_def{.path = o.output,
                                    .width = scene.video.width,
                                    .height = scene.video.height,
                                    .fps = scene.video.fps,
-                                   .crf = o.crf,
+                                   .crf = settings.crf,
                                    .preset = o.preset,
                                    .codec = o.codec,
                                    .pixel_format = o.pixel_format,
                                    .lossless = o.lossless,
                                    .stream_container = o.stream_container,
                                    .key_colours = scene_colours(scene)};
-    if (Status settings = encode::check_settings(sink_def); !settings) {
-        report_error(err, settings.error().message);
+    if (Status checked = encode::check_settings(sink_def); !checked) {
+        report_error(err, checked.error().message);
         return exit_bad_input;
     }
     if (output->to_stdout && isatty(STDOUT_FILENO)) {
@@ -177,6 +334,13 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const bool still = output->one_frame;
     const std::optional<FrameRange> frames = pick_frames(o, scene, *output, err);
     if (!frames) return exit_bad_input;
+    if (o.no_overwrite) {
+        if (const auto existing = existing_output(o, *output, *frames)) {
+            report_error(err, "'" + printable(*existing) +
+                                  "' exists and --no-overwrite keeps it; nothing was written");
+            return exit_bad_input;
+        }
+    }
     // With -o - standard output carries the video, so the summary goes to standard error.
     std::ostream& summary = output->to_stdout ? err : out;
 
@@ -188,7 +352,9 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
 
     auto outputs = SideOutputs::open(o.files, scene, err);
     if (!outputs) return exit_runtime_failure;
-    auto sink = encode::open_sink(sink_def);
+    encode::SinkDef numbered = sink_def;
+    numbered.first_number = frames->first;
+    auto sink = encode::open_sink(numbered);
     if (!sink) {
         report_error(err, sink.error().message);
         return exit_runtime_failure;
@@ -269,13 +435,20 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     }
 
     const double seconds = seconds_since(started);
+    progress.done(seconds);
     if (o.verbose) report_details(run, to_write, err);
     if (o.quiet) return exit_ok;
     summary << "wrote " << printable(o.output) << ": " << to_write << (to_write == 1 ? " frame" : " frames")
         << ", " << scene.video.width << 'x' << scene.video.height;
     if (!still) {
-        summary << ", " << std::fixed << std::setprecision(2) << scene.video.duration << " s at "
-            << scene.video.fps << " fps";
+        const bool whole = to_write == scene.video.frame_count();
+        summary << ", " << std::fixed << std::setprecision(2)
+                << (whole ? scene.video.duration : static_cast<double>(to_write) / scene.video.fps)
+                << " s at " << scene.video.fps << " fps";
+        if (gif_fps_from) summary << " (a GIF cannot play " << *gif_fps_from << " fps)";
+        if (!whole) {
+            summary << ", frames " << frames->first << ".." << frames->last;
+        }
     } else {
         summary << ", frame " << frames->first;
     }

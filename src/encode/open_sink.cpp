@@ -100,16 +100,23 @@ Expected<OutputDescription> describe_output(const std::string& path,
         return resolved.error();
     }
     OutputDescription description;
+    description.path = path;
     description.format = std::string(resolved->kind->format);
     description.to_stdout = path == "-";
     if (description.to_stdout && !stream_container.empty()) description.format = stream_container;
     if (resolved->kind->video == nullptr) {
         description.one_frame = !resolved->pattern.has_value();
+        description.alpha = true;
         if (resolved->pattern) {
             description.format = "png sequence";
         }
     }
     return description;
+}
+
+std::string OutputDescription::frame_path(int n) const {
+    const auto pattern = parse_frame_pattern(path);
+    return pattern && *pattern ? (*pattern)->path_of(n) : path;
 }
 
 Status check_settings(const SinkDef& def) {

@@ -8,6 +8,10 @@
 #include "discreel/read_file.hpp"
 #include "png_codec.hpp"
 
+extern "C" {
+#include <libavutil/base64.h>
+}
+
 namespace discreel::encode {
 namespace {
 
@@ -100,6 +104,20 @@ Expected<OutputFile> prepare_png(const std::string& path, const ImageView& image
     if (!file) return file.error();
     if (Status sealed = file->seal(); !sealed) return sealed.error();
     return file;
+}
+
+Expected<std::string> png_data_uri(const ImageView& image) {
+    auto png = encode_png(image);
+    if (!png) return png.error();
+    const std::string prefix = "data:image/png;base64,";
+    std::string uri(prefix.size() + AV_BASE64_SIZE(png->size()), '\0');
+    std::memcpy(uri.data(), prefix.data(), prefix.size());
+    if (!av_base64_encode(uri.data() + prefix.size(), static_cast<int>(uri.size() - prefix.size()),
+                          png->data(), static_cast<int>(png->size()))) {
+        return Error{"cannot encode a PNG as base64"};
+    }
+    uri.resize(uri.find('\0'));
+    return uri;
 }
 
 Status write_png(const std::string& path, const ImageView& image) {

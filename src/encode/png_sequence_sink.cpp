@@ -20,7 +20,8 @@ public:
         if (auto status = usable(); !status) {
             return status;
         }
-        const std::string path = pattern_.path_of(static_cast<int>(files_.size()));
+        const std::string path =
+            pattern_.path_of(def_.first_number + static_cast<int>(files_.size()));
         if (frame.width != def_.width || frame.height != def_.height) {
             return write_error(path, "frame is " + std::to_string(frame.width) + "x" +
                                          std::to_string(frame.height) + " but the image is " +
@@ -86,7 +87,7 @@ Expected<std::unique_ptr<Sink>> open_png_sequence_sink(const SinkDef& def, Frame
     }
     // Fail now, not after the first frame, when the directory is missing or read-only: the
     // first file is created and dropped again.
-    if (auto probe = OutputFile::create(pattern.path_of(0)); !probe) {
+    if (auto probe = OutputFile::create(pattern.path_of(def.first_number)); !probe) {
         return probe.error();
     }
     return std::unique_ptr<Sink>(std::make_unique<PngSequenceSink>(def, std::move(pattern)));

@@ -46,6 +46,19 @@ Throws::Throws(const std::vector<ThrowDef>& defs) {
     for (const ThrowDef& d : defs) throws_.push_back(Throw{d, Stage::waiting});
 }
 
+void Throws::start(std::vector<Body>& bodies) {
+    for (Throw& th : throws_) {
+        std::vector<Waypoint>& path = th.def.path;
+        Body& b = bodies[th.def.disc];
+        if (path.empty() || b.motion == Motion::fixed) continue;
+        if (path.front().t > 0) path.insert(path.begin(), Waypoint{0.0, Vec2{b.x.x(), b.x.y()}});
+        b.x = to_v2(path.front().position);
+        b.v = V2::Zero();
+        hold(b);
+        th.stage = Stage::holding;
+    }
+}
+
 bool Throws::begin_step(double t0, double t1, std::vector<Body>& bodies) {
     bool changed = false;
     for (Throw& th : throws_) {
@@ -62,12 +75,6 @@ bool Throws::begin_step(double t0, double t1, std::vector<Body>& bodies) {
             changed = true;
             th.stage = Stage::done;
             continue;
-        }
-        if (th.stage == Stage::waiting) {
-            if (t0 < path.front().t) continue;
-            hold(b);
-            changed = true;
-            th.stage = Stage::holding;
         }
         if (t0 >= path.back().t) {
             b.x = to_v2(path.back().position);

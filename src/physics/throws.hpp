@@ -1,10 +1,11 @@
 #pragma once
 // Scripted interaction. A flick sets a disc's velocity at the first step starting at or after
-// its time. A grab holds a disc from the first step starting at or after its first waypoint:
-// the disc becomes kinematic (infinitely heavy to the others), moves along the straight
-// segments between waypoints with the path's velocity, and is released at the first step
-// starting at or after the last waypoint with the `release` velocity, or the last segment's.
-// Throws on static discs do nothing.
+// its time. A grab holds its disc from t = 0: the disc becomes kinematic (infinitely heavy to
+// the others) and is carried in a straight line from where it starts to the first waypoint,
+// arriving at that waypoint's time, so the disc is where the path says from then on and never
+// jumps; it then moves along the straight segments between waypoints with the path's
+// velocity, and is released at the first step starting at or after the last waypoint with the
+// `release` velocity, or the last segment's. Throws on static discs do nothing.
 #include <cstddef>
 #include <vector>
 
@@ -17,6 +18,10 @@ class Throws {
 public:
     explicit Throws(const std::vector<ThrowDef>& defs);
 
+    // Takes hold of the grabbed discs in `bodies`, their state at t = 0; called once, before
+    // the first step.
+    void start(std::vector<Body>& bodies);
+
     // For the step [t0, t1]: applies due flicks, starts and ends grabs, and gives held discs
     // their position at t0 and the velocity that brings them to their path point at t1.
     // True when it changed a body.
@@ -27,7 +32,7 @@ public:
 private:
     enum class Stage { waiting, holding, done };
     struct Throw {
-        ThrowDef def;
+        ThrowDef def;   // a grab's path starts at t = 0 (the disc's start is prepended)
         Stage stage = Stage::waiting;
     };
     std::vector<Throw> throws_;

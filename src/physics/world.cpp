@@ -75,6 +75,7 @@ struct World::Impl {
             b.friction = def.walls[f.wall].friction;
             bodies.push_back(b);
         }
+        throws.start(bodies);
         states.resize(disc_count);
         check_finite();
     }

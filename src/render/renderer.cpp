@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -161,11 +162,26 @@ Status Renderer::Impl::init(const RendererDef& def) {
     glDisable(GL_DITHER);
     glEnable(GL_PROGRAM_POINT_SIZE);
     glEnable(GL_BLEND);
-    // Alpha takes ONE, ONE_MINUS_SRC_ALPHA so it stays 1 over the opaque background and the
-    // frame has no translucent edges.
+    // The framebuffer holds premultiplied colour: the source's colour enters multiplied by its
+    // alpha and what is below by one minus it, which is "over" in premultiplied terms. Over an
+    // opaque background that is the ordinary blend and alpha stays 1; over a transparent one
+    // the frame is made straight again after reading (unpremultiply).
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
     return check_gl("setting up the renderer");
+}
+
+// Premultiplied RGBA8 to straight: colour / alpha, rounded; fully transparent pixels are black.
+static void unpremultiply(std::span<std::uint8_t> rgba) {
+    for (std::size_t i = 0; i + 3 < rgba.size(); i += 4) {
+        const unsigned a = rgba[i + 3];
+        if (a == 255) continue;
+        for (std::size_t c = 0; c < 3; ++c) {
+            rgba[i + c] = a == 0 ? 0
+                                 : static_cast<std::uint8_t>(
+                                       std::min(255u, (rgba[i + c] * 255u + a / 2) / a));
+        }
+    }
 }
 
 Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std::uint8_t> out) {
@@ -186,7 +202,9 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     make_arrow_instances(frame, pixels_per_metre, arrow_instances);
     make_text_instances(frame, width, height, glyph_instances);
 
-    glClearColor(frame.background.r, frame.background.g, frame.background.b, 1.0f);
+    const float alpha = std::clamp(frame.background.a, 0.0f, 1.0f);
+    glClearColor(frame.background.r * alpha, frame.background.g * alpha,
+                 frame.background.b * alpha, alpha);
     glClear(GL_COLOR_BUFFER_BIT);
     glUseProgram(capsule_program.id());
     capsule_stream->draw(capsule_instances.data(), capsule_instances.size());
@@ -198,6 +216,7 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     glyph_stream->draw(glyph_instances.data(), glyph_instances.size());
     target->read(out);
     if (Status ok = check_gl("drawing a frame"); !ok) return ok.error();
+    if (alpha < 1.0f) unpremultiply(out.first(frame_bytes()));
     return ImageView{width, height, out.first(frame_bytes())};
 }
 

@@ -1,9 +1,9 @@
-#include "did_you_mean.hpp"
+#include "discreel/did_you_mean.hpp"
 
 #include <algorithm>
 #include <vector>
 
-namespace discreel::scene::detail {
+namespace discreel {
 namespace {
 
 char lower(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
@@ -64,4 +64,4 @@ std::optional<std::string> closest_match(std::string_view word,
     return closest(word, candidates);
 }
 
-}  // namespace discreel::scene::detail
+}  // namespace discreel

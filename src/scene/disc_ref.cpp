@@ -1,7 +1,7 @@
 // Naming a disc from elsewhere in the file (throws, camera.follow): by index or by id.
 #include "disc_ref.hpp"
 
-#include "did_you_mean.hpp"
+#include "discreel/did_you_mean.hpp"
 
 namespace discreel::scene::detail {
 

@@ -105,7 +105,11 @@ void check_envelope(Loader& loader) {
         const ThrowSource& source = loader.throw_sources[k];
         if (t.velocity) check(speed_of(*t.velocity), source.velocity_where, source.velocity_path);
         if (t.release) check(speed_of(*t.release), source.velocity_where, source.velocity_path);
-        double fastest = 0;   // the grab's speed along its path
+        double fastest = 0;   // the grab's speed along its path, from the disc's start on
+        if (!t.path.empty() && t.path.front().t > 0) {
+            const Vec2 from = scene.discs[t.disc].position, to = t.path.front().position;
+            fastest = speed_of({to.x - from.x, to.y - from.y}) / t.path.front().t;
+        }
         for (std::size_t p = 1; p < t.path.size(); ++p) {
             const Vec2 from = t.path[p - 1].position, to = t.path[p].position;
             fastest = std::max(fastest, speed_of({to.x - from.x, to.y - from.y}) /

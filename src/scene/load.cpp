@@ -305,13 +305,83 @@ std::string with_line_feeds(std::string_view text) {
     return out;
 }
 
+// An unquoted colour inside {...} or [...]: `{color: #ff0000}`. YAML reads everything from
+// the '#' on as a comment, the closing bracket included, so the parser fails lines later. Where
+// each one starts (the '#'), found by a scan that knows quotes, comments and bracket depth.
+bool is_hex(char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+}
+
+std::vector<std::size_t> unquoted_flow_colours(std::string_view text) {
+    std::vector<std::size_t> found;
+    int depth = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '"' || c == '\'') {
+            // Quoted scalars: '' escapes a single quote, backslash escapes in double quotes.
+            for (++i; i < text.size(); ++i) {
+                if (c == '"' && text[i] == '\\') {
+                    ++i;
+                } else if (text[i] == c) {
+                    if (c == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+                        ++i;
+                    } else {
+                        break;
+                    }
+                }
+            }
+        } else if (c == '{' || c == '[') {
+            ++depth;
+        } else if ((c == '}' || c == ']') && depth > 0) {
+            --depth;
+        } else if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' ||
+                                text[i - 1] == '\n')) {
+            std::size_t end = i + 1;
+            while (end < text.size() && is_hex(text[end])) ++end;
+            const std::size_t digits = end - i - 1;
+            const bool terminated = end == text.size() ||
+                                    std::string_view(" \t\n,}]").find(text[end]) !=
+                                        std::string_view::npos;
+            if (depth > 0 && (digits == 3 || digits == 4 || digits == 6 || digits == 8) &&
+                terminated) {
+                found.push_back(i);
+                i = end - 1;
+            } else {
+                while (i < text.size() && text[i] != '\n') ++i;   // a comment
+            }
+        }
+    }
+    return found;
+}
+
+Location location_at(std::string_view text, std::size_t offset) {
+    Location where;
+    for (std::size_t i = 0; i < offset; ++i) {
+        if (text[i] == '\n') {
+            ++where.line;
+            where.column = 1;
+        } else {
+            ++where.column;
+        }
+    }
+    return where;
+}
+
 }  // namespace
 
 LoadResult load_scene_text(std::string_view original_text, std::string_view display_name,
                            const Limits& limits) {
     if (original_text.size() > limits.file_bytes)
         return whole_file_problem(display_name, too_large(original_text.size(), limits));
-    const std::string normalised = with_line_feeds(original_text);
+    std::string normalised = with_line_feeds(original_text);
+    // Unquoted colours in flow style break the YAML far from where they are. Each is reported
+    // where it is, and the file is read on with a stand-in in its place (same length, so every
+    // other position stays true) to find its other problems too.
+    std::vector<Location> colours;
+    for (const std::size_t at : unquoted_flow_colours(normalised)) {
+        colours.push_back(location_at(normalised, at));
+        normalised[at] = 'x';
+    }
     const std::string_view text = normalised;
     LoadResult result;
     result.scene.name = std::filesystem::path(display_name).stem().string();
@@ -356,7 +426,18 @@ LoadResult load_scene_text(std::string_view original_text, std::string_view disp
             }
         }
     }
+    for (const Location& where : colours) {
+        d.error(where, "a colour in {...} or [...] must be quoted: YAML reads an unquoted '#' "
+                       "as the start of a comment, which hides the closing bracket; write "
+                       "color: \"#rrggbb\"");
+    }
     result.diagnostics = std::move(d).finish(display_name);
+    // What the stand-ins caused (a colour that is no colour) is said already.
+    std::erase_if(result.diagnostics, [&](const Diagnostic& x) {
+        return std::find(colours.begin(), colours.end(), Location{x.line, x.column}) !=
+                   colours.end() &&
+               x.message.find("must be quoted") == std::string::npos;
+    });
     return result;
 }
 

@@ -5,7 +5,7 @@
 #include <system_error>
 
 #include "color.hpp"
-#include "did_you_mean.hpp"
+#include "discreel/did_you_mean.hpp"
 
 namespace discreel::scene::detail {
 namespace {

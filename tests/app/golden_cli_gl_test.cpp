@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <regex>
+#include <sys/stat.h>
 #include <sstream>
 
 #include "discreel/encode.hpp"
@@ -206,6 +207,78 @@ TEST_F(GoldenCliGLTest, TheRecordedSizeIsUsedWhenNoSizeIsGiven) {
     const auto check = golden({});
     EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
     EXPECT_EQ(check.out.substr(0, check.out.find('\n')), "ball frame 0: ok (identical)");
+}
+
+// -u is --update; --update=missing writes only the goldens that are not there and leaves the
+// others as they were (the same file, not a rewrite); --update=changed writes those missing or
+// no longer matching. Both check the rest as usual.
+TEST_F(GoldenCliGLTest, UpdateModesWriteOnlyWhatIsMissingOrChanged) {
+    const std::string g = goldens_ + "/ball/";
+    ASSERT_EQ(golden({"-u"}).exit_code, 0);
+    ASSERT_TRUE(fs::remove(g + "frame_15.png"));
+    struct stat before{};
+    ASSERT_EQ(stat((g + "frame_0.png").c_str(), &before), 0);
+
+    auto run = golden({"--update", "missing"});
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    EXPECT_EQ(run.out, "ball frame 0: ok (identical)\n"
+                       "ball frame 15: wrote " + g + "frame_15.png (was: no golden image " + g +
+                       "frame_15.png; create it with: discreel golden " + scene_ + " --dir " +
+                       goldens_ + " --update)\n"
+                       "ball frame 29: ok (identical)\n"
+                       "golden: 3 frames of 1 scene: 2 passed, 0 failed, 1 written\n");
+    struct stat after{};
+    ASSERT_EQ(stat((g + "frame_0.png").c_str(), &after), 0);
+    EXPECT_EQ(after.st_ino, before.st_ino);   // untouched, not rewritten with the same bytes
+
+    // Another colour: =missing leaves the changed goldens failing, =changed rewrites them.
+    write_file(scene_, replace_all(scene_text_, "#e4572e", "#2e57e4"));
+    run = golden({"--update=missing"});
+    EXPECT_EQ(run.exit_code, 1) << run.out;
+    EXPECT_NE(run.out.find("ball frame 0: FAILED: "), std::string::npos) << run.out;
+    run = golden({"-u", "changed"});
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    EXPECT_TRUE(run.out.ends_with("golden: 3 frames of 1 scene: 0 passed, 0 failed, 3 written\n"))
+        << run.out;
+    EXPECT_FALSE(fs::exists(g + "frame_0.actual.png"));   // the failed check's files are gone
+    EXPECT_FALSE(fs::exists(g + "frame_0.diff.png"));
+    EXPECT_EQ(golden({}).exit_code, 0);
+
+    run = golden({"--update=sometimes"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err.rfind("discreel: --update: ", 0), 0U) << run.err;
+}
+
+// --report: one HTML page, self-contained (images inline), with each failing frame's golden,
+// actual and difference images and its numbers; a run where everything passes says so.
+TEST_F(GoldenCliGLTest, HtmlReportShowsEachFailingFrame) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    const std::string report = dir_ / "report.html";
+    auto run = golden({"--report", report});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::string html = read_file(report);
+    EXPECT_NE(html.find("3 frames of 1 scene: <span class=\"passed\">3 passed</span>"),
+              std::string::npos) << html;
+    EXPECT_NE(html.find("Every frame matched its golden."), std::string::npos);
+    EXPECT_EQ(html.find("data:image/png"), std::string::npos);
+
+    write_file(scene_, replace_all(scene_text_, "#e4572e", "#2e57e4"));
+    run = golden({"--report", report});
+    ASSERT_EQ(run.exit_code, 1) << run.err;
+    html = read_file(report);
+    EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0U);
+    EXPECT_EQ(html.find("src=\"http"), std::string::npos);   // nothing to fetch
+    EXPECT_EQ(html.find("<script"), std::string::npos);
+    // Three failing frames, each with three images.
+    std::size_t images = 0;
+    for (auto at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
+         at = html.find("src=\"data:image/png;base64,", at + 1)) {
+        ++images;
+    }
+    EXPECT_EQ(images, 9u);
+    EXPECT_NE(html.find("<h2 class=\"failed\">ball frame_15</h2>"), std::string::npos);
+    EXPECT_NE(html.find(" pixels differ ("), std::string::npos);   // the numbers, as printed
+    EXPECT_NE(html.find("<figcaption>actual</figcaption>"), std::string::npos);
 }
 
 TEST_F(GoldenCliGLTest, BadOptionsAndScenesAreExit2BeforeAnyWork) {

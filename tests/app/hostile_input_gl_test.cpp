@@ -360,7 +360,8 @@ TEST(HostileInputGLTest, NumbersAreRangeCheckedBeforeTheyAreConverted) {
     EXPECT_EQ(run.err, "discreel: --at must be a time in the clip, 0 to 1 seconds\n");
     run = run_command({bin, "simulate", scene, "--max-duration", "nan"});
     EXPECT_EQ(run.exit_code, 2);
-    EXPECT_EQ(run.err.rfind("--max-duration: expected a finite number, got 'nan'", 0), 0U)
+    EXPECT_EQ(run.err.rfind("discreel: --max-duration: expected a finite number, got 'nan'", 0),
+              0U)
         << run.err;
     run = run_command({bin, "golden", scene, "--dir", dir / "g", "--tolerance", "nan"});
     EXPECT_EQ(run.exit_code, 2);

@@ -19,10 +19,35 @@ TEST(ProgressTest, LineShowsFramesRateElapsedAndTimeLeft) {
 }
 
 TEST(ProgressTest, StyleFollowsTheTerminalUnlessForcedOrQuiet) {
-    EXPECT_EQ(pick_progress_style(false, false, true), ProgressStyle::terminal);
-    EXPECT_EQ(pick_progress_style(false, false, false), ProgressStyle::none);
-    EXPECT_EQ(pick_progress_style(false, true, false), ProgressStyle::lines);
-    EXPECT_EQ(pick_progress_style(true, false, true), ProgressStyle::none);
+    using enum ProgressRequest;
+    EXPECT_EQ(pick_progress_style(false, none, true), ProgressStyle::terminal);
+    EXPECT_EQ(pick_progress_style(false, none, false), ProgressStyle::none);
+    EXPECT_EQ(pick_progress_style(false, lines, false), ProgressStyle::lines);
+    EXPECT_EQ(pick_progress_style(true, none, true), ProgressStyle::none);
+    // JSON is for programs: the same on a terminal, and off only with --quiet.
+    EXPECT_EQ(pick_progress_style(false, json, true), ProgressStyle::json);
+    EXPECT_EQ(pick_progress_style(false, json, false), ProgressStyle::json);
+    EXPECT_EQ(pick_progress_style(true, json, false), ProgressStyle::none);
+}
+
+TEST(ProgressTest, JsonHasOneObjectPerUpdateAndAFinalDoneObject) {
+    std::ostringstream out;
+    ProgressMeter meter(out, ProgressStyle::json, 10);
+    meter.update(0, 0.0);   // nothing done yet: no rate, so no estimate
+    meter.update(5, 1.0);   // due: one second after the first
+    meter.update(6, 1.5);   // within the second: skipped
+    meter.update(10, 1.6);
+    meter.finish();
+    meter.done(1.75);
+    EXPECT_EQ(out.str(),
+              "{\"stage\":\"render\",\"frame\":0,\"frames\":10,\"fps\":0.00,\"elapsed\":0.000,"
+              "\"eta\":null}\n"
+              "{\"stage\":\"render\",\"frame\":5,\"frames\":10,\"fps\":5.00,\"elapsed\":1.000,"
+              "\"eta\":1.000}\n"
+              "{\"stage\":\"render\",\"frame\":10,\"frames\":10,\"fps\":6.25,\"elapsed\":1.600,"
+              "\"eta\":0.000}\n"
+              "{\"stage\":\"done\",\"frame\":10,\"frames\":10,\"fps\":5.71,\"elapsed\":1.750,"
+              "\"eta\":0.000}\n");
 }
 
 TEST(ProgressTest, LinesComeOncePerSecondAndForTheLastFrame) {

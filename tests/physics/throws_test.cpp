@@ -1,4 +1,5 @@
 // Flicks and grabs.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -76,6 +77,47 @@ TEST(Throws, HeldDiscPushesOthersOutOfItsWay) {
     EXPECT_NEAR(d[0].position.x, 1.0, 1e-12);
     // The pushed disc is ahead of the hand, not overlapped by it.
     EXPECT_GE(d[1].position.x - d[0].position.x, 0.6 - 1e-3);
+}
+
+// The case: a disc at (1, 1) grabbed with a path starting at t = 0.5 at (3, 3). The hand
+// holds it from t = 0 and carries it in a straight line to the first waypoint, arriving on time.
+TEST(Throws, GrabCarriesTheDiscToItsFirstWaypointWithoutAJump) {
+    WorldDef def;
+    def.discs.push_back(testing::disc({1, 1}, {0, 0}, 0.2, 1.0));
+    ThrowDef grab;
+    grab.disc = 0;
+    grab.path = {{0.5, {3, 3}}, {1.0, {4, 3}}};
+    def.throws.push_back(grab);
+    World world(def);
+    double farthest = 0;   // the largest move in one step, metres
+    for (int k = 0; k < 480; ++k) {
+        const Vec2 before = world.discs()[0].position;
+        world.step();
+        const Vec2 after = world.discs()[0].position;
+        farthest = std::max(farthest, std::hypot(after.x - before.x, after.y - before.y));
+        if (k + 1 == 120) {   // t = 0.25: halfway to the first waypoint, not fallen
+            EXPECT_NEAR(after.x, 2.0, 1e-12);
+            EXPECT_NEAR(after.y, 2.0, 1e-12);
+        }
+        if (k + 1 == 240) {   // t = 0.5: at the first waypoint
+            EXPECT_NEAR(after.x, 3.0, 1e-12);
+            EXPECT_NEAR(after.y, 3.0, 1e-12);
+        }
+    }
+    // The fastest leg is the carry: 2.83 m in 0.5 s, 5.9 mm per step at 480 Hz.
+    EXPECT_LT(farthest, std::hypot(2.0, 2.0) / 0.5 / 480 + 1e-9);
+}
+
+TEST(Throws, GrabStartingAtTimeZeroPlacesTheDiscOnItsFirstWaypoint) {
+    WorldDef def;
+    def.discs.push_back(testing::disc({1, 1}, {2, 0}, 0.2, 1.0));
+    ThrowDef grab;
+    grab.disc = 0;
+    grab.path = {{0.0, {3, 3}}, {1.0, {4, 3}}};
+    def.throws.push_back(grab);
+    World world(def);
+    EXPECT_EQ(world.discs()[0].position.x, 3.0);   // the state frame 0 shows
+    EXPECT_EQ(world.discs()[0].position.y, 3.0);
 }
 
 }  // namespace

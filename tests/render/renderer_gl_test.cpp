@@ -86,10 +86,42 @@ TEST_F(RendererGLTest, EmptyFrameIsExactlyTheBackground) {
     }
 }
 
-TEST_F(RendererGLTest, BackgroundAlphaIsIgnored) {
+// A translucent background gives an image with that alpha, in straight (not premultiplied)
+// colour: the framebuffer holds premultiplied values, so the colour comes back through one
+// rounding to bytes at a quarter of its size, hence the tolerance of 2 per channel.
+TEST_F(RendererGLTest, TranslucentBackgroundKeepsItsAlphaAndColour) {
     FrameScene frame = empty_frame();
     frame.background.a = 0.25f;
-    EXPECT_EQ(pixel_at(draw(frame).view(), 0, 0), opaque(kBackground));
+    const Pixel p = pixel_at(draw(frame).view(), 0, 0);
+    const Pixel expected = opaque(kBackground);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], expected[c], 2) << "channel " << c;
+    EXPECT_EQ(p[3], 64);   // round(0.25 * 255)
+}
+
+// Over a fully transparent background an opaque disc is opaque inside, and its anti-aliased
+// edge keeps the disc's own colour with partial alpha: no dark fringe from the background's
+// colour when the image is composited over something else.
+TEST_F(RendererGLTest, DiscEdgesOverATransparentBackgroundKeepTheDiscColour) {
+    FrameScene frame = empty_frame();
+    frame.background = {1.0f, 1.0f, 1.0f, 0.0f};   // white but invisible: must not leak in
+    frame.disc_outlines = false;
+    frame.spin_markers = false;
+    frame.discs.push_back(disc(0, 0, 3, 0, kRed));
+    const Image image = draw(frame);
+    EXPECT_EQ(pixel_at(image.view(), 0, 0), (Pixel{0, 0, 0, 0}));
+    expect_near_color(pixel_at_world(image.view(), kCamera, 0, 0), opaque(kRed));
+    int edge_pixels = 0;
+    const int row = kHeight / 2;
+    for (int column = 0; column < kWidth; ++column) {
+        const Pixel p = pixel_at(image.view(), column, row);
+        if (p[3] == 0 || p[3] == 255) continue;
+        ++edge_pixels;
+        // Unpremultiplying a low alpha magnifies rounding: 255 / alpha units at most.
+        const int slack = 1 + 255 / p[3];
+        const Pixel red = opaque(kRed);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], red[c], slack) << "column " << column;
+    }
+    EXPECT_GE(edge_pixels, 2);   // one on each side of the disc
 }
 
 TEST_F(RendererGLTest, CornersKeepTheClearColourAroundADisc) {

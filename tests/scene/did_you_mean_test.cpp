@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "did_you_mean.hpp"
+#include "discreel/did_you_mean.hpp"
 
 namespace discreel::scene::detail {
 namespace {

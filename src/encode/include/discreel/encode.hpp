@@ -38,6 +38,8 @@ struct SinkDef {
     // Colours the frames are mostly made of (the scene's background, walls and discs). A GIF
     // palette starts with them, so they come out exact; other formats ignore them.
     std::vector<Rgb> key_colours;
+    // A PNG sequence's number for its first frame: `render --frames 10-20` writes 10..20.
+    int first_number = 0;
 };
 
 class Sink {
@@ -58,6 +60,11 @@ struct OutputDescription {
     std::string format;            // "mp4", "mkv", "webm", "gif", "png", "png sequence"
     bool one_frame = false;        // a still: the sink takes exactly one frame
     bool to_stdout = false;        // "-": a stream on standard output
+    bool alpha = false;            // keeps transparency (PNG); the others are drawn opaque
+    // The file of frame n of a "png sequence": "out/frame_%04d.png" -> "out/frame_0012.png".
+    std::string frame_path(int n) const;
+
+    std::string path;              // as given
 };
 
 // The format an output path names, from the file system's point of view of nothing: "-" is a
@@ -92,5 +99,7 @@ Expected<Image> read_png(const std::string& path);
 Status write_png(const std::string& path, const ImageView& image);   // atomic: temp + rename
 // The PNG written and sealed under a temporary name, for commit_together() with other files.
 Expected<OutputFile> prepare_png(const std::string& path, const ImageView& image);
+// "data:image/png;base64,...": the image as a PNG an HTML page can carry inside itself.
+Expected<std::string> png_data_uri(const ImageView& image);
 
 }  // namespace discreel::encode

@@ -65,7 +65,9 @@ struct Camera {
 };
 
 struct FrameScene {
-    Rgba background;                      // its alpha is ignored: frames are opaque
+    // Below alpha 1 the frame is transparent there, and what is drawn over it keeps its own
+    // coverage: the image's alpha is what a compositor needs (straight, not premultiplied).
+    Rgba background;
     Camera camera;
     bool disc_outlines = true;            // a darker rim on every disc
     bool spin_markers = true;             // the spoke on every non-static disc

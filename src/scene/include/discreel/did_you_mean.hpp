@@ -1,12 +1,13 @@
 #pragma once
-// Suggestions for misspelt names: "did you mean 'color'?" for 'colour'.
+// Suggestions for misspelt names: "did you mean 'color'?" for 'colour' in a scene, "did
+// you mean '--size'?" for '--sise' on the command line.
 #include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 
-namespace discreel::scene::detail {
+namespace discreel {
 
 // Optimal-string-alignment distance (Levenshtein plus adjacent transpositions), comparing
 // letters case-insensitively: "Radius" is one step from nothing, "raduis" one from "radius".
@@ -20,4 +21,4 @@ std::optional<std::string> closest_match(std::string_view word,
 std::optional<std::string> closest_match(std::string_view word,
                                          std::span<const std::string> candidates);
 
-}  // namespace discreel::scene::detail
+}  // namespace discreel

@@ -1,0 +1,80 @@
+#include "golden_report.hpp"
+
+#include <algorithm>
+
+namespace discreel::golden {
+namespace {
+
+// Checkerboard behind the images, so transparent pixels read as transparent.
+constexpr const char* style = R"(<style>
+body { font: 14px/1.4 system-ui, sans-serif; margin: 2em; color: #1b1f24; }
+h1 { font-size: 20px; } h2 { font-size: 16px; margin: 1.5em 0 0.3em; }
+.failed { color: #b42318; } .passed { color: #067647; }
+.frame { border-top: 1px solid #d0d5dd; padding-bottom: 1em; }
+.images { display: flex; gap: 12px; flex-wrap: wrap; }
+figure { margin: 0; } figcaption { font-size: 12px; color: #475467; }
+img { max-width: 420px; border: 1px solid #d0d5dd; image-rendering: pixelated;
+      background: repeating-conic-gradient(#eee 0 25%, #fff 0 50%) 0 0 / 16px 16px; }
+code { background: #f2f4f7; padding: 0 3px; }
+</style>
+)";
+
+std::string count(std::size_t n, const std::string& noun) {
+    return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+void figure(std::string& html, const std::string& caption, const std::string& uri) {
+    if (uri.empty()) return;
+    html += "<figure><img alt=\"" + caption + "\" src=\"" + uri + "\"><figcaption>" + caption +
+            "</figcaption></figure>\n";
+}
+
+}  // namespace
+
+std::string html_escape(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (const char c : text) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&#39;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+std::string html_report(const std::string& title, std::size_t scene_count,
+                        const std::vector<ReportFrame>& frames) {
+    const auto failed = static_cast<std::size_t>(std::count_if(
+        frames.begin(), frames.end(), [](const ReportFrame& f) { return !f.passed; }));
+    const auto written = static_cast<std::size_t>(std::count_if(
+        frames.begin(), frames.end(), [](const ReportFrame& f) { return f.written; }));
+    std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+                       "<title>" + html_escape(title) + "</title>\n" + style + "</head>\n<body>\n";
+    html += "<h1>" + html_escape(title) + "</h1>\n<p>" + count(frames.size(), "frame") + " of " +
+            count(scene_count, "scene") + ": <span class=\"passed\">" +
+            std::to_string(frames.size() - failed - written) + " passed</span>, <span class=\"" +
+            (failed > 0 ? "failed" : "passed") + "\">" + std::to_string(failed) +
+            " failed</span>";
+    if (written > 0) html += ", " + std::to_string(written) + " written";
+    html += ".</p>\n";
+    for (const ReportFrame& f : frames) {
+        if (f.passed) continue;
+        html += "<div class=\"frame\">\n<h2 class=\"failed\">" + html_escape(f.scene) + " " +
+                html_escape(f.frame) + "</h2>\n<p>" + html_escape(f.message) + "</p>\n";
+        html += "<div class=\"images\">\n";
+        figure(html, "golden", f.golden_image);
+        figure(html, "actual", f.actual_image);
+        figure(html, "difference (red: differs, yellow: anti-aliasing)", f.diff_image);
+        html += "</div>\n</div>\n";
+    }
+    if (failed == 0) html += "<p class=\"passed\">Every frame matched its golden.</p>\n";
+    html += "</body>\n</html>\n";
+    return html;
+}
+
+}  // namespace discreel::golden
