@@ -35,13 +35,10 @@
 #include <vector>
 
 #include "bench_results.hpp"
-#include "build_world.hpp"
 #include "discreel/encode.hpp"
+#include "discreel/job.hpp"
 #include "discreel/render.hpp"
 #include "discreel/scene.hpp"
-#include "frame_scene.hpp"
-#include "stepper.hpp"
-#include "timeline.hpp"
 
 extern char** environ;
 
@@ -105,18 +102,15 @@ double draw_all(const scene::Scene& scene, int frames, Each each) {
         std::cerr << renderer.error().message << '\n';
         std::exit(1);
     }
-    const app::Timeline timeline{scene.video.fps, scene.physics.rate, frames};
-    physics::World world(app::build_world(scene));
-    app::FrameStepper stepper(world, timeline, scene);
-    app::FrameSceneBuilder builder(scene);
+    job::Playback playback(scene);
     double draw_seconds = 0;
     for (int frame = 0; frame < frames; ++frame) {
-        if (Status stepped = stepper.advance_to(frame); !stepped) {
+        if (Status stepped = playback.advance_to(frame); !stepped) {
             std::cerr << stepped.error().message << '\n';
             std::exit(1);
         }
         const auto start = Clock::now();
-        auto image = renderer->draw(builder.build(frame, world.discs()));
+        auto image = renderer->draw(playback.frame_scene(frame));
         draw_seconds += seconds_since(start);
         if (!image) {
             std::cerr << image.error().message << '\n';

@@ -12,13 +12,12 @@
 #include <map>
 #include <sstream>
 
-#include "build_world.hpp"
 #include "discreel/commit.hpp"
 #include "discreel/printable.hpp"
 #include "discreel/encode.hpp"
+#include "discreel/job.hpp"
 #include "discreel/render.hpp"
 #include "exit_codes.hpp"
-#include "frame_scene.hpp"
 #include "golden_compare.hpp"
 #include "golden_junit.hpp"
 #include "golden_metadata.hpp"
@@ -26,8 +25,6 @@
 #include "progress.hpp"
 #include "signals.hpp"
 #include "run_support.hpp"
-#include "stepper.hpp"
-#include "trace.hpp"
 
 namespace discreel::app {
 namespace {
@@ -342,24 +339,21 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
     std::vector<int> frames = scene.golden_frames;
     std::sort(frames.begin(), frames.end());
     frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
-    const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
-    physics::World world(build_world(scene));
-    FrameStepper stepper(world, timeline, scene);
-    FrameSceneBuilder frame_builder(scene);
+    job::Playback playback(scene);
     int next_frame = 0;
     bool wrote_any = false;
     for (const int frame : frames) {
         // Trails and the follow camera remember earlier frames: show them every one.
         for (; next_frame < frame; ++next_frame) {
             if (stop_signal() != 0) return Error{"interrupted"};
-            if (Status stepped = stepper.advance_to(next_frame); !stepped) return stepped.error();
-            frame_builder.observe(next_frame, world.discs());
+            if (Status stepped = playback.advance_to(next_frame); !stepped) return stepped.error();
+            playback.observe(next_frame);
             progress.frame_done();
         }
-        if (Status stepped = stepper.advance_to(frame); !stepped) return stepped.error();
+        if (Status stepped = playback.advance_to(frame); !stepped) return stepped.error();
         next_frame = frame + 1;
         progress.frame_done();
-        auto image = renderer->draw(frame_builder.build(frame, world.discs()));
+        auto image = renderer->draw(playback.frame_scene(frame));
         if (!image) return image.error();
         if (stop_signal() != 0) return Error{"interrupted"};
         FrameCheck check;

@@ -3,7 +3,7 @@
 #include "discreel/read_file.hpp"
 #include <sstream>
 
-#include "trace.hpp"
+#include "discreel/printable.hpp"
 
 namespace discreel::golden {
 
@@ -30,9 +30,9 @@ std::optional<Metadata> read_metadata(const std::filesystem::path& scene_dir) {
     return m;
 }
 
-Expected<app::AtomicTextFile> prepare_metadata(const std::filesystem::path& scene_dir,
+Expected<AtomicTextFile> prepare_metadata(const std::filesystem::path& scene_dir,
                                                const Metadata& m) {
-    auto file = app::AtomicTextFile::create((scene_dir / metadata_file_name).string());
+    auto file = AtomicTextFile::create((scene_dir / metadata_file_name).string());
     if (!file) return file.error();
     file->write("# Written by `discreel golden --update`: what the frame_<n>.png beside it were "
                 "rendered with.\n");

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "atomic_text_file.hpp"
+#include "discreel/atomic_text_file.hpp"
 #include "discreel/expected.hpp"
 
 namespace discreel::golden {
@@ -23,7 +23,7 @@ inline constexpr const char* metadata_file_name = "golden.txt";
 // (goldens made by hand).
 std::optional<Metadata> read_metadata(const std::filesystem::path& scene_dir);
 // The file written under a temporary name, to be committed with the goldens it describes.
-Expected<app::AtomicTextFile> prepare_metadata(const std::filesystem::path& scene_dir,
+Expected<AtomicTextFile> prepare_metadata(const std::filesystem::path& scene_dir,
                                                const Metadata& metadata);
 
 }  // namespace discreel::golden

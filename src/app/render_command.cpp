@@ -1,4 +1,3 @@
-#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,20 +10,14 @@
 #include <memory>
 #include <sstream>
 
-#include "build_world.hpp"
 #include "commands.hpp"
-#include "discreel/commit.hpp"
 #include "discreel/encode.hpp"
+#include "discreel/job.hpp"
 #include "discreel/printable.hpp"
-#include "discreel/render.hpp"
 #include "exit_codes.hpp"
-#include "frame_scene.hpp"
-#include "run_support.hpp"
-#include "pipeline.hpp"
 #include "progress.hpp"
+#include "run_support.hpp"
 #include "signals.hpp"
-#include "stepper.hpp"
-#include "trace.hpp"
 
 namespace discreel::app {
 namespace {
@@ -203,16 +196,6 @@ std::optional<std::string> existing_output(const RenderOptions& o,
     return std::nullopt;
 }
 
-// The colours frames are drawn in; a GIF palette starts with them so they come out exact.
-std::vector<encode::Rgb> scene_colours(const scene::Scene& scene) {
-    std::vector<encode::Rgb> colours;
-    const auto add = [&](const scene::Color& c) { colours.push_back({c.r, c.g, c.b}); };
-    add(scene.video.background);
-    for (const auto& wall : scene.walls) add(wall.color);
-    for (const auto& disc : scene.discs) add(disc.color);
-    return colours;
-}
-
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
@@ -233,14 +216,14 @@ std::string describe_encoder(const encode::SinkDef& def) {
 }
 
 // --verbose: where the time went and how much memory the process needed at most.
-void report_details(const PipelineResult& run, int frames, std::ostream& err) {
+void report_details(const job::RenderSummary& run, int frames, std::ostream& err) {
     const auto per_frame = [&](double seconds) {
         std::ostringstream text;
         text << std::fixed << std::setprecision(2) << seconds << " s ("
              << (frames > 0 ? 1000.0 * seconds / frames : 0.0) << " ms/frame)";
         return text.str();
     };
-    err << "discreel: renderer: " << run.renderer_info << '\n';
+    err << "discreel: renderer: " << run.renderer << '\n';
     err << "discreel: busy: simulate " << per_frame(run.busy.simulate) << ", render "
         << per_frame(run.busy.render) << ", encode " << per_frame(run.busy.encode) << '\n';
     if (const auto peak = peak_resident_bytes()) {
@@ -249,28 +232,10 @@ void report_details(const PipelineResult& run, int frames, std::ostream& err) {
     }
 }
 
-// Up to 720p, six slots (3.5 MiB each at 720p) let the simulate and render stages, which
-// yield to the encoder (PipelineDef::encoder_first), work several frames ahead in the cycles
-// x264 leaves idle. Above 720p a slot is 8 MiB or more and two keep a 1080p render under
-// 300 MB (docs/performance.md); the encoder still has the next frame ready, because drawing
-// and simulating a frame take a fraction of the time it needs.
-int slots_for(int width, int height) {
-    return static_cast<long>(width) * height > 1280L * 720L ? 2 : 6;
-}
-
 }  // namespace
 
 int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = Clock::now();
-    // The encoder's threads keep most of the cores busy; llvmpipe's rasterizer threads would
-    // compete with them and cost more CPU than they save, so the render stage draws on its own
-    // thread (docs/performance.md). Set here, before any thread starts; LP_NUM_THREADS in the
-    // environment still wins.
-    render::set_rasterizer_threads(0);
-    // libx264 asks for transparent huge pages on its frame buffers, which rounds each one up to
-    // whole 2 MiB pages of resident memory: 11-13 MiB at 1080p, at no measurable cost in speed.
-    // Best effort (a kernel without the setting just keeps the default).
-    prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
     scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
@@ -321,7 +286,8 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
                                    .pixel_format = o.pixel_format,
                                    .lossless = o.lossless,
                                    .stream_container = o.stream_container,
-                                   .key_colours = scene_colours(scene)};
+                                   .key_colours = {},     // the job's: the scene's colours
+                                   .first_number = 0};    // the job's: the first frame
     if (Status checked = encode::check_settings(sink_def); !checked) {
         report_error(err, checked.error().message);
         return exit_bad_input;
@@ -350,16 +316,6 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     add_output_paths(o.files, output_paths);
     if (!check_distinct_files(inputs, output_paths, err)) return exit_bad_input;
 
-    auto outputs = SideOutputs::open(o.files, scene, err);
-    if (!outputs) return exit_runtime_failure;
-    encode::SinkDef numbered = sink_def;
-    numbered.first_number = frames->first;
-    auto sink = encode::open_sink(numbered);
-    if (!sink) {
-        report_error(err, sink.error().message);
-        return exit_runtime_failure;
-    }
-
     const int to_write = frames->last - frames->first + 1;
     if (o.verbose) {
         err << "discreel: " << scene.video.width << 'x' << scene.video.height << ", "
@@ -369,82 +325,45 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             << (o.sequential ? "one thread" : "simulate, render and encode threads") << '\n';
     }
 
-    const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
-    physics::World world(build_world(scene));
-    FrameStepper stepper(world, timeline, scene);
-    FrameSceneBuilder frame_builder(scene);
+    const scene::Video video = scene.video;   // the scene itself moves into the job
     ProgressMeter progress(err,
                            pick_progress_style(o.quiet, o.progress, isatty(STDERR_FILENO) == 1),
                            to_write);
-    Status simulated;   // the physics' failure, which stops the run like a signal
-    const PipelineStages stages{
-        .simulate = [&](int frame) -> const render::FrameScene* {
-            simulated = stepper.advance_to(frame);
-            if (!simulated) return nullptr;
-            outputs->record(frame, timeline.time_of_frame(frame), world.discs(),
-                            stepper.take_events());
-            if (frame < frames->first) {
-                frame_builder.observe(frame, world.discs());   // trails and follow camera
-                return nullptr;
-            }
-            return &frame_builder.build(frame, world.discs());
-        },
-        .encode = [&](const ImageView& image) { return (*sink)->write(image); },
-        .encoded = [&](int done) { progress.update(done, seconds_since(started)); },
-        .should_stop = [&] { return !simulated || stop_signal() != 0; },
-    };
-    const PipelineResult run = run_pipeline(
-        {.frame_count = frames->last + 1,
-         .renderer = {.width = scene.video.width, .height = scene.video.height},
-         .threaded = !o.sequential,
-         .slots = slots_for(scene.video.width, scene.video.height),
-         .encoder_first = true},
-        stages);
+    job::RenderDef def;
+    def.scene = std::move(scene);
+    def.output = sink_def;
+    def.frames = {.first = frames->first, .last = frames->last};
+    def.trace = o.files.trace;
+    def.events = o.files.events;
+    def.threaded = !o.sequential;
+    def.on_progress = [&](const job::Progress& p) { progress.update(p.frames_done, p.elapsed); };
+    def.should_stop = [] { return stop_signal() != 0; };
+    const auto run = job::render(def);
     progress.finish();
     // A signal is checked first: the write it broke (SIGPIPE's EPIPE) is not the story. One
-    // during the last frames may arrive after the simulate stage stopped polling.
-    const auto interrupted = [&] {
+    // during the last frames may arrive after the job stopped polling.
+    if (stop_signal() != 0) {
         err << "discreel: interrupted; "
             << (output->to_stdout ? "the stream on standard output ends early"
                                   : "nothing was written")
             << '\n';
         return exit_interrupted_base + stop_signal();
-    };
-    if (stop_signal() != 0) return interrupted();
-    if (!simulated) {
-        report_error(err, simulated.error().message);
+    }
+    if (!run) {
+        report_error(err, run.error().message);
         return exit_runtime_failure;
     }
-    if (!run.status) {
-        report_error(err, run.status.error().message);
-        return exit_runtime_failure;
-    }
-    if (run.stopped) return interrupted();
-    // The video, trace and events become visible together, or none of them.
-    Status sealed = (*sink)->seal();
-    if (sealed) sealed = outputs->seal();
-    if (stop_signal() != 0) return interrupted();
-    if (sealed) {
-        std::vector<OutputFile*> files = (*sink)->files();
-        for (OutputFile* file : outputs->files()) files.push_back(file);
-        sealed = commit_together(files);
-    }
-    if (!sealed) {
-        report_error(err, sealed.error().message);
-        return exit_runtime_failure;
-    }
-
     const double seconds = seconds_since(started);
     progress.done(seconds);
-    if (o.verbose) report_details(run, to_write, err);
+    if (o.verbose) report_details(*run, to_write, err);
     if (o.quiet) return exit_ok;
     summary << "wrote " << printable(o.output) << ": " << to_write << (to_write == 1 ? " frame" : " frames")
-        << ", " << scene.video.width << 'x' << scene.video.height;
+        << ", " << video.width << 'x' << video.height;
     if (!still) {
-        const bool whole = to_write == scene.video.frame_count();
+        const bool whole = to_write == video.frame_count();
         summary << ", " << std::fixed << std::setprecision(2)
-                << (whole ? scene.video.duration : static_cast<double>(to_write) / scene.video.fps)
-                << " s at " << scene.video.fps << " fps";
+                << (whole ? video.duration : static_cast<double>(to_write) / video.fps)
+                << " s at " << video.fps << " fps";
         if (gif_fps_from) summary << " (a GIF cannot play " << *gif_fps_from << " fps)";
         if (!whole) {
             summary << ", frames " << frames->first << ".." << frames->last;

@@ -25,51 +25,6 @@ bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err) {
     return loaded.ok();
 }
 
-std::optional<SideOutputs> SideOutputs::open(const OutputFiles& files, const scene::Scene& scene,
-                                             std::ostream& err) {
-    SideOutputs outputs;
-    if (files.trace) {
-        auto trace = TraceWriter::create(*files.trace, scene);
-        if (!trace) {
-            report_error(err, trace.error().message);
-            return std::nullopt;
-        }
-        outputs.trace_.emplace(std::move(*trace));
-    }
-    if (files.events) {
-        auto events = EventWriter::create(*files.events, scene);
-        if (!events) {
-            report_error(err, events.error().message);
-            return std::nullopt;
-        }
-        outputs.events_.emplace(std::move(*events));
-    }
-    return outputs;
-}
-
-void SideOutputs::record(int frame, double t, std::span<const physics::DiscState> discs,
-                         std::span<const physics::ContactEvent> events) {
-    if (trace_) trace_->write_frame(frame, t, discs);
-    if (events_) events_->write(events);
-}
-
-Status SideOutputs::seal() {
-    if (trace_) {
-        if (Status s = trace_->file().seal(); !s) return s;
-    }
-    if (events_) {
-        if (Status s = events_->file().seal(); !s) return s;
-    }
-    return {};
-}
-
-std::vector<OutputFile*> SideOutputs::files() {
-    std::vector<OutputFile*> files;
-    if (trace_) files.push_back(&trace_->file().file());
-    if (events_) files.push_back(&events_->file().file());
-    return files;
-}
-
 bool check_distinct_files(const std::vector<NamedPath>& inputs,
                           const std::vector<NamedPath>& outputs, std::ostream& err) {
     const auto clash = find_clash(inputs, outputs);

@@ -1,20 +1,15 @@
 #pragma once
-// Pieces the commands share: printing errors and scene diagnostics, checking a run's files
-// before any work, and the optional trace and events files that `render` and `simulate` write
-// alongside their main work.
+// Pieces the commands share: printing errors and scene diagnostics, and checking a run's files
+// before any work.
 #include <cstdint>
 #include <optional>
 #include <ostream>
-#include <span>
 #include <string_view>
 #include <vector>
 
 #include "commands.hpp"
 #include "discreel/file_identity.hpp"
-#include "discreel/output_file.hpp"
-#include "discreel/physics.hpp"
 #include "discreel/scene.hpp"
-#include "trace.hpp"
 
 namespace discreel::app {
 
@@ -41,23 +36,5 @@ void add_output_paths(const OutputFiles& files, std::vector<NamedPath>& outputs)
 // (a full disk behind a redirection, a closed pipe).
 bool standard_output_ok(std::ostream& out, std::ostream& err);
 
-class SideOutputs {
-public:
-    // Opens the requested files (under temporary names); prints the problem and returns nullopt
-    // when one cannot be created.
-    static std::optional<SideOutputs> open(const OutputFiles& files, const scene::Scene& scene,
-                                           std::ostream& err);
-
-    void record(int frame, double t, std::span<const physics::DiscState> discs,
-                std::span<const physics::ContactEvent> events);
-    // Writes what is buffered and seals the files; then files() are ready to be committed
-    // together with the run's other outputs.
-    Status seal();
-    std::vector<OutputFile*> files();
-
-private:
-    std::optional<TraceWriter> trace_;
-    std::optional<EventWriter> events_;
-};
 
 }  // namespace discreel::app

@@ -1,7 +1,7 @@
 #include "scene_source.hpp"
 
 #include "discreel_configs.hpp"
-#include "trace.hpp"
+#include "discreel/printable.hpp"
 
 namespace discreel::app {
 

@@ -1,24 +1,15 @@
-// The range of masses and speeds the solver is measured to handle (docs/physics.md, "Limits";
-// tests/physics/extremes_test.cpp). Walls hold at any mass ratio and speed; what breaks down
-// beyond this range is discs against discs: a heavy disc sinks into light ones, and fast
-// light discs squeezed between heavy ones gain energy. So a scene is rejected up front rather
-// than rendered wrong.
-//
-// The range: a mass ratio R between dynamic discs of at most 1000, and every speed at most
-// 2 / sqrt(R) smallest radii per physics step. Inside it discs stay apart and energy does not
-// rise beyond rounding; the table it was read from is in docs/physics.md, "Limits".
+// A scene whose masses or speeds fall outside the range the physics says it holds
+// (physics::envelope) is rejected up front rather than rendered wrong, at the value to change.
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
 
+#include "discreel/physics.hpp"
 #include "loader.hpp"
 
 namespace discreel::scene::detail {
 namespace {
-
-constexpr double max_mass_ratio = 1000;
-constexpr double radii_per_step_at_equal_mass = 2;
 
 struct Extremes {
     std::size_t lightest = 0, heaviest = 0, smallest = 0;   // disc indices
@@ -51,6 +42,7 @@ void check_envelope(Loader& loader) {
     const Disc& light = scene.discs[extremes->lightest];
     const Disc& heavy = scene.discs[extremes->heaviest];
     const double ratio = heavy.mass / light.mass;
+    const double max_mass_ratio = physics::envelope.max_mass_ratio;
     if (ratio > max_mass_ratio) {
         const DiscSource& source = loader.sources[extremes->heaviest];
         d.error(source.entry,
@@ -65,7 +57,7 @@ void check_envelope(Loader& loader) {
     }
 
     const double smallest = scene.discs[extremes->smallest].radius;
-    const double radii_per_step = radii_per_step_at_equal_mass / std::sqrt(ratio);
+    const double radii_per_step = physics::envelope.radii_per_step(ratio);
     const double rate = scene.physics.rate;
     const double limit = radii_per_step * smallest * rate;   // m/s
     const auto check = [&](double speed, const Location& where, const std::string& path) {

@@ -1,13 +1,21 @@
 #pragma once
-// Names that come from users (file names, ids) are shown in messages with their control bytes
+// Text for messages and files. Names that come from users (file names, ids) are shown in messages with their control bytes
 // escaped: an ESC would drive the terminal, a newline would forge a message line, a NUL would
 // cut it short. "\n", "\t", "\r" and "\xHH" for the other bytes below 0x20 and 0x7f; bytes
 // of 0x80 and above pass, so UTF-8 names read as written, and a name without control bytes is
 // shown unchanged.
+#include <charconv>
 #include <string>
 #include <string_view>
 
 namespace discreel {
+
+// Shortest round-trip decimal form of v ("0.1", "1e-09", "-3"): read back, the same double.
+inline void append_number(std::string& out, double v) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+    out.append(buffer, result.ptr);
+}
 
 inline std::string printable(std::string_view text) {
     static constexpr char hex[] = "0123456789abcdef";

@@ -4,6 +4,7 @@
 //     physics::World world(def);
 //     while (world.time() < t_end) world.step();
 //     for (const auto& d : world.discs()) ...
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -56,6 +57,23 @@ struct ThrowDef {
     std::vector<Waypoint> path;    // a grab when non-empty
     std::optional<Vec2> release;   // m/s; release velocity of a grab (default: path's)
 };
+
+// The range of masses and speeds the solver is measured to hold (docs/physics.md, "Limits";
+// tests/physics/extremes_test.cpp): inside it discs stay apart and energy does not rise beyond
+// rounding. Walls hold at any mass ratio and speed; beyond it a heavy disc sinks into light
+// ones, and fast light discs squeezed between heavy ones gain energy. Scenes check against it.
+struct Envelope {
+    double max_mass_ratio = 1000;                // heaviest / lightest moving disc
+    double radii_per_step_at_equal_mass = 2;     // of the smallest moving disc, per step
+
+    // Radii of the smallest moving disc a body may travel per physics step when the moving
+    // discs' masses differ by `mass_ratio`: 2 / sqrt(ratio).
+    double radii_per_step(double mass_ratio) const {
+        return radii_per_step_at_equal_mass / std::sqrt(mass_ratio);
+    }
+};
+
+inline constexpr Envelope envelope{};
 
 struct WorldDef {
     Vec2 gravity{0.0, -9.81};      // m/s^2

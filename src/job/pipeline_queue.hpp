@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-namespace discreel::app {
+namespace discreel::job {
 
 class SlotQueue {
 public:
@@ -57,4 +57,4 @@ private:
     bool cancelled_ = false;
 };
 
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -6,7 +6,7 @@
 #include "discreel/physics.hpp"
 #include "discreel/scene.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 namespace {
 
 // The loader rejects numbers that could overflow, so a broken-down world is built here from a
@@ -35,4 +35,4 @@ TEST(FrameStepperTest, NamesTheDiscAndTimeWhenTheWorldBreaksDown) {
 }
 
 }  // namespace
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -9,7 +9,7 @@
 #include "discreel/scene.hpp"
 #include "timeline.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 
 class FrameStepper {
 public:
@@ -47,4 +47,4 @@ private:
     std::vector<physics::ContactEvent> events_;
 };
 
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace discreel::app {
+namespace discreel::job {
 namespace {
 
 TEST(TimelineTest, DivisibleRatesLandOnExactSteps) {
@@ -34,4 +34,4 @@ TEST(TimelineTest, LongClipsDoNotOverflow) {
 }
 
 }  // namespace
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -9,7 +9,7 @@
 
 #include "../render/golden_check.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 namespace {
 
 scene::Scene boxed_scene() {
@@ -338,4 +338,4 @@ TEST(FrameSceneGoldenGLTest, FollowCameraWithTrailsArrowsAndClock) {
 }
 
 }  // namespace
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -3,8 +3,8 @@
 #include "discreel/physics.hpp"
 #include "discreel/scene.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 
 physics::WorldDef build_world(const scene::Scene& scene);
 
-}  // namespace discreel::app
+}  // namespace discreel::job

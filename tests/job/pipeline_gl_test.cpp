@@ -11,7 +11,7 @@
 
 #include "pipeline.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 namespace {
 
 // Frame n is a 16x8 image of one colour whose red channel is n, so the encoder can tell which
@@ -153,4 +153,4 @@ TEST(PipelineGLTest, EncoderFirstLowersTheProducersOnly) {
 }
 
 }  // namespace
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -10,9 +10,10 @@
 
 #include "discreel/expected.hpp"
 #include "discreel/image.hpp"
+#include "discreel/job.hpp"
 #include "discreel/render.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 
 struct PipelineDef {
     int frame_count = 0;             // simulate() is called for frames 0 .. frame_count - 1
@@ -38,11 +39,6 @@ struct PipelineStages {
     std::function<bool()> should_stop;
 };
 
-struct StageSeconds {                // time each stage spent working, not waiting
-    double simulate = 0;
-    double render = 0;
-    double encode = 0;
-};
 
 struct PipelineResult {
     Status status;                   // the first failure of any stage
@@ -53,4 +49,4 @@ struct PipelineResult {
 
 PipelineResult run_pipeline(const PipelineDef& def, const PipelineStages& stages);
 
-}  // namespace discreel::app
+}  // namespace discreel::job

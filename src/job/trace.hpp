@@ -7,12 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "atomic_text_file.hpp"
+#include "discreel/atomic_text_file.hpp"
 #include "discreel/expected.hpp"
 #include "discreel/physics.hpp"
+#include "discreel/printable.hpp"
 #include "discreel/scene.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 
 class TraceWriter {
 public:
@@ -42,7 +43,4 @@ private:
     std::string row_;
 };
 
-// Shortest round-trip decimal form of v ("0.1", "1e-09", "-3").
-void append_number(std::string& out, double v);
-
-}  // namespace discreel::app
+}  // namespace discreel::job

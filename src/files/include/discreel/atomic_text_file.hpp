@@ -8,7 +8,7 @@
 #include "discreel/expected.hpp"
 #include "discreel/output_file.hpp"
 
-namespace discreel::app {
+namespace discreel {
 
 class AtomicTextFile {
 public:
@@ -30,4 +30,4 @@ private:
     Status written_;   // the first failed write, if any
 };
 
-}  // namespace discreel::app
+}  // namespace discreel

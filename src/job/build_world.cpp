@@ -1,6 +1,6 @@
 #include "build_world.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 
 physics::WorldDef build_world(const scene::Scene& scene) {
     physics::WorldDef def;
@@ -47,4 +47,4 @@ physics::WorldDef build_world(const scene::Scene& scene) {
     return def;
 }
 
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -13,7 +13,7 @@
 
 #include "pipeline_queue.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -207,4 +207,4 @@ PipelineResult run_pipeline(const PipelineDef& def, const PipelineStages& stages
     return ThreadedRun(def, stages).run();
 }
 
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -2,13 +2,7 @@
 
 #include <charconv>
 
-namespace discreel::app {
-
-void append_number(std::string& out, double v) {
-    char buffer[32];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-    out.append(buffer, result.ptr);
-}
+namespace discreel::job {
 
 Expected<TraceWriter> TraceWriter::create(const std::string& path, const scene::Scene& scene) {
     auto file = AtomicTextFile::create(path);
@@ -71,4 +65,4 @@ void EventWriter::write(std::span<const physics::ContactEvent> events) {
     }
 }
 
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -10,7 +10,7 @@
 #include "discreel/render.hpp"
 #include "discreel/scene.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 
 // The scene's camera, or, when it gives none, the bounding box of all walls (discs when there
 // are no walls) with a 5 % margin on every side, widened to the frame's aspect ratio.
@@ -58,4 +58,4 @@ private:
     std::size_t trail_rows_filled_ = 0;
 };
 
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-namespace discreel::app {
+namespace discreel::job {
 namespace {
 
 render::Rgba to_rgba(const scene::Color& c) {
@@ -242,4 +242,4 @@ void FrameSceneBuilder::add_clock(int frame) {
     frame_.texts.push_back({std::move(text), to_render(style.corner), dot, to_rgba(style.color)});
 }
 
-}  // namespace discreel::app
+}  // namespace discreel::job

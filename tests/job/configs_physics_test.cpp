@@ -10,12 +10,11 @@
 #include <functional>
 #include <vector>
 
-#include "build_world.hpp"
+#include "discreel/job.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/scene.hpp"
-#include "stepper.hpp"
 
-namespace discreel::app {
+namespace discreel::job {
 namespace {
 
 std::vector<std::filesystem::path> shipped_scenes() {
@@ -36,13 +35,11 @@ void run_frames(const std::filesystem::path& path, bool with_throws,
     ASSERT_TRUE(loaded.ok()) << loaded.diagnostics.front().to_string();
     scene::Scene& s = loaded.scene;
     if (!with_throws) s.throws.clear();
-    const Timeline timeline{s.video.fps, s.physics.rate, s.video.frame_count()};
-    physics::World world(build_world(s));
-    FrameStepper stepper(world, timeline, s);
-    look(0, world);
-    for (int frame = 1; frame < timeline.frame_count; ++frame) {
-        ASSERT_TRUE(stepper.advance_to(frame)) << "frame " << frame;
-        look(frame, world);
+    job::Playback playback(s);
+    look(0, playback.world());
+    for (int frame = 1; frame < playback.frame_count(); ++frame) {
+        ASSERT_TRUE(playback.advance_to(frame)) << "frame " << frame;
+        look(frame, playback.world());
     }
 }
 
@@ -96,4 +93,4 @@ TEST(ConfigsOverlapTest, DiscsDoNotSinkIntoEachOtherInAnyFrame) {
 }
 
 }  // namespace
-}  // namespace discreel::app
+}  // namespace discreel::job

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 
-namespace discreel::app {
+namespace discreel::job {
 namespace {
 
 std::string number(double v) {
@@ -37,4 +37,4 @@ TEST(TraceNumberTest, ReadsBackBitForBit) {
 }
 
 }  // namespace
-}  // namespace discreel::app
+}  // namespace discreel::job

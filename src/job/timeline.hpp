@@ -4,7 +4,7 @@
 // the mapping exact: the same scene at 30 and 60 fps lands on the same steps where times agree.
 #include <cstdint>
 
-namespace discreel::app {
+namespace discreel::job {
 
 struct Timeline {
     int fps = 60;           // video frames per second
@@ -16,4 +16,4 @@ struct Timeline {
     double time_of_frame(int frame) const { return static_cast<double>(frame) / fps; }
 };
 
-}  // namespace discreel::app
+}  // namespace discreel::job

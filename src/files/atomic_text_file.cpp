@@ -1,8 +1,8 @@
-#include "atomic_text_file.hpp"
+#include "discreel/atomic_text_file.hpp"
 
 #include <utility>
 
-namespace discreel::app {
+namespace discreel {
 namespace {
 
 constexpr std::size_t flush_size = 1 << 16;   // bytes
@@ -36,4 +36,4 @@ Status AtomicTextFile::commit() {
     return file_.commit();
 }
 
-}  // namespace discreel::app
+}  // namespace discreel

@@ -1,0 +1,118 @@
+#pragma once
+// The render-job layer: a loaded scene played frame by frame, and the jobs every front end
+// runs on it (the CLI's commands, the bench, the tests, later the service and segments).
+//     job::RenderDef def{.scene = scene, .output = sink_def};
+//     Expected<job::RenderSummary> done = job::render(def);
+// It owns scene -> world, the frame timeline, the frame descriptions the renderer draws, the
+// simulate/render/encode stages and their threads, and the outputs that commit together. It
+// never prints or exits: results and errors are values, progress and cancellation callbacks.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "discreel/encode.hpp"
+#include "discreel/expected.hpp"
+#include "discreel/physics.hpp"
+#include "discreel/render.hpp"
+#include "discreel/scene.hpp"
+
+namespace discreel::job {
+
+// A scene played forward frame by frame: its physics world on the scene's timeline (frame n
+// shows t = n / fps) and what each frame looks like. Frames go forward only.
+class Playback {
+public:
+    explicit Playback(const scene::Scene& scene);   // keeps a reference to `scene`
+    ~Playback();
+    Playback(Playback&&) noexcept;
+    Playback& operator=(Playback&&) noexcept;
+
+    // Steps the physics until it shows `frame`; fails, naming the disc and the time, once the
+    // state is no longer finite.
+    [[nodiscard]] Status advance_to(int frame);
+    // Shows the current frame to the look's memory (trails, follow camera) without drawing it:
+    // every frame before a drawn one must be observed or drawn, in order.
+    void observe(int frame);
+    // The current frame's description for the renderer (and observe()); valid until the next
+    // call.
+    const render::FrameScene& frame_scene(int frame);
+
+    std::span<const physics::DiscState> discs() const;
+    std::vector<physics::ContactEvent> take_events();   // new contacts since the last call
+    const physics::World& world() const;
+    int frame_count() const;                  // round(duration * fps)
+    double time_of_frame(int frame) const;    // seconds
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+struct Progress {
+    int frames_done = 0;     // encoded (render) or simulated (simulate)
+    int frames_total = 0;
+    double elapsed = 0;      // seconds since the job started
+};
+
+struct FrameRange {
+    int first = 0;           // inclusive
+    int last = -1;           // inclusive; negative: the clip's last frame
+};
+
+struct StageSeconds {        // time each stage spent working, not waiting
+    double simulate = 0;
+    double render = 0;
+    double encode = 0;
+};
+
+struct RenderDef {
+    scene::Scene scene;                      // loaded, validated, overrides applied
+    // Where and how: path, encoder settings. Size and fps are the scene's, the palette's key
+    // colours and a PNG sequence's first number are filled in by the job.
+    encode::SinkDef output;
+    FrameRange frames;                       // frames before `first` are simulated, not drawn
+    std::optional<std::string> trace;        // CSV path, one row per disc per frame
+    std::optional<std::string> events;       // CSV path, one row per new contact
+    bool threaded = true;                    // false: one thread, same bytes, slower
+    std::function<void(const Progress&)> on_progress;   // after each encoded frame
+    std::function<bool()> should_stop;       // polled per frame; true cancels, nothing written
+};
+
+struct RenderSummary {
+    int frames = 0;                          // frames written
+    FrameRange range;                        // which, resolved
+    double seconds = 0;                      // wall clock
+    StageSeconds busy;
+    std::string renderer;                    // GL_RENDERER and GL_VERSION
+};
+
+// Renders def.frames of def.scene into def.output (and the trace and events), all committed
+// together at the end, or nothing. Cancelled (should_stop), the error says so.
+Expected<RenderSummary> render(const RenderDef& def);
+
+struct SimulateDef {
+    scene::Scene scene;
+    std::optional<std::string> trace, events;   // CSV paths, as for render
+    std::function<bool()> should_stop;
+};
+
+struct SimulateSummary {
+    int frames = 0;
+    std::int64_t steps = 0;                  // physics steps taken
+    double t = 0;                            // seconds of simulated time at the end
+    int substeps = 1;                        // per step
+    std::size_t contacts = 0;                // new contacts over the run
+    physics::WorldStats deepest;             // at the frame with the deepest overlap
+    double energy_start = 0, energy_end = 0; // joules
+    double seconds = 0;                      // wall clock
+};
+
+// The physics of the whole clip without drawing, writing the trace and events if asked.
+Expected<SimulateSummary> simulate(const SimulateDef& def);
+
+}  // namespace discreel::job

@@ -1,0 +1,128 @@
+// job::render: the simulate, render and encode stages of a clip or still, and its outputs.
+#include <sys/prctl.h>
+
+#include <chrono>
+
+#include "discreel/commit.hpp"
+#include "discreel/job.hpp"
+#include "pipeline.hpp"
+#include "side_outputs.hpp"
+
+namespace discreel::job {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The colours frames are drawn in; a GIF palette starts with them so they come out exact.
+std::vector<encode::Rgb> scene_colours(const scene::Scene& scene) {
+    std::vector<encode::Rgb> colours;
+    const auto add = [&](const scene::Color& c) { colours.push_back({c.r, c.g, c.b}); };
+    add(scene.video.background);
+    for (const auto& wall : scene.walls) add(wall.color);
+    for (const auto& disc : scene.discs) add(disc.color);
+    return colours;
+}
+
+// Up to 720p, six slots (3.5 MiB each at 720p) let the simulate and render stages, which
+// yield to the encoder (PipelineDef::encoder_first), work several frames ahead in the cycles
+// x264 leaves idle. Above 720p a slot is 8 MiB or more and two keep a 1080p render under
+// 300 MB (docs/performance.md); the encoder still has the next frame ready, because drawing
+// and simulating a frame take a fraction of the time it needs.
+int slots_for(int width, int height) {
+    return static_cast<long>(width) * height > 1280L * 720L ? 2 : 6;
+}
+
+const Error cancelled{"cancelled; nothing was written"};
+
+}  // namespace
+
+Expected<RenderSummary> render(const RenderDef& def) {
+    const auto started = Clock::now();
+    const scene::Scene& scene = def.scene;
+    const int count = scene.video.frame_count();
+    const FrameRange range{def.frames.first, def.frames.last < 0 ? count - 1 : def.frames.last};
+    if (range.first < 0 || range.first > range.last || range.last >= count) {
+        return Error{"frames " + std::to_string(range.first) + ".." + std::to_string(range.last) +
+                     " are not in the clip, which has " + std::to_string(count) + " frames"};
+    }
+    // The encoder's threads keep most of the cores busy; llvmpipe's rasterizer threads would
+    // compete with them and cost more CPU than they save, so the render stage draws on its own
+    // thread (docs/performance.md). Set before any thread starts; LP_NUM_THREADS in the
+    // environment still wins.
+    render::set_rasterizer_threads(0);
+    // libx264 asks for transparent huge pages on its frame buffers, which rounds each one up to
+    // whole 2 MiB pages of resident memory: 11-13 MiB at 1080p, at no measurable cost in speed.
+    // Best effort (a kernel without the setting just keeps the default).
+    prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
+
+    encode::SinkDef sink_def = def.output;
+    sink_def.width = scene.video.width;
+    sink_def.height = scene.video.height;
+    sink_def.fps = scene.video.fps;
+    sink_def.key_colours = scene_colours(scene);
+    sink_def.first_number = range.first;
+    auto outputs = SideOutputs::open(def.trace, def.events, scene);
+    if (!outputs) return outputs.error();
+    auto sink = encode::open_sink(sink_def);
+    if (!sink) return sink.error();
+
+    Playback playback(scene);
+    const auto stop_asked = [&] { return def.should_stop && def.should_stop(); };
+    Status simulated;   // the physics' failure, which stops the run like a cancellation
+    const PipelineStages stages{
+        .simulate = [&](int frame) -> const render::FrameScene* {
+            simulated = playback.advance_to(frame);
+            if (!simulated) return nullptr;
+            outputs->record(frame, playback.time_of_frame(frame), playback.discs(),
+                            playback.take_events());
+            if (frame < range.first) {
+                playback.observe(frame);   // trails and the follow camera
+                return nullptr;
+            }
+            return &playback.frame_scene(frame);
+        },
+        .encode = [&](const ImageView& image) { return (*sink)->write(image); },
+        .encoded =
+            [&](int done) {
+                if (def.on_progress) {
+                    def.on_progress({.frames_done = done,
+                                     .frames_total = range.last - range.first + 1,
+                                     .elapsed = seconds_since(started)});
+                }
+            },
+        .should_stop = [&] { return !simulated || stop_asked(); },
+    };
+    const PipelineResult run = run_pipeline(
+        {.frame_count = range.last + 1,
+         .renderer = {.width = scene.video.width, .height = scene.video.height},
+         .threaded = def.threaded,
+         .slots = slots_for(scene.video.width, scene.video.height),
+         .encoder_first = true},
+        stages);
+    // A cancellation is checked first: the write it broke (SIGPIPE's EPIPE) is not the story.
+    if (stop_asked()) return cancelled;
+    if (!simulated) return simulated.error();
+    if (!run.status) return run.status.error();
+    if (run.stopped) return cancelled;
+    // The video, trace and events become visible together, or none of them.
+    Status sealed = (*sink)->seal();
+    if (sealed) sealed = outputs->seal();
+    if (stop_asked()) return cancelled;
+    if (sealed) {
+        std::vector<OutputFile*> files = (*sink)->files();
+        for (OutputFile* file : outputs->files()) files.push_back(file);
+        sealed = commit_together(files);
+    }
+    if (!sealed) return sealed.error();
+    return RenderSummary{.frames = range.last - range.first + 1,
+                         .range = range,
+                         .seconds = seconds_since(started),
+                         .busy = run.busy,
+                         .renderer = run.renderer_info};
+}
+
+}  // namespace discreel::job

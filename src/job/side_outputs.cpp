@@ -1,0 +1,45 @@
+#include "side_outputs.hpp"
+
+namespace discreel::job {
+
+Expected<SideOutputs> SideOutputs::open(const std::optional<std::string>& trace,
+                                        const std::optional<std::string>& events,
+                                        const scene::Scene& scene) {
+    SideOutputs outputs;
+    if (trace) {
+        auto writer = TraceWriter::create(*trace, scene);
+        if (!writer) return writer.error();
+        outputs.trace_.emplace(std::move(*writer));
+    }
+    if (events) {
+        auto writer = EventWriter::create(*events, scene);
+        if (!writer) return writer.error();
+        outputs.events_.emplace(std::move(*writer));
+    }
+    return outputs;
+}
+
+void SideOutputs::record(int frame, double t, std::span<const physics::DiscState> discs,
+                         std::span<const physics::ContactEvent> events) {
+    if (trace_) trace_->write_frame(frame, t, discs);
+    if (events_) events_->write(events);
+}
+
+Status SideOutputs::seal() {
+    if (trace_) {
+        if (Status s = trace_->file().seal(); !s) return s;
+    }
+    if (events_) {
+        if (Status s = events_->file().seal(); !s) return s;
+    }
+    return {};
+}
+
+std::vector<OutputFile*> SideOutputs::files() {
+    std::vector<OutputFile*> files;
+    if (trace_) files.push_back(&trace_->file().file());
+    if (events_) files.push_back(&events_->file().file());
+    return files;
+}
+
+}  // namespace discreel::job

@@ -1,0 +1,42 @@
+// job::simulate: the physics of a whole clip, without drawing, and its trace and events.
+#include <chrono>
+
+#include "discreel/commit.hpp"
+#include "discreel/job.hpp"
+#include "side_outputs.hpp"
+
+namespace discreel::job {
+
+Expected<SimulateSummary> simulate(const SimulateDef& def) {
+    const auto started = std::chrono::steady_clock::now();
+    const scene::Scene& scene = def.scene;
+    auto outputs = SideOutputs::open(def.trace, def.events, scene);
+    if (!outputs) return outputs.error();
+
+    Playback playback(scene);
+    SimulateSummary summary;
+    summary.frames = playback.frame_count();
+    summary.energy_start = playback.world().energy();
+    for (int frame = 0; frame < summary.frames; ++frame) {
+        if (def.should_stop && def.should_stop()) return Error{"cancelled; nothing was written"};
+        if (Status stepped = playback.advance_to(frame); !stepped) return stepped.error();
+        const std::vector<physics::ContactEvent> events = playback.take_events();
+        summary.contacts += events.size();
+        outputs->record(frame, playback.time_of_frame(frame), playback.discs(), events);
+        const physics::WorldStats stats = playback.world().stats();
+        if (stats.max_overlap > summary.deepest.max_overlap) summary.deepest = stats;
+    }
+    Status done = outputs->seal();
+    if (done) done = commit_together(outputs->files());
+    if (!done) return done.error();
+    const physics::World& world = playback.world();
+    summary.energy_end = world.energy();
+    summary.steps = world.step_count();
+    summary.t = world.time();
+    summary.substeps = world.substeps();
+    summary.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return summary;
+}
+
+}  // namespace discreel::job
