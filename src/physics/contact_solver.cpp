@@ -45,14 +45,14 @@ namespace discreel::physics::detail {
 inline void ContactSolver::transpose(const Lanes& r0, const Lanes& r1, const Lanes& r2,
                                      const Lanes& r3, Lanes& c0, Lanes& c1, Lanes& c2,
                                      Lanes& c3) {
-    const Lanes t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
-    const Lanes t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
-    const Lanes t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
-    const Lanes t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
-    c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
-    c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
-    c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-    c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+    const Lanes t0 = simd::unpack_low(r0, r1);
+    const Lanes t1 = simd::unpack_high(r0, r1);
+    const Lanes t2 = simd::unpack_low(r2, r3);
+    const Lanes t3 = simd::unpack_high(r2, r3);
+    c0 = simd::low_halves(t0, t2);
+    c1 = simd::low_halves(t1, t3);
+    c2 = simd::high_halves(t0, t2);
+    c3 = simd::high_halves(t1, t3);
 }
 
 // Gathers the velocity records of one end of a block's rows into lanes, and scatters them back:
@@ -62,22 +62,18 @@ inline void ContactSolver::transpose(const Lanes& r0, const Lanes& r1, const Lan
 inline void ContactSolver::load(const std::uint32_t (&records)[width], Floats& x, Floats& y,
                                 Floats& u, Floats& inv_mass) const {
     const Velocity* const v = velocities_.data();
-    const Floats r04 = __builtin_shufflevector(v[records[0]].packed, v[records[4]].packed, 0, 1,
-                                               2, 3, 4, 5, 6, 7);
-    const Floats r15 = __builtin_shufflevector(v[records[1]].packed, v[records[5]].packed, 0, 1,
-                                               2, 3, 4, 5, 6, 7);
-    const Floats r26 = __builtin_shufflevector(v[records[2]].packed, v[records[6]].packed, 0, 1,
-                                               2, 3, 4, 5, 6, 7);
-    const Floats r37 = __builtin_shufflevector(v[records[3]].packed, v[records[7]].packed, 0, 1,
-                                               2, 3, 4, 5, 6, 7);
-    const Floats xy01 = __builtin_shufflevector(r04, r15, 0, 8, 1, 9, 4, 12, 5, 13);
-    const Floats uw01 = __builtin_shufflevector(r04, r15, 2, 10, 3, 11, 6, 14, 7, 15);
-    const Floats xy23 = __builtin_shufflevector(r26, r37, 0, 8, 1, 9, 4, 12, 5, 13);
-    const Floats uw23 = __builtin_shufflevector(r26, r37, 2, 10, 3, 11, 6, 14, 7, 15);
-    x = __builtin_shufflevector(xy01, xy23, 0, 1, 8, 9, 4, 5, 12, 13);
-    y = __builtin_shufflevector(xy01, xy23, 2, 3, 10, 11, 6, 7, 14, 15);
-    u = __builtin_shufflevector(uw01, uw23, 0, 1, 8, 9, 4, 5, 12, 13);
-    inv_mass = __builtin_shufflevector(uw01, uw23, 2, 3, 10, 11, 6, 7, 14, 15);
+    const Floats r04 = simd::join(v[records[0]].packed, v[records[4]].packed);
+    const Floats r15 = simd::join(v[records[1]].packed, v[records[5]].packed);
+    const Floats r26 = simd::join(v[records[2]].packed, v[records[6]].packed);
+    const Floats r37 = simd::join(v[records[3]].packed, v[records[7]].packed);
+    const Floats xy01 = simd::unpack_low(r04, r15);
+    const Floats uw01 = simd::unpack_high(r04, r15);
+    const Floats xy23 = simd::unpack_low(r26, r37);
+    const Floats uw23 = simd::unpack_high(r26, r37);
+    x = simd::low_pairs(xy01, xy23);
+    y = simd::high_pairs(xy01, xy23);
+    u = simd::low_pairs(uw01, uw23);
+    inv_mass = simd::high_pairs(uw01, uw23);
 }
 
 inline void ContactSolver::store(const std::uint32_t (&records)[width], const Floats& x,
@@ -86,22 +82,22 @@ inline void ContactSolver::store(const std::uint32_t (&records)[width], const Fl
     // immovable ends have private copies; empty lanes all point at the scratch record, and all
     // store back the zeros it holds.
     Velocity* const v = velocities_.data();
-    const Floats xy01 = __builtin_shufflevector(x, y, 0, 8, 1, 9, 4, 12, 5, 13);
-    const Floats uw01 = __builtin_shufflevector(u, inv_mass, 0, 8, 1, 9, 4, 12, 5, 13);
-    const Floats xy23 = __builtin_shufflevector(x, y, 2, 10, 3, 11, 6, 14, 7, 15);
-    const Floats uw23 = __builtin_shufflevector(u, inv_mass, 2, 10, 3, 11, 6, 14, 7, 15);
-    const Floats r04 = __builtin_shufflevector(xy01, uw01, 0, 1, 8, 9, 4, 5, 12, 13);
-    const Floats r15 = __builtin_shufflevector(xy01, uw01, 2, 3, 10, 11, 6, 7, 14, 15);
-    const Floats r26 = __builtin_shufflevector(xy23, uw23, 0, 1, 8, 9, 4, 5, 12, 13);
-    const Floats r37 = __builtin_shufflevector(xy23, uw23, 2, 3, 10, 11, 6, 7, 14, 15);
-    v[records[0]].packed = __builtin_shufflevector(r04, r04, 0, 1, 2, 3);
-    v[records[1]].packed = __builtin_shufflevector(r15, r15, 0, 1, 2, 3);
-    v[records[2]].packed = __builtin_shufflevector(r26, r26, 0, 1, 2, 3);
-    v[records[3]].packed = __builtin_shufflevector(r37, r37, 0, 1, 2, 3);
-    v[records[4]].packed = __builtin_shufflevector(r04, r04, 4, 5, 6, 7);
-    v[records[5]].packed = __builtin_shufflevector(r15, r15, 4, 5, 6, 7);
-    v[records[6]].packed = __builtin_shufflevector(r26, r26, 4, 5, 6, 7);
-    v[records[7]].packed = __builtin_shufflevector(r37, r37, 4, 5, 6, 7);
+    const Floats xy01 = simd::unpack_low(x, y);
+    const Floats uw01 = simd::unpack_low(u, inv_mass);
+    const Floats xy23 = simd::unpack_high(x, y);
+    const Floats uw23 = simd::unpack_high(u, inv_mass);
+    const Floats r04 = simd::low_pairs(xy01, uw01);
+    const Floats r15 = simd::high_pairs(xy01, uw01);
+    const Floats r26 = simd::low_pairs(xy23, uw23);
+    const Floats r37 = simd::high_pairs(xy23, uw23);
+    v[records[0]].packed = simd::low_half(r04);
+    v[records[1]].packed = simd::low_half(r15);
+    v[records[2]].packed = simd::low_half(r26);
+    v[records[3]].packed = simd::low_half(r37);
+    v[records[4]].packed = simd::high_half(r04);
+    v[records[5]].packed = simd::high_half(r15);
+    v[records[6]].packed = simd::high_half(r26);
+    v[records[7]].packed = simd::high_half(r37);
 }
 
 // Greedy colouring of the whole contact list, in pair order, redone only when the broad phase
@@ -267,17 +263,12 @@ void ContactSolver::solve(Substep& s, int iterations) {
 // against a wall take their normal and gap from disc_feature, a lane at a time. The bodies'
 // start velocities are folded into the constants here, in doubles, so that the floats of the
 // iterations carry only the corrections (a pile's contact impulses, not its falling speed).
-[[gnu::target_clones("avx2", "default")]] void ContactSolver::build_rows(const Substep& s,
-                                                                        double inv_h) {
+DISCREEL_CLONES void ContactSolver::build_rows(const Substep& s, double inv_h) {
     const Lanes zero = {};
     const Lanes one = zero + 1.0;
     const double per_unit = 1.0 / mass_unit_;  // exact: a power of two
-    using Halves = float __attribute__((vector_size(16)));
-    // Writes through a reference: returning a vector would change the baseline build's ABI.
     const auto join = [](Floats& field, const Lanes& first, const Lanes& second) {
-        field = __builtin_shufflevector(__builtin_convertvector(first, Halves),
-                                        __builtin_convertvector(second, Halves), 0, 1, 2, 3, 4,
-                                        5, 6, 7);
+        field = simd::join(simd::to_floats(first), simd::to_floats(second));
     };
     for (std::size_t block = 0; block < rows_.size(); ++block) {
         RowBlock& r = rows_[block];
@@ -365,7 +356,7 @@ void ContactSolver::solve(Substep& s, int iterations) {
 // lane does the same IEEE operations in the same order in both builds (and no FMA:
 // -ffp-contract=off), so the AVX2 build gives the same bits as the baseline one; it only does
 // eight rows per instruction instead of four.
-[[gnu::target_clones("avx2", "default")]] void ContactSolver::solve_rows(int iterations) {
+DISCREEL_CLONES void ContactSolver::solve_rows(int iterations) {
     for (const RowBlock& r : rows_) {
         Floats ax, ay, au, a_inv, bx, by, bu, b_inv;
         load(r.a, ax, ay, au, a_inv);
