@@ -243,8 +243,8 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
     std::size_t old = 0;
     for (const std::uint64_t key : pairs_) {
         while (old < old_count && listed_[old] < key) ++old;
-        // Copied straight into place: building the contact on the stack first and copying it
-        // stalled on store forwarding.
+        // Built in place: a contact built on the stack and then copied would be read back
+        // before its stores complete, which stalls on store forwarding.
         if (old < old_count && listed_[old] == key) {
             merged_.push_back(contacts[old]);
             continue;

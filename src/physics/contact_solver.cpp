@@ -15,24 +15,23 @@
 // is written as a bound on it. The iterations only read and write velocities, so they run on a
 // compact copy: one row per contact with everything constant over the substep folded in
 // (normal, masses, bound), and one small record per body. That keeps the hot loop inside a
-// few cache lines per contact, even for 10 000 discs.
+// few cache lines per contact, however many discs there are.
 //
-// The copy is in single precision, as Box2D's solver is, but only for what the iterations
-// change: each body's record holds the change of its velocity (zero at the start), and each
-// row has its bodies' start velocities folded into its bounds, in doubles, when it is built.
-// So the floats carry a pile's contact impulses, not its falling speed; positions and
-// velocities stay doubles, and a body no row pushes keeps its velocity bit for bit. Half the
-// bytes of doubles and twice the lanes per instruction took about 40 % off the iterations'
-// time at N = 10 000 (docs/physics-speed.md).
+// The copy is in single precision, which halves the bytes the iterations read and doubles the
+// lanes per instruction, but only for what the iterations change: each body's record holds the
+// change of its velocity (zero at the start), and each row has its bodies' start velocities
+// folded into its bounds, in doubles, when it is built. So the floats carry a pile's contact
+// impulses, not its falling speed, whose rounding would show; positions and velocities stay
+// doubles, and a body no row pushes keeps its velocity bit for bit (docs/physics-speed.md).
 //
 // Rows are solved grouped by colour, no two rows of a colour sharing a disc (greedy colouring
-// of the broad phase's whole pair list, redone when it is rebuilt, as Box2D's constraint graph
-// does): in active order consecutive rows share their first disc, so each row had to wait for
-// the previous one's velocity update; within a colour they are independent, so they are solved
-// eight at a time in the lanes of an AVX register (two SSE registers on a CPU without AVX2),
-// with the same arithmetic per lane as one at a time. An immovable body (wall, peg, held disc)
-// is never changed by a row, so each of its rows reads it from a private copy instead of
-// chaining every floor row through one record.
+// of the broad phase's whole pair list, redone when it is rebuilt). In active order,
+// consecutive rows share their first disc, so each row would wait for the previous one's
+// velocity update; within a colour they are independent, so they are solved eight at a time in
+// the lanes of a vector (simd.hpp: one AVX register, or two SSE or NEON ones), with the same
+// arithmetic per lane as one at a time. An immovable body (wall, peg, held disc) is never
+// changed by a row, so each of its rows reads it from a private copy: rows on one floor would
+// otherwise all chain through its record.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -232,8 +231,8 @@ void ContactSolver::solve(Substep& s, int iterations) {
 
     solve_rows(iterations);
 
-    // In contact order: the contacts are written in one forward sweep (in lane order they
-    // were a scattered write each), and each row's two impulses lie side by side in its block.
+    // In contact order, so that the contacts are written in one forward sweep rather than
+    // scattered; each row's two impulses lie side by side in its block.
     const double unit = mass_unit_;
     for (std::size_t k = 0; k < pending_.size(); ++k) {
         const std::uint32_t slot = lane_of_[k];
