@@ -12,9 +12,9 @@ namespace discreel::physics {
 namespace {
 
 WorldDef busy_scene() {
-    WorldDef def = testing::pile(500, 0.2, 0.5, 0.6, 0.4, {0, -9.81}, 2.0, 42);
-    def.walls.push_back(testing::segment({1, 5}, {8, 3}, 0.05, 0.6, 0.4));
-    DiscDef peg = testing::disc({6, 6}, {0, 0}, 0.3, 1.0, 0.6, 0.4);
+    WorldDef def = testing::pile({.count = 500, .seed = 42});
+    def.walls.push_back(testing::segment({1, 5}, {8, 3}, 0.05, {.restitution = 0.6, .friction = 0.4}));
+    DiscDef peg = testing::disc({6, 6}, {0, 0}, 0.3, 1.0, {.restitution = 0.6, .friction = 0.4});
     peg.is_static = true;
     def.discs.push_back(peg);
     ThrowDef flick;
