@@ -99,25 +99,29 @@ inline void ContactSolver::store(const std::uint32_t (&records)[width], const Fl
     v[records[7]].packed = simd::high_half(r37);
 }
 
-// Greedy colouring of the whole contact list, in pair order, redone only when the broad phase
-// rebuilds it: no two contacts of a colour share a disc (walls take no colour; pegs and held
-// discs do, so the colours stay valid whatever moves), which is then true of any subset, such
-// as the contacts active in a substep.
+// Pegs and held discs take colours too, so the colours stay valid whatever moves.
+void colour_greedily(std::span<const Contact> contacts, std::size_t disc_count,
+                     std::vector<std::uint64_t>& used, std::vector<std::uint8_t>& colour_of) {
+    used.assign(disc_count, 0);
+    colour_of.resize(contacts.size());
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+        const Contact& c = contacts[i];
+        const bool b_disc = c.b < disc_count;
+        const std::uint64_t taken = used[c.a] | (b_disc ? used[c.b] : 0);
+        const unsigned colour = static_cast<unsigned>(std::countr_one(taken));
+        colour_of[i] = static_cast<std::uint8_t>(colour);
+        if (colour == overflow_colour) continue;
+        const std::uint64_t bit = std::uint64_t{1} << colour;
+        used[c.a] |= bit;
+        if (b_disc) used[c.b] |= bit;
+    }
+}
+
+// The whole contact list, in pair order, redone only when the broad phase rebuilds it: what
+// holds of the list holds of any subset, such as the contacts active in a substep.
 void ContactSolver::colour_contacts(const Substep& s) {
     coloured_version_ = s.contacts_version;
-    colours_used_.assign(s.disc_count, 0);
-    colour_of_.resize(s.contacts.size());
-    for (std::size_t i = 0; i < s.contacts.size(); ++i) {
-        const Contact& c = s.contacts[i];
-        const bool b_disc = c.b < s.disc_count;
-        const std::uint64_t used = colours_used_[c.a] | (b_disc ? colours_used_[c.b] : 0);
-        const unsigned colour = static_cast<unsigned>(std::countr_one(used));
-        colour_of_[i] = static_cast<std::uint8_t>(colour);
-        if (colour == overflow) continue;
-        const std::uint64_t bit = std::uint64_t{1} << colour;
-        colours_used_[c.a] |= bit;
-        if (b_disc) colours_used_[c.b] |= bit;
-    }
+    colour_greedily(s.contacts, s.disc_count, colours_used_, colour_of_);
 }
 
 void ContactSolver::compute_masses(const Substep& s) {

@@ -158,6 +158,16 @@ private:
     std::vector<std::uint32_t> queue_;             // min-heap of pairs still to visit
 };
 
+// The resting stage's colouring (contact_solver.cpp): greedy, in list order, each contact
+// taking the lowest colour that no earlier contact of its discs has, so that no two contacts of
+// one colour share a disc (a wall feature, b >= disc_count, takes no colour: no row changes
+// it). A contact whose discs already have all overflow_colour colours between them gets
+// overflow_colour, which promises nothing. colour_of: per contact; used: scratch, per disc,
+// bit c set once it is in a contact of colour c.
+inline constexpr unsigned overflow_colour = 64;
+void colour_greedily(std::span<const Contact> contacts, std::size_t disc_count,
+                     std::vector<std::uint64_t>& used, std::vector<std::uint8_t>& colour_of);
+
 // Stage 2: resting contact. Sequential impulses with accumulated clamping and warm starting,
 // acting like forces spread over the substep; then positions are integrated. A class only to
 // keep its scratch arrays between substeps.
@@ -237,7 +247,7 @@ private:
         unsigned colour = 0;
     };
     // Rows whose discs have all 64 colours go to one last group, solved a row at a time.
-    static constexpr unsigned overflow = 64;
+    static constexpr unsigned overflow = overflow_colour;
     void colour_contacts(const Substep& s);
     std::uint32_t fresh_copy(const Substep& s) {
         return static_cast<std::uint32_t>(s.bodies.size() + copies_++);
