@@ -2,8 +2,9 @@
 # Set up a Debian bookworm machine for discreel, build it, and render the demo or run the tests.
 #
 #   bash setup.sh demo          install packages, build, render the demo to out/demo.mp4
-#   bash setup.sh test [ARGS]   install packages (with the container tools and clang), build,
-#                               run ctest (the fuzzer for 60 s included) and clang-tidy over
+#   bash setup.sh test [ARGS]   install packages (with the container tools, clang and the
+#                               aarch64 cross compiler and qemu), build, run ctest (the fuzzer
+#                               for 60 s and the `arch` builds included) and clang-tidy over
 #                               src/; then build again with ASan + UBSan and run the suite once
 #                               more under them.
 #                               ARGS go to both ctest runs, e.g. `bash setup.sh test -LE container`
@@ -33,6 +34,9 @@ readonly CONTAINER_TEST_PACKAGES=(buildah podman debootstrap debian-archive-keyr
 # The scene fuzzer (ctest label `fuzz`) needs clang and its libFuzzer runtime; see
 # docs/reliability.md.
 readonly CHECK_PACKAGES=(clang libclang-rt-14-dev clang-tidy)
+# The aarch64 test (ctest label `arch`) cross-builds physics and runs it under qemu; see
+# docs/physics.md.
+readonly ARCH_TEST_PACKAGES=(g++-aarch64-linux-gnu qemu-user)
 
 usage() {
   sed -n '2,13s/^# \{0,1\}//p' "${BASH_SOURCE[0]}" >&2
@@ -101,7 +105,8 @@ case "$command" in
     log "Done: $SOURCE_DIR/out/demo.mp4"
     ;;
   test)
-    install_packages "${BUILD_PACKAGES[@]}" "${CONTAINER_TEST_PACKAGES[@]}" "${CHECK_PACKAGES[@]}"
+    install_packages "${BUILD_PACKAGES[@]}" "${CONTAINER_TEST_PACKAGES[@]}" "${CHECK_PACKAGES[@]}" \
+      "${ARCH_TEST_PACKAGES[@]}"
     build
     log "Running the tests"
     ctest --test-dir "$BUILD_DIR" --output-on-failure --parallel "$JOBS" "$@"

@@ -9,6 +9,8 @@ extern "C" {
 #include <libavutil/frame.h>
 }
 
+#include "discreel/clones.hpp"
+
 namespace discreel::encode {
 namespace {
 
@@ -70,19 +72,13 @@ inline std::uint8_t chroma_r(const Rgb32& c, int extra_bits) {
 // Integer arithmetic gives the same bytes whichever instructions compute it, so the row
 // loops are also compiled for AVX2 and the loader picks that version where the CPU has it
 // (SSE2 lacks 32-bit vector multiplies, which the baseline version then does piecewise).
-#if defined(__x86_64__) && defined(__GNUC__)
-#define DISCREEL_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define DISCREEL_VECTOR_CLONES
-#endif
-
-DISCREEL_VECTOR_CLONES
+DISCREEL_CLONES
 void luma_row(const std::uint8_t* __restrict rgba, std::uint8_t* __restrict y,
               std::ptrdiff_t width) {
     for (std::ptrdiff_t x = 0; x < width; ++x) y[x] = luma(channels(rgba + 4 * x));
 }
 
-DISCREEL_VECTOR_CLONES
+DISCREEL_CLONES
 void full_chroma_row(const std::uint8_t* __restrict rgba, std::uint8_t* __restrict cb,
                      std::uint8_t* __restrict cr, std::ptrdiff_t width) {
     for (std::ptrdiff_t x = 0; x < width; ++x) {
@@ -93,7 +89,7 @@ void full_chroma_row(const std::uint8_t* __restrict rgba, std::uint8_t* __restri
 }
 
 // One chroma row of yuv420p from two image rows: each sample from the sum of a 2x2 block.
-DISCREEL_VECTOR_CLONES
+DISCREEL_CLONES
 void halved_chroma_row(const std::uint8_t* __restrict top, const std::uint8_t* __restrict bottom,
                        std::uint8_t* __restrict cb, std::uint8_t* __restrict cr,
                        std::ptrdiff_t chroma_width) {

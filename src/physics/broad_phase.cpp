@@ -75,33 +75,34 @@ bool BroadPhase::still_valid(const std::vector<Body>& bodies, std::size_t disc_c
     return true;
 }
 
-void BroadPhase::sort_pairs(std::size_t body_count) {
+void sort_pair_keys(std::vector<std::uint64_t>& keys, std::size_t body_count,
+                    std::vector<std::uint64_t>& scratch, std::vector<std::uint32_t>& count) {
     // LSD radix sort on (a, b) packed into as few bits as the body count needs, 11 bits a pass:
     // two or three passes for up to 2^16 bodies instead of a comparison sort's log2(pairs).
     const int bits = std::min(32, static_cast<int>(std::bit_width(body_count)));
     const int key_bits = 2 * bits;
     constexpr int digit_bits = 11;
     constexpr std::size_t digits = std::size_t{1} << digit_bits;
-    for (std::uint64_t& key : pairs_) key = ((key >> 32) << bits) | (key & 0xffffffffu);
-    sorted_.resize(pairs_.size());
-    std::vector<std::uint32_t>& count = digit_count_;
+    for (std::uint64_t& key : keys) key = ((key >> 32) << bits) | (key & 0xffffffffu);
+    scratch.resize(keys.size());
     for (int shift = 0; shift < key_bits; shift += digit_bits) {
         count.assign(digits + 1, 0);
-        for (const std::uint64_t key : pairs_) ++count[((key >> shift) & (digits - 1)) + 1];
+        for (const std::uint64_t key : keys) ++count[((key >> shift) & (digits - 1)) + 1];
         for (std::size_t d = 0; d < digits; ++d) count[d + 1] += count[d];
-        for (const std::uint64_t key : pairs_) {
-            sorted_[count[(key >> shift) & (digits - 1)]++] = key;
+        for (const std::uint64_t key : keys) {
+            scratch[count[(key >> shift) & (digits - 1)]++] = key;
         }
-        pairs_.swap(sorted_);
+        keys.swap(scratch);
     }
     const std::uint64_t low = (std::uint64_t{1} << bits) - 1;
-    for (std::uint64_t& key : pairs_) key = ((key >> bits) << 32) | (key & low);
+    for (std::uint64_t& key : keys) key = ((key >> bits) << 32) | (key & low);
 }
 
 void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count,
                          const std::vector<Feature>& features, double dt, double gravity,
                          std::vector<Contact>& contacts) {
     built_ = true;
+    hashed_ = false;
     anchor_.resize(disc_count);
     margin_.resize(disc_count);
     double fat_sum = 0.0;
@@ -152,6 +153,7 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
             hi_y = std::max(hi_y, cell_y_[i]);
         }
         const CellBuckets bucket(lo_x, lo_y, hi_x, hi_y, table);
+        hashed_ = bucket.row == 0;
         bucket_start_.assign(table + 1, 0);
         for (std::size_t i = 0; i < disc_count; ++i) {
             if (fat(i) > fat_limit) continue;
@@ -232,7 +234,7 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
                                       static_cast<std::uint32_t>(disc_count + f)));
         }
     }
-    sort_pairs(bodies.size());
+    sort_pair_keys(pairs_, bodies.size(), sorted_, digit_count_);
 
     // Merge with the previous list (both sorted) so surviving pairs keep their history. Its
     // pairs are kept as keys too (listed_), which the merge compares without loading a contact.
@@ -243,8 +245,8 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
     std::size_t old = 0;
     for (const std::uint64_t key : pairs_) {
         while (old < old_count && listed_[old] < key) ++old;
-        // Copied straight into place: building the contact on the stack first and copying it
-        // stalled on store forwarding.
+        // Built in place: a contact built on the stack and then copied would be read back
+        // before its stores complete, which stalls on store forwarding.
         if (old < old_count && listed_[old] == key) {
             merged_.push_back(contacts[old]);
             continue;

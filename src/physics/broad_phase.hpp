@@ -14,6 +14,11 @@
 
 namespace discreel::physics::detail {
 
+// Sorts pair keys (a << 32 | b, both below body_count) in ascending order. scratch and count
+// are scratch space, kept by the caller so that a rebuild does not reallocate them.
+void sort_pair_keys(std::vector<std::uint64_t>& keys, std::size_t body_count,
+                    std::vector<std::uint64_t>& scratch, std::vector<std::uint32_t>& count);
+
 class BroadPhase {
 public:
     // Keeps `contacts` holding every pair that can come into contact during the next step of
@@ -26,6 +31,10 @@ public:
                 std::vector<Contact>& contacts, std::optional<bool> known_valid);
 
     bool built() const { return built_; }
+    // Of the last rebuild, what no result shows: whether it hashed the grid's cells (the discs
+    // spread too far apart to number them row by row), and disc i's margin (metres).
+    bool hashed() const { return hashed_; }
+    double margin(std::size_t i) const { return margin_[i]; }
     // Whether moving disc i (body b) stays within its margin over a step of length dt: the
     // list stays valid while this holds for every moving disc. Only once built().
     bool keeps(const Body& b, std::size_t i, double dt, double gravity) const {
@@ -50,10 +59,8 @@ private:
                  const std::vector<Feature>& features, double dt, double gravity,
                  std::vector<Contact>& contacts);
 
-    // Sorts pairs_ by (a, b); every index is below body_count.
-    void sort_pairs(std::size_t body_count);
-
     bool built_ = false;
+    bool hashed_ = false;
     std::vector<V2> anchor_;        // centres at the last rebuild
     std::vector<double> margin_;    // metres each disc may move before a rebuild
 

@@ -15,24 +15,23 @@
 // is written as a bound on it. The iterations only read and write velocities, so they run on a
 // compact copy: one row per contact with everything constant over the substep folded in
 // (normal, masses, bound), and one small record per body. That keeps the hot loop inside a
-// few cache lines per contact, even for 10 000 discs.
+// few cache lines per contact, however many discs there are.
 //
-// The copy is in single precision, as Box2D's solver is, but only for what the iterations
-// change: each body's record holds the change of its velocity (zero at the start), and each
-// row has its bodies' start velocities folded into its bounds, in doubles, when it is built.
-// So the floats carry a pile's contact impulses, not its falling speed; positions and
-// velocities stay doubles, and a body no row pushes keeps its velocity bit for bit. Half the
-// bytes of doubles and twice the lanes per instruction took about 40 % off the iterations'
-// time at N = 10 000 (docs/physics-speed.md).
+// The copy is in single precision, which halves the bytes the iterations read and doubles the
+// lanes per instruction, but only for what the iterations change: each body's record holds the
+// change of its velocity (zero at the start), and each row has its bodies' start velocities
+// folded into its bounds, in doubles, when it is built. So the floats carry a pile's contact
+// impulses, not its falling speed, whose rounding would show; positions and velocities stay
+// doubles, and a body no row pushes keeps its velocity bit for bit (docs/physics-speed.md).
 //
 // Rows are solved grouped by colour, no two rows of a colour sharing a disc (greedy colouring
-// of the broad phase's whole pair list, redone when it is rebuilt, as Box2D's constraint graph
-// does): in active order consecutive rows share their first disc, so each row had to wait for
-// the previous one's velocity update; within a colour they are independent, so they are solved
-// eight at a time in the lanes of an AVX register (two SSE registers on a CPU without AVX2),
-// with the same arithmetic per lane as one at a time. An immovable body (wall, peg, held disc)
-// is never changed by a row, so each of its rows reads it from a private copy instead of
-// chaining every floor row through one record.
+// of the broad phase's whole pair list, redone when it is rebuilt). In active order,
+// consecutive rows share their first disc, so each row would wait for the previous one's
+// velocity update; within a colour they are independent, so they are solved eight at a time in
+// the lanes of a vector (simd.hpp: one AVX register, or two SSE or NEON ones), with the same
+// arithmetic per lane as one at a time. An immovable body (wall, peg, held disc) is never
+// changed by a row, so each of its rows reads it from a private copy: rows on one floor would
+// otherwise all chain through its record.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -45,14 +44,14 @@ namespace discreel::physics::detail {
 inline void ContactSolver::transpose(const Lanes& r0, const Lanes& r1, const Lanes& r2,
                                      const Lanes& r3, Lanes& c0, Lanes& c1, Lanes& c2,
                                      Lanes& c3) {
-    const Lanes t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
-    const Lanes t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
-    const Lanes t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
-    const Lanes t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
-    c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
-    c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
-    c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-    c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+    const Lanes t0 = simd::unpack_low(r0, r1);
+    const Lanes t1 = simd::unpack_high(r0, r1);
+    const Lanes t2 = simd::unpack_low(r2, r3);
+    const Lanes t3 = simd::unpack_high(r2, r3);
+    c0 = simd::low_halves(t0, t2);
+    c1 = simd::low_halves(t1, t3);
+    c2 = simd::high_halves(t0, t2);
+    c3 = simd::high_halves(t1, t3);
 }
 
 // Gathers the velocity records of one end of a block's rows into lanes, and scatters them back:
@@ -62,22 +61,18 @@ inline void ContactSolver::transpose(const Lanes& r0, const Lanes& r1, const Lan
 inline void ContactSolver::load(const std::uint32_t (&records)[width], Floats& x, Floats& y,
                                 Floats& u, Floats& inv_mass) const {
     const Velocity* const v = velocities_.data();
-    const Floats r04 = __builtin_shufflevector(v[records[0]].packed, v[records[4]].packed, 0, 1,
-                                               2, 3, 4, 5, 6, 7);
-    const Floats r15 = __builtin_shufflevector(v[records[1]].packed, v[records[5]].packed, 0, 1,
-                                               2, 3, 4, 5, 6, 7);
-    const Floats r26 = __builtin_shufflevector(v[records[2]].packed, v[records[6]].packed, 0, 1,
-                                               2, 3, 4, 5, 6, 7);
-    const Floats r37 = __builtin_shufflevector(v[records[3]].packed, v[records[7]].packed, 0, 1,
-                                               2, 3, 4, 5, 6, 7);
-    const Floats xy01 = __builtin_shufflevector(r04, r15, 0, 8, 1, 9, 4, 12, 5, 13);
-    const Floats uw01 = __builtin_shufflevector(r04, r15, 2, 10, 3, 11, 6, 14, 7, 15);
-    const Floats xy23 = __builtin_shufflevector(r26, r37, 0, 8, 1, 9, 4, 12, 5, 13);
-    const Floats uw23 = __builtin_shufflevector(r26, r37, 2, 10, 3, 11, 6, 14, 7, 15);
-    x = __builtin_shufflevector(xy01, xy23, 0, 1, 8, 9, 4, 5, 12, 13);
-    y = __builtin_shufflevector(xy01, xy23, 2, 3, 10, 11, 6, 7, 14, 15);
-    u = __builtin_shufflevector(uw01, uw23, 0, 1, 8, 9, 4, 5, 12, 13);
-    inv_mass = __builtin_shufflevector(uw01, uw23, 2, 3, 10, 11, 6, 7, 14, 15);
+    const Floats r04 = simd::join(v[records[0]].packed, v[records[4]].packed);
+    const Floats r15 = simd::join(v[records[1]].packed, v[records[5]].packed);
+    const Floats r26 = simd::join(v[records[2]].packed, v[records[6]].packed);
+    const Floats r37 = simd::join(v[records[3]].packed, v[records[7]].packed);
+    const Floats xy01 = simd::unpack_low(r04, r15);
+    const Floats uw01 = simd::unpack_high(r04, r15);
+    const Floats xy23 = simd::unpack_low(r26, r37);
+    const Floats uw23 = simd::unpack_high(r26, r37);
+    x = simd::low_pairs(xy01, xy23);
+    y = simd::high_pairs(xy01, xy23);
+    u = simd::low_pairs(uw01, uw23);
+    inv_mass = simd::high_pairs(uw01, uw23);
 }
 
 inline void ContactSolver::store(const std::uint32_t (&records)[width], const Floats& x,
@@ -86,43 +81,47 @@ inline void ContactSolver::store(const std::uint32_t (&records)[width], const Fl
     // immovable ends have private copies; empty lanes all point at the scratch record, and all
     // store back the zeros it holds.
     Velocity* const v = velocities_.data();
-    const Floats xy01 = __builtin_shufflevector(x, y, 0, 8, 1, 9, 4, 12, 5, 13);
-    const Floats uw01 = __builtin_shufflevector(u, inv_mass, 0, 8, 1, 9, 4, 12, 5, 13);
-    const Floats xy23 = __builtin_shufflevector(x, y, 2, 10, 3, 11, 6, 14, 7, 15);
-    const Floats uw23 = __builtin_shufflevector(u, inv_mass, 2, 10, 3, 11, 6, 14, 7, 15);
-    const Floats r04 = __builtin_shufflevector(xy01, uw01, 0, 1, 8, 9, 4, 5, 12, 13);
-    const Floats r15 = __builtin_shufflevector(xy01, uw01, 2, 3, 10, 11, 6, 7, 14, 15);
-    const Floats r26 = __builtin_shufflevector(xy23, uw23, 0, 1, 8, 9, 4, 5, 12, 13);
-    const Floats r37 = __builtin_shufflevector(xy23, uw23, 2, 3, 10, 11, 6, 7, 14, 15);
-    v[records[0]].packed = __builtin_shufflevector(r04, r04, 0, 1, 2, 3);
-    v[records[1]].packed = __builtin_shufflevector(r15, r15, 0, 1, 2, 3);
-    v[records[2]].packed = __builtin_shufflevector(r26, r26, 0, 1, 2, 3);
-    v[records[3]].packed = __builtin_shufflevector(r37, r37, 0, 1, 2, 3);
-    v[records[4]].packed = __builtin_shufflevector(r04, r04, 4, 5, 6, 7);
-    v[records[5]].packed = __builtin_shufflevector(r15, r15, 4, 5, 6, 7);
-    v[records[6]].packed = __builtin_shufflevector(r26, r26, 4, 5, 6, 7);
-    v[records[7]].packed = __builtin_shufflevector(r37, r37, 4, 5, 6, 7);
+    const Floats xy01 = simd::unpack_low(x, y);
+    const Floats uw01 = simd::unpack_low(u, inv_mass);
+    const Floats xy23 = simd::unpack_high(x, y);
+    const Floats uw23 = simd::unpack_high(u, inv_mass);
+    const Floats r04 = simd::low_pairs(xy01, uw01);
+    const Floats r15 = simd::high_pairs(xy01, uw01);
+    const Floats r26 = simd::low_pairs(xy23, uw23);
+    const Floats r37 = simd::high_pairs(xy23, uw23);
+    v[records[0]].packed = simd::low_half(r04);
+    v[records[1]].packed = simd::low_half(r15);
+    v[records[2]].packed = simd::low_half(r26);
+    v[records[3]].packed = simd::low_half(r37);
+    v[records[4]].packed = simd::high_half(r04);
+    v[records[5]].packed = simd::high_half(r15);
+    v[records[6]].packed = simd::high_half(r26);
+    v[records[7]].packed = simd::high_half(r37);
 }
 
-// Greedy colouring of the whole contact list, in pair order, redone only when the broad phase
-// rebuilds it: no two contacts of a colour share a disc (walls take no colour; pegs and held
-// discs do, so the colours stay valid whatever moves), which is then true of any subset, such
-// as the contacts active in a substep.
+// Pegs and held discs take colours too, so the colours stay valid whatever moves.
+void colour_greedily(std::span<const Contact> contacts, std::size_t disc_count,
+                     std::vector<std::uint64_t>& used, std::vector<std::uint8_t>& colour_of) {
+    used.assign(disc_count, 0);
+    colour_of.resize(contacts.size());
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+        const Contact& c = contacts[i];
+        const bool b_disc = c.b < disc_count;
+        const std::uint64_t taken = used[c.a] | (b_disc ? used[c.b] : 0);
+        const unsigned colour = static_cast<unsigned>(std::countr_one(taken));
+        colour_of[i] = static_cast<std::uint8_t>(colour);
+        if (colour == overflow_colour) continue;
+        const std::uint64_t bit = std::uint64_t{1} << colour;
+        used[c.a] |= bit;
+        if (b_disc) used[c.b] |= bit;
+    }
+}
+
+// The whole contact list, in pair order, redone only when the broad phase rebuilds it: what
+// holds of the list holds of any subset, such as the contacts active in a substep.
 void ContactSolver::colour_contacts(const Substep& s) {
     coloured_version_ = s.contacts_version;
-    colours_used_.assign(s.disc_count, 0);
-    colour_of_.resize(s.contacts.size());
-    for (std::size_t i = 0; i < s.contacts.size(); ++i) {
-        const Contact& c = s.contacts[i];
-        const bool b_disc = c.b < s.disc_count;
-        const std::uint64_t used = colours_used_[c.a] | (b_disc ? colours_used_[c.b] : 0);
-        const unsigned colour = static_cast<unsigned>(std::countr_one(used));
-        colour_of_[i] = static_cast<std::uint8_t>(colour);
-        if (colour == overflow) continue;
-        const std::uint64_t bit = std::uint64_t{1} << colour;
-        colours_used_[c.a] |= bit;
-        if (b_disc) colours_used_[c.b] |= bit;
-    }
+    colour_greedily(s.contacts, s.disc_count, colours_used_, colour_of_);
 }
 
 void ContactSolver::compute_masses(const Substep& s) {
@@ -236,8 +235,8 @@ void ContactSolver::solve(Substep& s, int iterations) {
 
     solve_rows(iterations);
 
-    // In contact order: the contacts are written in one forward sweep (in lane order they
-    // were a scattered write each), and each row's two impulses lie side by side in its block.
+    // In contact order, so that the contacts are written in one forward sweep rather than
+    // scattered; each row's two impulses lie side by side in its block.
     const double unit = mass_unit_;
     for (std::size_t k = 0; k < pending_.size(); ++k) {
         const std::uint32_t slot = lane_of_[k];
@@ -267,17 +266,12 @@ void ContactSolver::solve(Substep& s, int iterations) {
 // against a wall take their normal and gap from disc_feature, a lane at a time. The bodies'
 // start velocities are folded into the constants here, in doubles, so that the floats of the
 // iterations carry only the corrections (a pile's contact impulses, not its falling speed).
-[[gnu::target_clones("avx2", "default")]] void ContactSolver::build_rows(const Substep& s,
-                                                                        double inv_h) {
+DISCREEL_CLONES void ContactSolver::build_rows(const Substep& s, double inv_h) {
     const Lanes zero = {};
     const Lanes one = zero + 1.0;
     const double per_unit = 1.0 / mass_unit_;  // exact: a power of two
-    using Halves = float __attribute__((vector_size(16)));
-    // Writes through a reference: returning a vector would change the baseline build's ABI.
     const auto join = [](Floats& field, const Lanes& first, const Lanes& second) {
-        field = __builtin_shufflevector(__builtin_convertvector(first, Halves),
-                                        __builtin_convertvector(second, Halves), 0, 1, 2, 3, 4,
-                                        5, 6, 7);
+        field = simd::join(simd::to_floats(first), simd::to_floats(second));
     };
     for (std::size_t block = 0; block < rows_.size(); ++block) {
         RowBlock& r = rows_[block];
@@ -365,7 +359,7 @@ void ContactSolver::solve(Substep& s, int iterations) {
 // lane does the same IEEE operations in the same order in both builds (and no FMA:
 // -ffp-contract=off), so the AVX2 build gives the same bits as the baseline one; it only does
 // eight rows per instruction instead of four.
-[[gnu::target_clones("avx2", "default")]] void ContactSolver::solve_rows(int iterations) {
+DISCREEL_CLONES void ContactSolver::solve_rows(int iterations) {
     for (const RowBlock& r : rows_) {
         Floats ax, ay, au, a_inv, bx, by, bu, b_inv;
         load(r.a, ax, ay, au, a_inv);

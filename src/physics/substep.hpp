@@ -10,7 +10,9 @@
 
 #include "body.hpp"
 #include "contact.hpp"
+#include "discreel/clones.hpp"
 #include "geometry.hpp"
+#include "simd.hpp"
 
 namespace discreel::physics::detail {
 
@@ -156,6 +158,16 @@ private:
     std::vector<std::uint32_t> queue_;             // min-heap of pairs still to visit
 };
 
+// The resting stage's colouring (contact_solver.cpp): greedy, in list order, each contact
+// taking the lowest colour that no earlier contact of its discs has, so that no two contacts of
+// one colour share a disc (a wall feature, b >= disc_count, takes no colour: no row changes
+// it). A contact whose discs already have all overflow_colour colours between them gets
+// overflow_colour, which promises nothing. colour_of: per contact; used: scratch, per disc,
+// bit c set once it is in a contact of colour c.
+inline constexpr unsigned overflow_colour = 64;
+void colour_greedily(std::span<const Contact> contacts, std::size_t disc_count,
+                     std::vector<std::uint64_t>& used, std::vector<std::uint8_t>& colour_of);
+
 // Stage 2: resting contact. Sequential impulses with accumulated clamping and warm starting,
 // acting like forces spread over the substep; then positions are integrated. A class only to
 // keep its scratch arrays between substeps.
@@ -189,14 +201,14 @@ public:
     void solve(Substep& s, int iterations);
 
 private:
-    // Four doubles (GCC vector extension): the row build's geometry, half a block at a time, in
+    // Four doubles (see simd.hpp): the row build's geometry, half a block at a time, in
     // double precision. Where this file is not built for AVX, GCC aligns the type to 16 bytes
     // only, so the structs holding it ask for the 32 that AVX loads need.
-    using Lanes = double __attribute__((vector_size(32)));
+    using Lanes = simd::Double4;
     // Eight floats, one per row of a block: one AVX register in the AVX2 build of solve_rows,
-    // two SSE registers in the baseline one.
-    using Floats = float __attribute__((vector_size(32)));
-    using Quad = float __attribute__((vector_size(16)));  // one velocity record
+    // two SSE (or NEON) registers in the baseline one.
+    using Floats = simd::Float8;
+    using Quad = simd::Float4;  // one velocity record
     static constexpr unsigned width = 8;  // rows per block, the lanes of Floats
     static constexpr unsigned half = 4;   // the lanes of Lanes
     // What the iterations change of a body: the change of its velocity over the iterations,
@@ -235,16 +247,16 @@ private:
         unsigned colour = 0;
     };
     // Rows whose discs have all 64 colours go to one last group, solved a row at a time.
-    static constexpr unsigned overflow = 64;
+    static constexpr unsigned overflow = overflow_colour;
     void colour_contacts(const Substep& s);
     std::uint32_t fresh_copy(const Substep& s) {
         return static_cast<std::uint32_t>(s.bodies.size() + copies_++);
     }
-    // The code that runs on whole blocks, each built for AVX2 and for baseline x86-64, the one
-    // the CPU can run chosen at load time: the warm start and the iterations over rows_, and
-    // the row build.
-    [[gnu::target_clones("avx2", "default")]] void solve_rows(int iterations);
-    [[gnu::target_clones("avx2", "default")]] void build_rows(const Substep& s, double inv_h);
+    // The code that runs on whole blocks, on x86-64 built for AVX2 and for the baseline, the
+    // one the CPU can run chosen at load time (DISCREEL_CLONES): the warm start and the
+    // iterations over rows_, and the row build.
+    DISCREEL_CLONES void solve_rows(int iterations);
+    DISCREEL_CLONES void build_rows(const Substep& s, double inv_h);
     [[gnu::always_inline]] static void transpose(const Lanes& r0, const Lanes& r1,
                                                  const Lanes& r2, const Lanes& r3, Lanes& c0,
                                                  Lanes& c1, Lanes& c2, Lanes& c3);

@@ -285,6 +285,7 @@ World& World::operator=(World&&) noexcept = default;
 
 void World::step() { impl_->step(); }
 std::int64_t World::step_count() const { return impl_->steps; }
+int World::rate() const { return impl_->rate; }
 double World::time() const { return static_cast<double>(impl_->steps) / impl_->rate; }
 int World::substeps() const { return impl_->substeps; }
 std::span<const DiscState> World::discs() const { return impl_->publish(); }

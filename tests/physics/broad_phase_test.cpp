@@ -13,7 +13,7 @@ namespace discreel::physics {
 namespace {
 
 // A jostling crowd: 400 discs in a box, landing under gravity with random velocities.
-WorldDef crowd() { return testing::pile(400, 0.2, 0.45, 0.6, 0.4, {0, -9.81}, 3.0, 7); }
+WorldDef crowd() { return testing::pile({.count = 400, .spacing = 0.45, .speed = 3.0, .seed = 7}); }
 
 TEST(BroadPhase, ADiscFarAwayChangesNothingInACrowd) {
     World nearby(crowd());

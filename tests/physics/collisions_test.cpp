@@ -44,7 +44,7 @@ TEST(Collisions, SlowElasticImpactsStillBounce) {
 TEST(Collisions, SlowElasticImpactOnAWallStillBounces) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.walls.push_back(testing::box({0, 0}, {4, 4}, 1.0));
+    def.walls.push_back(testing::box({0, 0}, {4, 4}, {.restitution = 1.0}));
     def.discs.push_back(disc({1, 2}, {-0.5, 0}, 0.25, 1.0));
     World world(def);
     testing::run_for(world, 2.0);  // meets the wall at 1.5 s
@@ -55,8 +55,8 @@ TEST(Collisions, SlowElasticImpactOnAWallStillBounces) {
 TEST(Collisions, MomentumIsConservedInAnObliqueCollisionWithFriction) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs = {disc({0, 0}, {3, 0.5}, 0.3, 2.0, 0.6, 0.5),
-                 disc({1.5, 0.2}, {-1, 0}, 0.2, 0.7, 0.6, 0.5)};
+    def.discs = {disc({0, 0}, {3, 0.5}, 0.3, 2.0, {.restitution = 0.6, .friction = 0.5}),
+                 disc({1.5, 0.2}, {-1, 0}, 0.2, 0.7, {.restitution = 0.6, .friction = 0.5})};
     def.discs[0].angular_velocity = 4.0;
     const double px0 = 2.0 * 3 + 0.7 * -1, py0 = 2.0 * 0.5;
     World world(def);
@@ -125,9 +125,9 @@ TEST(Collisions, TouchingPairIsTimedWhenItsBounceWouldShowOrItClosesFast) {
         SCOPED_TRACE(::testing::Message()
                      << "e = " << k.e << ", v = " << k.speed << ", r = " << k.radius);
         WorldDef def;
-        def.walls.push_back(testing::box({-10, 0}, {20, 10}, k.e));
-        def.discs = {disc({0, k.radius}, {k.speed, 0}, k.radius, 1.0, k.e),
-                     disc({2 * k.radius, k.radius}, {0, 0}, k.radius, 1.0, k.e)};
+        def.walls.push_back(testing::box({-10, 0}, {20, 10}, {.restitution = k.e}));
+        def.discs = {disc({0, k.radius}, {k.speed, 0}, k.radius, 1.0, {.restitution = k.e}),
+                     disc({2 * k.radius, k.radius}, {0, 0}, k.radius, 1.0, {.restitution = k.e})};
         World world(def);
         const double t = 0.05;
         testing::run_for(world, t);

@@ -25,7 +25,11 @@ double expect_no_energy_gain(World& world, double seconds) {
 }
 
 TEST(Energy, FallingPileNeverGainsEnergy) {
-    WorldDef def = testing::pile(400, 0.2, 0.5, 0.5, 0.6, {0, -9.8}, 1.0, 7);
+    WorldDef def = testing::pile({.count = 400,
+                                  .material = {.restitution = 0.5, .friction = 0.6},
+                                  .gravity = {0, -9.8},
+                                  .speed = 1.0,
+                                  .seed = 7});
     World world(def);
     expect_no_energy_gain(world, 4.0);
     // Settled: overlap stays under 1 % of the radius.
@@ -33,14 +37,22 @@ TEST(Energy, FallingPileNeverGainsEnergy) {
 }
 
 TEST(Energy, ElasticPileUnderGravityNeverGainsEnergy) {
-    WorldDef def = testing::pile(300, 0.2, 0.5, 1.0, 0.3, {0, -9.8}, 2.0, 11);
+    WorldDef def = testing::pile({.count = 300,
+                                  .material = {.restitution = 1.0, .friction = 0.3},
+                                  .gravity = {0, -9.8},
+                                  .seed = 11});
     World world(def);
     expect_no_energy_gain(world, 3.0);
 }
 
 TEST(Energy, ElasticGasKeepsItsEnergy) {
     // e = 1, no friction, no gravity: kinetic energy is all there is, and impacts conserve it.
-    WorldDef def = testing::pile(400, 0.1, 0.5, 1.0, 0.0, {0, 0}, 3.0, 3);
+    WorldDef def = testing::pile({.count = 400,
+                                  .radius = 0.1,
+                                  .material = {.restitution = 1.0, .friction = 0.0},
+                                  .gravity = {0, 0},
+                                  .speed = 3.0,
+                                  .seed = 3});
     World world(def);
     const double start = world.energy();
     const double end = expect_no_energy_gain(world, 10.0);
@@ -49,21 +61,25 @@ TEST(Energy, ElasticGasKeepsItsEnergy) {
 
 TEST(Energy, MixedSizesWithPegsAndSegmentsNeverGainEnergy) {
     WorldDef def;
-    def.walls.push_back(testing::box({0, 0}, {12, 12}, 0.8, 0.3));
-    def.walls.push_back(testing::segment({1, 6}, {6, 4}, 0.05, 0.8, 0.3));
-    def.walls.push_back(testing::segment({11, 7}, {7, 5}, 0.05, 0.8, 0.3));
+    const testing::Material rough{.restitution = 0.8, .friction = 0.3};
+    def.walls.push_back(testing::box({0, 0}, {12, 12}, rough));
+    def.walls.push_back(testing::segment({1, 6}, {6, 4}, 0.05, rough));
+    def.walls.push_back(testing::segment({11, 7}, {7, 5}, 0.05, rough));
     testing::Rng rng(5);
     for (int k = 0; k < 12; ++k) {
-        DiscDef peg = testing::disc({1.0 + k, 2.5 + 0.4 * (k % 2)}, {0, 0}, 0.1, 1.0, 0.8, 0.3);
+        DiscDef peg = testing::disc({1.0 + k, 2.5 + 0.4 * (k % 2)}, {0, 0}, 0.1, 1.0, rough);
         peg.is_static = true;
         def.discs.push_back(peg);
     }
     for (int k = 0; k < 300; ++k) {
+        // One draw per statement, in this order: the scene depends on it.
         const double r = rng.uniform(0.08, 0.2);
-        def.discs.push_back(testing::disc({0.5 + 0.55 * (k % 20), 8.0 + 0.55 * (k / 20)},
-                                          {rng.uniform(-2, 2), rng.uniform(-2, 2)}, r,
-                                          3.14159 * r * r, rng.uniform(0.3, 1.0),
-                                          rng.uniform(0.0, 0.8)));
+        const double friction = rng.uniform(0.0, 0.8);
+        const double restitution = rng.uniform(0.3, 1.0);
+        const Vec2 velocity{rng.uniform(-2, 2), rng.uniform(-2, 2)};
+        def.discs.push_back(testing::disc({0.5 + 0.55 * (k % 20), 8.0 + 0.55 * (k / 20)}, velocity,
+                                          r, 3.14159 * r * r,
+                                          {.restitution = restitution, .friction = friction}));
     }
     World world(def);
     expect_no_energy_gain(world, 4.0);

@@ -26,9 +26,9 @@ TEST(Events, HeadOnCollisionGivesOneEventWithTheImpulse) {
 
 TEST(Events, RestingDiscTouchesTheFloorOnce) {
     WorldDef def;
-    def.walls.push_back(testing::box({0, 0}, {1, 1}, 0.0));
-    def.walls.push_back(testing::box({5, 5}, {6, 6}, 0.0));
-    def.discs.push_back(testing::disc({0.5, 0.2}, {0, 0}, 0.1, 1.0, 0.0));
+    def.walls.push_back(testing::box({0, 0}, {1, 1}, {.restitution = 0.0}));
+    def.walls.push_back(testing::box({5, 5}, {6, 6}, {.restitution = 0.0}));
+    def.discs.push_back(testing::disc({0.5, 0.2}, {0, 0}, 0.1, 1.0, {.restitution = 0.0}));
     World world(def);
     testing::run_for(world, 1.0);
     const auto events = world.take_events();

@@ -35,14 +35,15 @@ std::string name_of(const ::testing::TestParamInfo<Extreme>& info) { return info
 WorldDef extreme_world(const Extreme& e) {
     WorldDef def;
     def.gravity = {0, -e.gravity * e.scale};
-    def.walls.push_back(testing::box({0, 0}, {10 * e.scale, 10 * e.scale}, 0.5, 0.5));
+    const testing::Material material{.restitution = 0.5, .friction = 0.5};
+    def.walls.push_back(testing::box({0, 0}, {10 * e.scale, 10 * e.scale}, material));
     testing::Rng rng(7);
     for (int k = 0; k < 64; ++k) {
         const double angle = rng.uniform(0, 2 * 3.141592653589793);
         const Vec2 position{(1 + k % 8) * 1.1 * e.scale, (1 + k / 8) * 1.1 * e.scale};
         const Vec2 velocity{e.speed * e.scale * std::cos(angle), e.speed * e.scale * std::sin(angle)};
-        def.discs.push_back(disc(position, velocity, 0.4 * e.scale, k % 2 ? e.heavy : e.light,
-                                 0.5, 0.5));
+        def.discs.push_back(
+            disc(position, velocity, 0.4 * e.scale, k % 2 ? e.heavy : e.light, material));
     }
     return def;
 }

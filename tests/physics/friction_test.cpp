@@ -14,8 +14,9 @@ namespace {
 TEST(Friction, SlidingDiscEndsRollingAtTwoThirdsSpeed) {
     const double g = 9.81, mu = 0.3, v0 = 3.0, r = 0.5;
     WorldDef def;
-    def.walls.push_back(testing::box({0, 0}, {100, 10}, 0.0, mu));
-    def.discs.push_back(testing::disc({1, r}, {v0, 0}, r, 1.0, 0.0, mu));
+    const testing::Material rough{.restitution = 0.0, .friction = mu};
+    def.walls.push_back(testing::box({0, 0}, {100, 10}, rough));
+    def.discs.push_back(testing::disc({1, r}, {v0, 0}, r, 1.0, rough));
     World world(def);
     double rolling_from = -1.0;
     for (int k = 0; k < 480 * 2 && rolling_from < 0; ++k) {
@@ -37,8 +38,9 @@ TEST(Friction, SlidingDiscEndsRollingAtTwoThirdsSpeed) {
 
 TEST(Friction, SpinningDiscOnIceKeepsSpinning) {
     WorldDef def;
-    def.walls.push_back(testing::box({0, 0}, {10, 10}, 0.0, 0.0));
-    DiscDef d = testing::disc({5, 0.5}, {0, 0}, 0.5, 1.0, 0.0, 0.0);
+    const testing::Material ice{.restitution = 0.0, .friction = 0.0};
+    def.walls.push_back(testing::box({0, 0}, {10, 10}, ice));
+    DiscDef d = testing::disc({5, 0.5}, {0, 0}, 0.5, 1.0, ice);
     d.angular_velocity = 10.0;
     def.discs.push_back(d);
     World world(def);

@@ -8,37 +8,46 @@
 
 namespace discreel::physics::testing {
 
+// What a disc or wall is made of; by default elastic and frictionless, so that a test states
+// the losses it wants: testing::disc(..., {.restitution = 0.5}).
+struct Material {
+    double restitution = 1.0;      // coefficient of restitution, 0..1
+    double friction = 0.0;         // Coulomb coefficient, >= 0
+};
+
+// position (m), velocity (m/s), radius (m), mass (kg).
 inline DiscDef disc(Vec2 position, Vec2 velocity, double radius, double mass,
-                    double restitution = 1.0, double friction = 0.0) {
+                    Material material = {}) {
     DiscDef d;
     d.position = position;
     d.velocity = velocity;
     d.radius = radius;
     d.mass = mass;
-    d.restitution = restitution;
-    d.friction = friction;
+    d.restitution = material.restitution;
+    d.friction = material.friction;
     return d;
 }
 
-inline WallDef box(Vec2 lo, Vec2 hi, double restitution = 1.0, double friction = 0.0) {
+// A closed box with corners lo and hi (m).
+inline WallDef box(Vec2 lo, Vec2 hi, Material material = {}) {
     WallDef w;
     w.shape = WallDef::Shape::box;
     w.a = lo;
     w.b = hi;
-    w.restitution = restitution;
-    w.friction = friction;
+    w.restitution = material.restitution;
+    w.friction = material.friction;
     return w;
 }
 
-inline WallDef segment(Vec2 a, Vec2 b, double thickness, double restitution = 1.0,
-                       double friction = 0.0) {
+// A capsule from a to b (m), thickness (m) across.
+inline WallDef segment(Vec2 a, Vec2 b, double thickness, Material material = {}) {
     WallDef w;
     w.shape = WallDef::Shape::segment;
     w.a = a;
     w.b = b;
     w.thickness = thickness;
-    w.restitution = restitution;
-    w.friction = friction;
+    w.restitution = material.restitution;
+    w.friction = material.friction;
     return w;
 }
 
@@ -59,27 +68,38 @@ private:
     std::uint64_t state_;
 };
 
-// Discs of radius r on a grid in a box of side spacing * columns, small random velocities.
-inline WorldDef pile(int count, double radius, double spacing, double restitution,
-                     double friction, Vec2 gravity, double speed, std::uint64_t seed) {
+// A pile: `count` equal discs on a square grid, rows filled from the bottom left, in a box of
+// side spacing * columns, with random velocities. testing::pile({.count = 400, .seed = 7}).
+struct PileDef {
+    int count = 100;
+    double radius = 0.2;           // metres
+    double spacing = 0.5;          // metres between neighbouring centres of the grid
+    Material material = {.restitution = 0.6, .friction = 0.4};  // discs and box
+    Vec2 gravity{0.0, -9.81};      // m/s^2
+    double speed = 2.0;            // m/s: each velocity component is uniform in +-speed
+    std::uint64_t seed = 1;        // of the velocities
+};
+
+inline WorldDef pile(const PileDef& p) {
     WorldDef def;
-    def.gravity = gravity;
-    const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
-    const double side = spacing * columns;
-    def.walls.push_back(box({0, 0}, {side, side}, restitution, friction));
-    Rng rng(seed);
-    for (int k = 0; k < count; ++k) {
-        const double x = spacing * (0.5 + k % columns);
-        const double y = spacing * (0.5 + k / columns);
-        const double mass = 3.141592653589793 * radius * radius;
-        def.discs.push_back(disc({x, y}, {rng.uniform(-speed, speed), rng.uniform(-speed, speed)},
-                                 radius, mass, restitution, friction));
+    def.gravity = p.gravity;
+    const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(p.count))));
+    const double side = p.spacing * columns;
+    def.walls.push_back(box({0, 0}, {side, side}, p.material));
+    Rng rng(p.seed);
+    for (int k = 0; k < p.count; ++k) {
+        const double x = p.spacing * (0.5 + k % columns);
+        const double y = p.spacing * (0.5 + k / columns);
+        const double mass = 3.141592653589793 * p.radius * p.radius;  // kg: 1 kg/m^2
+        const Vec2 velocity{rng.uniform(-p.speed, p.speed), rng.uniform(-p.speed, p.speed)};
+        def.discs.push_back(disc({x, y}, velocity, p.radius, mass, p.material));
     }
     return def;
 }
 
+// Steps the world through `seconds` (s), rounded to whole steps at its rate.
 inline void run_for(World& world, double seconds) {
-    const auto steps = static_cast<std::int64_t>(std::llround(seconds * 480));
+    const auto steps = static_cast<std::int64_t>(std::llround(seconds * world.rate()));
     for (std::int64_t k = 0; k < steps; ++k) world.step();
 }
 

@@ -63,9 +63,10 @@ TEST(Throws, GrabReleasesWithAnExplicitVelocity) {
 
 TEST(Throws, HeldDiscPushesOthersOutOfItsWay) {
     WorldDef def;
-    def.walls.push_back(testing::box({-5, 0}, {5, 5}, 0.2, 0.3));
-    def.discs.push_back(testing::disc({-3, 0.3}, {0, 0}, 0.3, 1.0, 0.2, 0.3));
-    def.discs.push_back(testing::disc({0, 0.3}, {0, 0}, 0.3, 1.0, 0.2, 0.3));
+    const testing::Material material{.restitution = 0.2, .friction = 0.3};
+    def.walls.push_back(testing::box({-5, 0}, {5, 5}, material));
+    def.discs.push_back(testing::disc({-3, 0.3}, {0, 0}, 0.3, 1.0, material));
+    def.discs.push_back(testing::disc({0, 0.3}, {0, 0}, 0.3, 1.0, material));
     ThrowDef grab;
     grab.disc = 0;
     grab.path = {{0.0, {-3, 0.3}}, {1.0, {1, 0.3}}};

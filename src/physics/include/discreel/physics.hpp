@@ -129,7 +129,8 @@ public:
 
     void step();                   // advance by exactly 1/rate seconds; nothing once failed
     std::int64_t step_count() const;
-    double time() const;           // step_count() / rate, seconds
+    int rate() const;              // steps per second (WorldDef::rate)
+    double time() const;           // step_count() / rate(), seconds
     int substeps() const;          // per step: WorldDef::substeps, or the count chosen for 0
 
     // Same order as WorldDef::discs; valid until the next step() (ask again after it).

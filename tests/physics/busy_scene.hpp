@@ -1,0 +1,73 @@
+#pragma once
+// The determinism check's scene, its hash and the pinned value, shared by the GoogleTest suite
+// (determinism_test.cpp) and the standalone check (determinism_check.cpp) that the `arch` tests
+// build where GoogleTest is not at hand.
+#include <cstdint>
+#include <cstring>
+
+#include "discreel/physics.hpp"
+#include "scenes.hpp"
+
+namespace discreel::physics::testing {
+
+// What run_busy_scene() gives: the same on every target and build (ctest -L arch). It changes
+// only when the solver does; update it deliberately then.
+inline constexpr std::uint64_t busy_scene_hash = 17082209032836878177ull;
+
+// A pile landing with a slanted segment, a peg, a flick and a grab. Every field of the pile is
+// spelled out, so that the pinned hash does not follow PileDef's defaults.
+inline WorldDef busy_scene() {
+    WorldDef def = pile({.count = 500,
+                         .radius = 0.2,
+                         .spacing = 0.5,
+                         .material = {.restitution = 0.6, .friction = 0.4},
+                         .gravity = {0, -9.81},
+                         .speed = 2.0,
+                         .seed = 42});
+    const Material material{.restitution = 0.6, .friction = 0.4};
+    def.walls.push_back(segment({1, 5}, {8, 3}, 0.05, material));
+    DiscDef peg = disc({6, 6}, {0, 0}, 0.3, 1.0, material);
+    peg.is_static = true;
+    def.discs.push_back(peg);
+    ThrowDef flick;
+    flick.disc = 3;
+    flick.at = 0.5;
+    flick.velocity = Vec2{40, 25};
+    def.throws.push_back(flick);
+    ThrowDef grab;
+    grab.disc = 100;
+    grab.path = {{0.2, {3, 9}}, {0.8, {9, 9}}, {1.0, {5, 2}}};
+    def.throws.push_back(grab);
+    return def;
+}
+
+// FNV-1a over the bytes of every disc's state.
+inline std::uint64_t state_hash(const World& world) {
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&h](double v) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &v, sizeof bits);
+        for (int k = 0; k < 8; ++k) {
+            h ^= (bits >> (8 * k)) & 0xff;
+            h *= 1099511628211ull;
+        }
+    };
+    for (const DiscState& s : world.discs()) {
+        mix(s.position.x);
+        mix(s.position.y);
+        mix(s.velocity.x);
+        mix(s.velocity.y);
+        mix(s.angle);
+        mix(s.angular_velocity);
+    }
+    return h;
+}
+
+// The busy scene's state after two seconds, hashed.
+inline std::uint64_t run_busy_scene() {
+    World world(busy_scene());
+    run_for(world, 2.0);
+    return state_hash(world);
+}
+
+}  // namespace discreel::physics::testing
