@@ -90,6 +90,7 @@ void remove_if_present(const fs::path& path) {
 struct FrameCheck {
     golden::CaseResult result;
     bool missing = false;
+    std::string written;                                  // "wrote X.actual.png and Y.diff.png"
     std::string golden_image, actual_image, diff_image;   // data: URIs
 };
 
@@ -203,6 +204,7 @@ Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& load
         if (Status s = add_images(other_size, nullptr); !s) return s.error();
     }
     result.details = result.message + "\n" + written;
+    check.written = written;
     if (const auto stored = golden::read_metadata(scene_dir); stored && stored->renderer != renderer) {
         const std::string note = "rendered with a different renderer (stored: " +
                                  stored->renderer + ", now: " + renderer + ")";
@@ -384,7 +386,9 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
         } else if (result.passed) {
             out << "ok (" << result.message << ")\n";
         } else {
-            out << "FAILED: " << result.message << '\n';
+            // The line names what it wrote, so the files to look at are at hand.
+            out << "FAILED: " << result.message
+                << (check.written.empty() ? "" : "; " + check.written) << '\n';
         }
         report.push_back({.scene = scene.name,
                           .frame = result.name,
