@@ -1,6 +1,9 @@
 #include "golden_report.hpp"
 
+
 #include <algorithm>
+
+#include "golden_junit.hpp"
 
 namespace discreel::golden {
 namespace {
@@ -31,22 +34,6 @@ void figure(std::string& html, const std::string& caption, const std::string& ur
 
 }  // namespace
 
-std::string html_escape(const std::string& text) {
-    std::string out;
-    out.reserve(text.size());
-    for (const char c : text) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
 std::string html_report(const std::string& title, std::size_t scene_count,
                         const std::vector<ReportFrame>& frames) {
     const auto failed = static_cast<std::size_t>(std::count_if(
@@ -54,8 +41,8 @@ std::string html_report(const std::string& title, std::size_t scene_count,
     const auto written = static_cast<std::size_t>(std::count_if(
         frames.begin(), frames.end(), [](const ReportFrame& f) { return f.written; }));
     std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                       "<title>" + html_escape(title) + "</title>\n" + style + "</head>\n<body>\n";
-    html += "<h1>" + html_escape(title) + "</h1>\n<p>" + count(frames.size(), "frame") + " of " +
+                       "<title>" + xml_escape(title) + "</title>\n" + style + "</head>\n<body>\n";
+    html += "<h1>" + xml_escape(title) + "</h1>\n<p>" + count(frames.size(), "frame") + " of " +
             count(scene_count, "scene") + ": <span class=\"passed\">" +
             std::to_string(frames.size() - failed - written) + " passed</span>, <span class=\"" +
             (failed > 0 ? "failed" : "passed") + "\">" + std::to_string(failed) +
@@ -64,8 +51,8 @@ std::string html_report(const std::string& title, std::size_t scene_count,
     html += ".</p>\n";
     for (const ReportFrame& f : frames) {
         if (f.passed) continue;
-        html += "<div class=\"frame\">\n<h2 class=\"failed\">" + html_escape(f.scene) + " " +
-                html_escape(f.frame) + "</h2>\n<p>" + html_escape(f.message) + "</p>\n";
+        html += "<div class=\"frame\">\n<h2 class=\"failed\">" + xml_escape(f.scene) + " " +
+                xml_escape(f.frame) + "</h2>\n<p>" + xml_escape(f.message) + "</p>\n";
         html += "<div class=\"images\">\n";
         figure(html, "golden", f.golden_image);
         figure(html, "actual", f.actual_image);

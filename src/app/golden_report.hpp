@@ -21,7 +21,4 @@ struct ReportFrame {
 std::string html_report(const std::string& title, std::size_t scene_count,
                         const std::vector<ReportFrame>& frames);
 
-// `text` with &, <, >, " and ' replaced by entities.
-std::string html_escape(const std::string& text);
-
 }  // namespace discreel::golden
