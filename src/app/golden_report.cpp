@@ -1,6 +1,5 @@
 #include "golden_report.hpp"
 
-
 #include <algorithm>
 
 #include "golden_junit.hpp"
