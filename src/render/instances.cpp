@@ -35,6 +35,37 @@ void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
     }
 }
 
+void make_polygon_instances(const FrameScene& frame, double pixels_per_metre,
+                            std::vector<PolygonInstance>& out) {
+    const ToPixels to_px{frame.camera, pixels_per_metre};
+    out.clear();
+    for (const PolygonGeom& p : frame.polygons) {
+        PolygonInstance instance{};
+        instance.center[0] = to_px.x(p.x);
+        instance.center[1] = to_px.y(p.y);
+        const double c = std::cos(p.angle), s = std::sin(p.angle);
+        const int count = std::clamp(p.count, 0, 8);
+        double extent = 0;
+        for (int i = 0; i < count; ++i) {
+            const double x = p.vertices[2 * i], y = p.vertices[2 * i + 1];
+            const double px = (c * x - s * y) * pixels_per_metre;
+            const double py = (s * x + c * y) * pixels_per_metre;
+            instance.vertices[2 * i] = static_cast<float>(px);
+            instance.vertices[2 * i + 1] = static_cast<float>(py);
+            extent = std::max(extent, std::hypot(px, py));
+        }
+        const float rounding = to_px.length(p.rounding);
+        instance.shape[0] = static_cast<float>(count);
+        instance.shape[1] = rounding;
+        instance.shape[2] = static_cast<float>(extent) + rounding;
+        instance.color[0] = p.fill.r;
+        instance.color[1] = p.fill.g;
+        instance.color[2] = p.fill.b;
+        instance.color[3] = p.fill.a;
+        out.push_back(instance);
+    }
+}
+
 bool fits_point_sprite(const DiscInstance& disc, int width, int height, float max_point_size) {
     const float size = 2.0f * (std::max(disc.radius, kDiscMinRadius) + kDiscQuadMargin);
     const float inside_x = 0.5f * static_cast<float>(width) - 1.0f;

@@ -40,7 +40,16 @@ struct CapsuleInstance {
 };
 inline constexpr std::uint32_t kCapsuleFlat = 1;  // kFlat in capsule.frag (checked): no rim
 
+struct PolygonInstance {
+    float center[2];     // pixels
+    float vertices[16];  // (x, y) pairs, pixels relative to the centre, rotated, y up
+    float shape[3];      // vertex count, rounding (pixels), extent: farthest point (pixels)
+    float color[4];
+};
+
 // Replaces the contents of `out` (its capacity is reused from frame to frame).
+void make_polygon_instances(const FrameScene& frame, double pixels_per_metre,
+                            std::vector<PolygonInstance>& out);
 void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
                          std::vector<DiscInstance>& out);
 void make_capsule_instances(const FrameScene& frame, double pixels_per_metre,

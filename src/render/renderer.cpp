@@ -53,17 +53,20 @@ struct Renderer::Impl {
     std::optional<OffscreenTarget> target;
     GlProgram disc_program;
     GlProgram capsule_program;
+    GlProgram polygon_program;
     GlProgram glyph_program;
     GLint disc_point_sprites = -1;   // uniform location
     float max_point_size = 0;        // pixels
     std::optional<InstanceStream> disc_stream;
     std::optional<InstanceStream> capsule_stream;
+    std::optional<InstanceStream> polygon_stream;
     std::optional<InstanceStream> glyph_stream;
 
     std::vector<DiscInstance> disc_instances;        // reused from frame to frame
     std::vector<CapsuleInstance> capsule_instances;
     std::vector<CapsuleInstance> trail_instances;
     std::vector<CapsuleInstance> arrow_instances;
+    std::vector<PolygonInstance> polygon_instances;
     std::vector<GlyphInstance> glyph_instances;
     // The last frame of draw(), top row first; sized on first use, so callers of draw_into()
     // do not pay a frame of memory for it.
@@ -128,11 +131,15 @@ Status Renderer::Impl::init(const RendererDef& def) {
     auto capsules = build_program(discreel_shaders::capsule_vert, discreel_shaders::capsule_frag);
     if (!capsules) return Error{"capsule shaders: " + capsules.error().message};
     capsule_program = std::move(capsules.value());
+    auto polygons = build_program(discreel_shaders::polygon_vert, discreel_shaders::polygon_frag);
+    if (!polygons) return Error{"polygon shaders: " + polygons.error().message};
+    polygon_program = std::move(polygons.value());
     auto glyphs = build_program(discreel_shaders::glyph_vert, discreel_shaders::glyph_frag);
     if (!glyphs) return Error{"glyph shaders: " + glyphs.error().message};
     glyph_program = std::move(glyphs.value());
     set_pixels_to_ndc(disc_program, width, height);
     set_pixels_to_ndc(capsule_program, width, height);
+    set_pixels_to_ndc(polygon_program, width, height);
     set_pixels_to_ndc(glyph_program, width, height);
     disc_point_sprites = glGetUniformLocation(disc_program.id(), "u_point_sprites");
     GLfloat point_sizes[2] = {0, 0};
@@ -151,6 +158,14 @@ Status Renderer::Impl::init(const RendererDef& def) {
                                   {2, 1, GL_FLOAT, offsetof(CapsuleInstance, radius)},
                                   {3, 4, GL_FLOAT, offsetof(CapsuleInstance, color)},
                                   {4, 1, GL_UNSIGNED_INT, offsetof(CapsuleInstance, flags)}});
+    polygon_stream = InstanceStream::create(
+        sizeof(PolygonInstance), {{0, 2, GL_FLOAT, offsetof(PolygonInstance, center)},
+                                  {1, 4, GL_FLOAT, offsetof(PolygonInstance, vertices)},
+                                  {2, 4, GL_FLOAT, offsetof(PolygonInstance, vertices) + 16},
+                                  {3, 4, GL_FLOAT, offsetof(PolygonInstance, vertices) + 32},
+                                  {4, 4, GL_FLOAT, offsetof(PolygonInstance, vertices) + 48},
+                                  {5, 3, GL_FLOAT, offsetof(PolygonInstance, shape)},
+                                  {6, 4, GL_FLOAT, offsetof(PolygonInstance, color)}});
     glyph_stream = InstanceStream::create(
         sizeof(GlyphInstance), {{0, 2, GL_FLOAT, offsetof(GlyphInstance, origin)},
                                 {1, 1, GL_FLOAT, offsetof(GlyphInstance, dot)},
@@ -198,6 +213,7 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     const double pixels_per_metre = static_cast<double>(height) / view_height;
     make_capsule_instances(frame, pixels_per_metre, capsule_instances);
     make_trail_instances(frame, pixels_per_metre, trail_instances);
+    make_polygon_instances(frame, pixels_per_metre, polygon_instances);
     make_disc_instances(frame, pixels_per_metre, disc_instances);
     make_arrow_instances(frame, pixels_per_metre, arrow_instances);
     make_text_instances(frame, width, height, glyph_instances);
@@ -209,6 +225,8 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     glUseProgram(capsule_program.id());
     capsule_stream->draw(capsule_instances.data(), capsule_instances.size());
     capsule_stream->draw(trail_instances.data(), trail_instances.size());
+    glUseProgram(polygon_program.id());
+    polygon_stream->draw(polygon_instances.data(), polygon_instances.size());
     draw_discs();
     glUseProgram(capsule_program.id());
     capsule_stream->draw(arrow_instances.data(), arrow_instances.size());

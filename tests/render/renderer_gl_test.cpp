@@ -124,6 +124,50 @@ TEST_F(RendererGLTest, DiscEdgesOverATransparentBackgroundKeepTheDiscColour) {
     EXPECT_GE(edge_pixels, 2);   // one on each side of the disc
 }
 
+PolygonGeom polygon(std::vector<std::pair<float, float>> points, float angle = 0,
+                    float rounding = 0) {
+    PolygonGeom p{.x = 0, .y = 0, .angle = angle, .vertices = {},
+                  .count = static_cast<int>(points.size()), .rounding = rounding, .fill = kRed};
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        p.vertices[2 * i] = points[i].first;
+        p.vertices[2 * i + 1] = points[i].second;
+    }
+    return p;
+}
+
+// Bodies of other shapes are filled exactly inside their outline (rotated, rounded, or a
+// capsule's swept segment) and leave the background untouched a pixel beyond it. At 10 pixels
+// per metre the darker rim and the anti-aliasing ramp take 0.25 m, so "inside" points are
+// deeper than that.
+TEST_F(RendererGLTest, PolygonsFillTheirOutlineAndNothingElse) {
+    const auto check = [&](const PolygonGeom& shape, std::vector<std::pair<float, float>> in,
+                           std::vector<std::pair<float, float>> out) {
+        FrameScene frame = empty_frame();
+        frame.polygons.push_back(shape);
+        const Image image = draw(frame);
+        for (const auto& [x, y] : in) {
+            SCOPED_TRACE(::testing::Message() << "inside at " << x << ", " << y);
+            expect_near_color(pixel_at_world(image.view(), kCamera, x, y), opaque(kRed));
+        }
+        for (const auto& [x, y] : out) {
+            EXPECT_EQ(pixel_at_world(image.view(), kCamera, x, y), opaque(kBackground))
+                << x << ", " << y;
+        }
+    };
+    // A 4 m x 2 m box.
+    check(polygon({{-2, -1}, {2, -1}, {2, 1}, {-2, 1}}), {{0, 0}, {1.7f, 0.7f}, {-1.7f, -0.7f}},
+          {{2.3f, 0}, {0, 1.3f}, {-2.2f, -1.2f}});
+    // A 2 m square turned 45 degrees: a diamond reaching 1.41 m along the axes.
+    check(polygon({{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, std::numbers::pi_v<float> / 4),
+          {{0.8f, 0}, {0, -0.8f}}, {{0.9f, 0.9f}, {1.7f, 0}});
+    // A capsule: the segment from (-1, 0) to (1, 0) swept by 0.5 m.
+    check(polygon({{-1, 0}, {1, 0}}, 0, 0.5f), {{1.1f, 0}, {0, 0.1f}, {-1.1f, -0.1f}},
+          {{0, 0.7f}, {1.4f, 0.4f}, {1.7f, 0}});
+    // A rounded box: core 2 m x 1 m, rounding 0.3 m; the corner is cut round.
+    check(polygon({{-1, -0.5f}, {1, -0.5f}, {1, 0.5f}, {-1, 0.5f}}, 0, 0.3f),
+          {{0.8f, 0}, {0, 0.4f}}, {{1.3f, 0.8f}, {1.45f, 0}, {0, 1.0f}});
+}
+
 TEST_F(RendererGLTest, CornersKeepTheClearColourAroundADisc) {
     FrameScene frame = empty_frame();
     frame.discs.push_back(disc(0, 0, 3, 0, kRed));

@@ -3,6 +3,7 @@
 // pixels. It knows nothing of scenes, physics or encoders: callers fill a FrameScene.
 //     auto renderer = render::Renderer::create({.width = 1280, .height = 720});
 //     auto image = renderer->draw(frame);   // top row first
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -24,6 +25,17 @@ struct DiscGeom {
     float angle = 0;                // radians, counter-clockwise from +x (the spin marker points so)
     Rgba fill;
     bool is_static = false;         // pegs are drawn differently from moving discs
+};
+
+// A rigid body of another shape: a convex outline of 2..8 vertices (2: a capsule's segment)
+// swept by `rounding`, in the body's frame (its centroid at the origin), counter-clockwise.
+struct PolygonGeom {
+    float x = 0, y = 0;             // the body's origin, world metres
+    float angle = 0;                // radians, counter-clockwise
+    std::array<float, 16> vertices{};   // (x, y) pairs, metres, body frame
+    int count = 0;                  // vertices used, 2..8
+    float rounding = 0;             // metres swept around the outline
+    Rgba fill;
 };
 
 struct CapsuleGeom {                // walls: segment a..b swept by a circle of `radius`
@@ -74,6 +86,7 @@ struct FrameScene {
     // Drawn in this order, each list in its own order, later on top.
     std::vector<CapsuleGeom> capsules;
     std::vector<LineGeom> trails;
+    std::vector<PolygonGeom> polygons;
     std::vector<DiscGeom> discs;
     std::vector<ArrowGeom> arrows;
     std::vector<TextGeom> texts;
