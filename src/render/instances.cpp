@@ -44,9 +44,9 @@ void make_polygon_instances(const FrameScene& frame, double pixels_per_metre,
         instance.center[0] = to_px.x(p.x);
         instance.center[1] = to_px.y(p.y);
         const double c = std::cos(p.angle), s = std::sin(p.angle);
-        const int count = std::clamp(p.count, 0, 8);
+        const auto count = static_cast<std::size_t>(std::clamp(p.count, 0, 8));
         double extent = 0;
-        for (int i = 0; i < count; ++i) {
+        for (std::size_t i = 0; i < count; ++i) {
             const double x = p.vertices[2 * i], y = p.vertices[2 * i + 1];
             const double px = (c * x - s * y) * pixels_per_metre;
             const double py = (s * x + c * y) * pixels_per_metre;
