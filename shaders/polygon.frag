@@ -3,12 +3,15 @@
 // distance to an edge's line; outside, the distance to the nearest edge. Edges anti-aliased
 // over one pixel and a darker rim, as on discs.
 in vec2 v_local;
+flat in float v_half_size;
 flat in vec4 v_v01;
 flat in vec4 v_v23;
 flat in vec4 v_v45;
 flat in vec4 v_v67;
 flat in vec2 v_shape;
 flat in vec4 v_color;
+
+uniform bool u_point_sprites;
 
 out vec4 o_color;
 
@@ -28,21 +31,34 @@ vec2 vertex(int i) {
 }
 
 void main() {
+    // As in disc.frag: gl_PointCoord's (0, 0) to (1, 1) maps onto -half to +half, y up.
+    vec2 local = u_point_sprites ? (gl_PointCoord * 2.0 - 1.0) * v_half_size : v_local;
     int count = int(v_shape.x + 0.5);
-    float inside = -1e30;    // largest signed distance to an edge line (counter-clockwise)
-    float nearest = 1e30;    // distance to the nearest edge segment
-    for (int i = 0; i < count; ++i) {
-        vec2 a = vertex(i);
-        vec2 b = vertex(i + 1 == count ? 0 : i + 1);
-        vec2 edge = b - a;
-        float len2 = dot(edge, edge);
-        float t = len2 > 0.0 ? clamp(dot(v_local - a, edge) / len2, 0.0, 1.0) : 0.0;
-        nearest = min(nearest, length(v_local - a - edge * t));
-        if (len2 > 0.0) inside = max(inside, dot(v_local - a, vec2(edge.y, -edge.x)) / sqrt(len2));
-    }
-    // A capsule's two "edges" are one segment both ways: never inside, only near.
-    float dist = (count > 2 && inside <= 0.0) ? inside : nearest;
     float rounding = v_shape.y;
+    // Inside the core the largest signed distance to an edge line is the distance to the
+    // outline; outside it is a lower bound of it, so far pixels are dropped before the exact
+    // distance to the nearest edge is taken (on llvmpipe the fragment shader is the cost).
+    float inside = -1e30;
+    if (count > 2) {
+        for (int i = 0; i < count; ++i) {
+            vec2 a = vertex(i);
+            vec2 edge = vertex(i + 1 == count ? 0 : i + 1) - a;
+            float scale = inversesqrt(max(dot(edge, edge), 1e-12));
+            inside = max(inside, dot(local - a, vec2(edge.y, -edge.x)) * scale);
+        }
+        if (inside - rounding >= 0.5) discard;
+    }
+    float dist = inside;
+    if (count <= 2 || inside > 0.0) {
+        dist = 1e30;
+        for (int i = 0; i < count; ++i) {
+            vec2 a = vertex(i);
+            vec2 edge = vertex(i + 1 == count ? 0 : i + 1) - a;
+            float len2 = dot(edge, edge);
+            float t = len2 > 0.0 ? clamp(dot(local - a, edge) / len2, 0.0, 1.0) : 0.0;
+            dist = min(dist, length(local - a - edge * t));
+        }
+    }
     float edge = coverage(dist - rounding);
     if (edge <= 0.0) discard;
 

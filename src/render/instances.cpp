@@ -66,12 +66,28 @@ void make_polygon_instances(const FrameScene& frame, double pixels_per_metre,
     }
 }
 
-bool fits_point_sprite(const DiscInstance& disc, int width, int height, float max_point_size) {
-    const float size = 2.0f * (std::max(disc.radius, kDiscMinRadius) + kDiscQuadMargin);
+namespace {
+
+// GL drops a point whose centre leaves the view (this keeps it a pixel inside) and caps the
+// size of a sprite.
+bool sprite_fits(const float* center, float size, int width, int height, float max_point_size) {
     const float inside_x = 0.5f * static_cast<float>(width) - 1.0f;
     const float inside_y = 0.5f * static_cast<float>(height) - 1.0f;
-    return size <= max_point_size && std::abs(disc.center[0]) <= inside_x &&
-           std::abs(disc.center[1]) <= inside_y;
+    return size <= max_point_size && std::abs(center[0]) <= inside_x &&
+           std::abs(center[1]) <= inside_y;
+}
+
+}  // namespace
+
+bool fits_point_sprite(const DiscInstance& disc, int width, int height, float max_point_size) {
+    const float size = 2.0f * (std::max(disc.radius, kDiscMinRadius) + kDiscQuadMargin);
+    return sprite_fits(disc.center, size, width, height, max_point_size);
+}
+
+bool fits_point_sprite(const PolygonInstance& polygon, int width, int height,
+                       float max_point_size) {
+    const float size = 2.0f * (polygon.shape[2] + kPolygonQuadMargin);
+    return sprite_fits(polygon.center, size, width, height, max_point_size);
 }
 
 void make_capsule_instances(const FrameScene& frame, double pixels_per_metre,

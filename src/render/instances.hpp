@@ -50,6 +50,10 @@ struct PolygonInstance {
 // Replaces the contents of `out` (its capacity is reused from frame to frame).
 void make_polygon_instances(const FrameScene& frame, double pixels_per_metre,
                             std::vector<PolygonInstance>& out);
+// The same for a polygon, whose sprite is 2 (extent + kPolygonQuadMargin) pixels across.
+inline constexpr float kPolygonQuadMargin = 1.0f;   // kQuadMargin in polygon.vert
+bool fits_point_sprite(const PolygonInstance& polygon, int width, int height,
+                       float max_point_size);
 void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
                          std::vector<DiscInstance>& out);
 void make_capsule_instances(const FrameScene& frame, double pixels_per_metre,

@@ -55,7 +55,8 @@ struct Renderer::Impl {
     GlProgram capsule_program;
     GlProgram polygon_program;
     GlProgram glyph_program;
-    GLint disc_point_sprites = -1;   // uniform location
+    GLint disc_point_sprites = -1;   // uniform locations
+    GLint polygon_point_sprites = -1;
     float max_point_size = 0;        // pixels
     std::optional<InstanceStream> disc_stream;
     std::optional<InstanceStream> capsule_stream;
@@ -84,6 +85,7 @@ struct Renderer::Impl {
     Status init(const RendererDef& def);
     Expected<ImageView> draw(const FrameScene& frame, std::span<std::uint8_t> out);
     void draw_discs();
+    void draw_polygons();
 };
 
 // As point sprites where they fit, as quads where not, in runs that keep the discs' order (the
@@ -100,6 +102,25 @@ void Renderer::Impl::draw_discs() {
         while (end < disc_instances.size() && as_point(disc_instances[end]) == points) ++end;
         glUniform1i(disc_point_sprites, points ? 1 : 0);
         disc_stream->draw_uploaded(
+            points ? InstanceStream::Shape::point : InstanceStream::Shape::quad, first,
+            end - first);
+        first = end;
+    }
+}
+
+// As draw_discs: points where they fit, quads where not, in runs that keep the order.
+void Renderer::Impl::draw_polygons() {
+    glUseProgram(polygon_program.id());
+    polygon_stream->upload(polygon_instances.data(), polygon_instances.size());
+    const auto as_point = [&](const PolygonInstance& p) {
+        return fits_point_sprite(p, width, height, max_point_size);
+    };
+    for (std::size_t first = 0; first < polygon_instances.size();) {
+        const bool points = as_point(polygon_instances[first]);
+        std::size_t end = first + 1;
+        while (end < polygon_instances.size() && as_point(polygon_instances[end]) == points) ++end;
+        glUniform1i(polygon_point_sprites, points ? 1 : 0);
+        polygon_stream->draw_uploaded(
             points ? InstanceStream::Shape::point : InstanceStream::Shape::quad, first,
             end - first);
         first = end;
@@ -142,6 +163,7 @@ Status Renderer::Impl::init(const RendererDef& def) {
     set_pixels_to_ndc(polygon_program, width, height);
     set_pixels_to_ndc(glyph_program, width, height);
     disc_point_sprites = glGetUniformLocation(disc_program.id(), "u_point_sprites");
+    polygon_point_sprites = glGetUniformLocation(polygon_program.id(), "u_point_sprites");
     GLfloat point_sizes[2] = {0, 0};
     glGetFloatv(GL_POINT_SIZE_RANGE, point_sizes);
     max_point_size = point_sizes[1];
@@ -225,8 +247,7 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     glUseProgram(capsule_program.id());
     capsule_stream->draw(capsule_instances.data(), capsule_instances.size());
     capsule_stream->draw(trail_instances.data(), trail_instances.size());
-    glUseProgram(polygon_program.id());
-    polygon_stream->draw(polygon_instances.data(), polygon_instances.size());
+    draw_polygons();
     draw_discs();
     glUseProgram(capsule_program.id());
     capsule_stream->draw(arrow_instances.data(), arrow_instances.size());

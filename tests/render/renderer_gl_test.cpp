@@ -274,6 +274,31 @@ TEST_F(RendererGLTest, ADiscCutByTheFrameEdgeIsDrawnLikeOneInside) {
     }
 }
 
+// Polygons too are point sprites where they fit and quads where not (a centre beyond the edge):
+// a turned box cut by the frame's edge looks as it does further in.
+TEST_F(RendererGLTest, APolygonCutByTheFrameEdgeIsDrawnLikeOneInside) {
+    FrameScene cut = empty_frame();
+    PolygonGeom box = polygon({{-1, -0.6f}, {1, -0.6f}, {1, 0.6f}, {-1, 0.6f}}, 0.4f, 0.1f);
+    box.x = 8.3f;
+    cut.polygons.push_back(box);
+    FrameScene inside = cut;
+    inside.camera.center_x = 1;
+    const Image a = draw(cut);
+    const Image b = draw(inside);
+    expect_near_color(pixel_at_world(a.view(), kCamera, 7.6, 0.2), opaque(kRed));
+    for (int row = 0; row < kHeight; ++row) {
+        for (int column = 140; column < kWidth; ++column) {
+            const Pixel expected = pixel_at(b.view(), column - 10, row);
+            const Pixel actual = pixel_at(a.view(), column, row);
+            // As for discs: the two primitives interpolate the local coordinates differently.
+            for (int c = 0; c < 4; ++c) {
+                ASSERT_NEAR(actual[c], expected[c], 1)
+                    << "column " << column << ", row " << row << ", channel " << c;
+            }
+        }
+    }
+}
+
 TEST_F(RendererGLTest, DiscsDrawnAsQuadsAndAsPointsKeepTheirOrder) {
     // Red's centre is outside the frame (a quad); blue's is inside (a point sprite).
     FrameScene blue_on_top = empty_frame();

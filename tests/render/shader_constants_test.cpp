@@ -63,6 +63,10 @@ TEST(ShaderConstantsTest, DiscQuadSizeMatchesThePointSpriteTest) {
     EXPECT_EQ(shader_float(discreel_shaders::disc_vert, "kQuadMargin"), kDiscQuadMargin);
 }
 
+TEST(ShaderConstantsTest, PolygonQuadSizeMatchesThePointSpriteTest) {
+    EXPECT_EQ(shader_float(discreel_shaders::polygon_vert, "kQuadMargin"), kPolygonQuadMargin);
+}
+
 TEST(ShaderConstantsTest, CapsuleFlagMatchesTheInstanceRecord) {
     EXPECT_EQ(shader_uint(discreel_shaders::capsule_frag, "kFlat"), kCapsuleFlat);
 }
