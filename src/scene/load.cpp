@@ -339,8 +339,10 @@ std::vector<std::size_t> unquoted_flow_colours(std::string_view text) {
             std::size_t end = i + 1;
             while (end < text.size() && is_hex(text[end])) ++end;
             const std::size_t digits = end - i - 1;
-            const bool terminated = end == text.size() ||
-                                    std::string_view(" \t\n,}]").find(text[end]) !=
+            // A colour is followed by what ends a flow item; a comment's text (`#add`,
+            // `#cafe`) at the end of a line inside a multi-line [...] is not taken for one.
+            const bool terminated = end < text.size() &&
+                                    std::string_view(",}]").find(text[end]) !=
                                         std::string_view::npos;
             if (depth > 0 && (digits == 3 || digits == 4 || digits == 6 || digits == 8) &&
                 terminated) {

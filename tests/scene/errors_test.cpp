@@ -50,6 +50,19 @@ TEST(Errors, ColoursMustBeHexAndAnUnquotedHashIsExplained) {
                     "unquoted '#' as the start of a comment)"});
 }
 
+// In flow style the comment also swallows the closing bracket; the colour is pointed at and the
+// file's other problems are still found. A comment that merely looks like hex is left alone.
+TEST(Errors, AnUnquotedColourInFlowStyleIsPointedAt) {
+    EXPECT_EQ(problems("version: 1\ndiscs:\n  - {position: [1, 1], radius: 0.2, color: #ff0000}\n"
+                       "  - {position: [3, 1], radius: 0}\n"),
+              (Lines{"s.yaml:3:44: a colour in {...} or [...] must be quoted: YAML reads an "
+                     "unquoted '#' as the start of a comment, which hides the closing bracket; "
+                     "write color: \"#rrggbb\"",
+                     "s.yaml:4:32: discs[1].radius: must be greater than 0, got 0"}));
+    EXPECT_EQ(problems("version: 1\ndiscs: [\n  {position: [1, 1], radius: 0.2},  #add\n]\n"),
+              Lines{});
+}
+
 TEST(Errors, ValuesOutOfRangeStateTheRange) {
     EXPECT_EQ(problems("version: 1\nvideo: {fps: 0, duration: 4000}\n"
                        "physics: {rate: 200000, restitution: -0.5, friction: -1}\n"),
