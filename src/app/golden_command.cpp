@@ -199,7 +199,8 @@ Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& load
         remove_if_present(diff_png);
         std::optional<Image> other_size;
         if (o.report) {
-            if (auto decoded = encode::read_png(golden_png.string())) other_size = std::move(*decoded);
+            auto decoded = encode::read_png(golden_png.string());
+            if (decoded) other_size = std::move(*decoded);
         }
         if (Status s = add_images(other_size, nullptr); !s) return s.error();
     }

@@ -8,7 +8,9 @@ namespace discreel::physics::detail {
 namespace {
 
 // Feature ids: which vertex or edge of each shape a point comes from, a byte each.
-std::uint16_t make_id(int a, int b) { return static_cast<std::uint16_t>((a & 0xff) << 8 | (b & 0xff)); }
+std::uint16_t make_id(int a, int b) {
+    return static_cast<std::uint16_t>((a & 0xff) << 8 | (b & 0xff));
+}
 
 // Circle against circle: centres c1, c2 (world), radii summed.
 Manifold circles(const Polygon& a, const Transform& xa, const Polygon& b, const Transform& xb,
@@ -179,7 +181,9 @@ Manifold polygons(const Polygon& a, const Transform& xa, const Polygon& b, const
 
 enum class ShapeClass { circle, polygon };
 
-ShapeClass class_of(const Polygon& p) { return p.count == 1 ? ShapeClass::circle : ShapeClass::polygon; }
+ShapeClass class_of(const Polygon& p) {
+    return p.count == 1 ? ShapeClass::circle : ShapeClass::polygon;
+}
 
 using PairFunction = Manifold (*)(const Polygon&, const Transform&, const Polygon&,
                                   const Transform&, double);

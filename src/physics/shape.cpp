@@ -56,7 +56,9 @@ Expected<PolygonResult> make_polygon(std::span<const Vec2> points, double roundi
     double area2 = 0;
     for (int i = 0; i < n; ++i) area2 += cross(v[i], v[(i + 1) % n]);
     const double eps = tiny * std::max(scale * scale, 1e-12);
-    if (!(std::abs(area2) > eps)) return Error{"the polygon has no area (its points are on a line)"};
+    if (!(std::abs(area2) > eps)) {
+        return Error{"the polygon has no area (its points are on a line)"};
+    }
     if (area2 < 0) std::reverse(v.begin(), v.begin() + n);   // counter-clockwise from here on
     for (int i = 0; i < n; ++i) {
         const V2& a = v[i];
@@ -200,6 +202,24 @@ double bounding_radius(const Polygon& shape) {
     double farthest = 0;
     for (int i = 0; i < shape.count; ++i) farthest = std::max(farthest, shape.vertices[i].norm());
     return farthest + shape.radius;
+}
+
+std::array<Slab, 4> container_slabs(const V2& lo, const V2& hi) {
+    // A container without an inside still gets slabs of some size (make_box needs one).
+    const double width = std::max(hi.x() - lo.x(), tiny), height = std::max(hi.y() - lo.y(), tiny);
+    const double depth = std::max(width, height);
+    const auto slab = [](double w, double h, const V2& centre) {
+        Slab s;
+        s.shape = *make_box(w, h);   // w, h >= tiny > 0, no rounding: always made
+        s.centre = centre;
+        return s;
+    };
+    const double outer_w = width + 2 * depth;
+    const V2 middle = 0.5 * (lo + hi);
+    return {slab(outer_w, depth, V2(middle.x(), lo.y() - depth / 2)),    // floor
+            slab(outer_w, depth, V2(middle.x(), hi.y() + depth / 2)),    // ceiling
+            slab(depth, height, V2(lo.x() - depth / 2, middle.y())),     // left
+            slab(depth, height, V2(hi.x() + depth / 2, middle.y()))};    // right
 }
 
 }  // namespace discreel::physics::detail

@@ -53,4 +53,13 @@ MassProperties mass_properties(const Polygon& shape, double density);
 // The farthest point of the shape from its centroid, metres: the trace's bounding radius.
 double bounding_radius(const Polygon& shape);
 
+// A box wall (a closed container whose inside is lo..hi) as four solid slabs around that
+// inside, for bodies of any shape: each as deep as the container is wide or high, so a body
+// pushed into one is pushed back inside, never through to the far side.
+struct Slab {
+    Polygon shape;
+    V2 centre = V2::Zero();   // metres, where the slab's centroid is
+};
+std::array<Slab, 4> container_slabs(const V2& lo, const V2& hi);
+
 }  // namespace discreel::physics::detail

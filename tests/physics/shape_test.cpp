@@ -214,5 +214,29 @@ TEST(ManifoldTest, CapsulesParallelAndCrossed) {
     EXPECT_NEAR(m.normal.y(), 1, 1e-12);
 }
 
+// Box walls as slabs around the container's inside: a crate on the floor touches the floor
+// slab at its two bottom corners and nothing else; one pushed into a corner touches two slabs.
+TEST(ManifoldTest, ContainerSlabsHoldBodiesInside) {
+    const auto slabs = container_slabs(V2(0, 0), V2(10, 5));
+    const Polygon crate = box(1, 1);
+    const auto touching = [&](const V2& at, double angle) {
+        std::vector<Manifold> found;
+        for (const Slab& s : slabs) {
+            const Manifold m = collide(s.shape, Transform::of(s.centre, 0), crate,
+                                       Transform::of(at, angle), 0.01);
+            if (m.count > 0) found.push_back(m);
+        }
+        return found;
+    };
+    auto found = touching(V2(5, 0.501), 0);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].count, 2);
+    EXPECT_NEAR(found[0].normal.y(), 1, 1e-12);   // from the slab into the container
+    EXPECT_NEAR(found[0].points[0].separation, 0.001, 1e-12);
+    found = touching(V2(9.5, 4.5), 0);   // the top right corner
+    ASSERT_EQ(found.size(), 2u);
+    for (const Manifold& m : found) EXPECT_NEAR(m.points[0].separation, 0, 1e-12);
+}
+
 }  // namespace
 }  // namespace discreel::physics::detail
