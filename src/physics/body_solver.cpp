@@ -35,6 +35,10 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
     // ones are a body settling, which would otherwise hop by e g dt every step.
     const double settle = 2 * gravity.norm() * dt;
 
+    std::vector<double> reach(bodies.size());   // bounding radius plus the speculative distance
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        reach[i] = bounding_radius(bodies[i].shape) + 0.5 * def_.speculative;
+    }
     std::vector<PairContact> fresh;
     std::vector<double> restitution;                 // per pair
     std::vector<std::array<double, 2>> approach;     // per point: normal velocity before, m/s
@@ -43,6 +47,8 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
             const RigidBody& a = bodies[i];
             const RigidBody& b = bodies[j];
             if (a.inv_mass == 0 && b.inv_mass == 0) continue;
+            const double r = reach[i] + reach[j];
+            if ((a.x - b.x).squaredNorm() > r * r) continue;   // bounding circles apart
             PairContact pc{.a = i, .b = j, .manifold = {}, .contact = {}};
             pc.manifold = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
                                   Transform::of(b.x, b.angle), def_.speculative);
