@@ -84,45 +84,29 @@ struct Renderer::Impl {
 
     Status init(const RendererDef& def);
     Expected<ImageView> draw(const FrameScene& frame, std::span<std::uint8_t> out);
-    void draw_discs();
-    void draw_polygons();
+    template <class Instance>
+    void draw_points_or_quads(const GlProgram& program, InstanceStream& stream,
+                              const std::vector<Instance>& instances, GLint point_sprites);
 };
 
-// As point sprites where they fit, as quads where not, in runs that keep the discs' order (the
-// later disc is blended over the earlier one where their edges meet).
-void Renderer::Impl::draw_discs() {
-    glUseProgram(disc_program.id());
-    disc_stream->upload(disc_instances.data(), disc_instances.size());
-    const auto as_point = [&](const DiscInstance& d) {
-        return fits_point_sprite(d, width, height, max_point_size);
+// As point sprites where they fit, as quads where not, in runs that keep the instances' order
+// (the later one is blended over the earlier where their edges meet). Discs and polygons alike.
+template <class Instance>
+void Renderer::Impl::draw_points_or_quads(const GlProgram& program, InstanceStream& stream,
+                                          const std::vector<Instance>& instances,
+                                          GLint point_sprites) {
+    glUseProgram(program.id());
+    stream.upload(instances.data(), instances.size());
+    const auto as_point = [&](const Instance& instance) {
+        return fits_point_sprite(instance, width, height, max_point_size);
     };
-    for (std::size_t first = 0; first < disc_instances.size();) {
-        const bool points = as_point(disc_instances[first]);
+    for (std::size_t first = 0; first < instances.size();) {
+        const bool points = as_point(instances[first]);
         std::size_t end = first + 1;
-        while (end < disc_instances.size() && as_point(disc_instances[end]) == points) ++end;
-        glUniform1i(disc_point_sprites, points ? 1 : 0);
-        disc_stream->draw_uploaded(
-            points ? InstanceStream::Shape::point : InstanceStream::Shape::quad, first,
-            end - first);
-        first = end;
-    }
-}
-
-// As draw_discs: points where they fit, quads where not, in runs that keep the order.
-void Renderer::Impl::draw_polygons() {
-    glUseProgram(polygon_program.id());
-    polygon_stream->upload(polygon_instances.data(), polygon_instances.size());
-    const auto as_point = [&](const PolygonInstance& p) {
-        return fits_point_sprite(p, width, height, max_point_size);
-    };
-    for (std::size_t first = 0; first < polygon_instances.size();) {
-        const bool points = as_point(polygon_instances[first]);
-        std::size_t end = first + 1;
-        while (end < polygon_instances.size() && as_point(polygon_instances[end]) == points) ++end;
-        glUniform1i(polygon_point_sprites, points ? 1 : 0);
-        polygon_stream->draw_uploaded(
-            points ? InstanceStream::Shape::point : InstanceStream::Shape::quad, first,
-            end - first);
+        while (end < instances.size() && as_point(instances[end]) == points) ++end;
+        glUniform1i(point_sprites, points ? 1 : 0);
+        stream.draw_uploaded(points ? InstanceStream::Shape::point : InstanceStream::Shape::quad,
+                             first, end - first);
         first = end;
     }
 }
@@ -247,8 +231,9 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     glUseProgram(capsule_program.id());
     capsule_stream->draw(capsule_instances.data(), capsule_instances.size());
     capsule_stream->draw(trail_instances.data(), trail_instances.size());
-    draw_polygons();
-    draw_discs();
+    draw_points_or_quads(polygon_program, *polygon_stream, polygon_instances,
+                         polygon_point_sprites);
+    draw_points_or_quads(disc_program, *disc_stream, disc_instances, disc_point_sprites);
     glUseProgram(capsule_program.id());
     capsule_stream->draw(arrow_instances.data(), arrow_instances.size());
     glUseProgram(glyph_program.id());
