@@ -95,9 +95,11 @@ struct FrameCheck {
 };
 
 // Compares one rendered frame with its golden; writes .actual.png and .diff.png beside a
-// golden it does not match. Fails (run-time error) only when those files cannot be written.
+// golden it does not match, unless the run will replace that golden anyway
+// (--update changed). Fails (run-time error) only when those files cannot be written.
 Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& loaded, int frame,
                                  const ImageView& actual, const std::string& renderer) {
+    const bool write_files = o.update != UpdateMode::changed;
     const std::string name = loaded.scene.name;
     const fs::path scene_dir = fs::path(o.dir) / name;
     const std::string stem = "frame_" + std::to_string(frame);
@@ -108,53 +110,47 @@ Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& load
     check.result = {.scene = name, .name = stem, .passed = true, .message = {}, .details = {}};
     golden::CaseResult& result = check.result;
     // The report shows the actual frame, and the golden where there is one to show.
+    const auto uri_of = [](const ImageView& image, std::string& uri) -> Status {
+        auto made = encode::png_data_uri(image);
+        if (!made) return made.error();
+        uri = std::move(*made);
+        return {};
+    };
     const auto add_images = [&](const std::optional<Image>& golden_image,
                                 const Image* diff) -> Status {
         if (!o.report) return {};
-        auto uri = encode::png_data_uri(actual);
-        if (!uri) return uri.error();
-        check.actual_image = std::move(*uri);
-        if (golden_image) {
-            auto golden_uri = encode::png_data_uri(golden_image->view());
-            if (!golden_uri) return golden_uri.error();
-            check.golden_image = std::move(*golden_uri);
-        }
-        if (diff) {
-            auto diff_uri = encode::png_data_uri(diff->view());
-            if (!diff_uri) return diff_uri.error();
-            check.diff_image = std::move(*diff_uri);
-        }
-        return {};
+        Status made = uri_of(actual, check.actual_image);
+        if (made && golden_image) made = uri_of(golden_image->view(), check.golden_image);
+        if (made && diff) made = uri_of(diff->view(), check.diff_image);
+        return made;
+    };
+    // No usable golden (none, or a file that is no PNG): this frame fails, the run goes on.
+    const auto no_golden = [&](const std::string& message) -> Expected<FrameCheck> {
+        result.passed = false;
+        result.message = message;
+        if (Status s = add_images(std::nullopt, nullptr); !s) return s.error();
+        return check;
     };
 
     std::error_code exists_error;
     if (!fs::exists(golden_png, exists_error)) {
-        result.passed = false;
         check.missing = true;
-        result.message = "no golden image " + golden_png.string() + "; create it with: " +
-                         update_command(o, loaded.path);
-        if (Status s = add_images(std::nullopt, nullptr); !s) return s.error();
-        return check;
+        return no_golden("no golden image " + golden_png.string() + "; create it with: " +
+                         update_command(o, loaded.path));
     }
     // The header first: a golden of another size is reported without decoding it, and a
     // file that is no PNG (a directory, /dev/zero) is this frame's failure, not the run's.
     const auto golden_size = encode::read_png_size(golden_png.string());
     if (!golden_size) {
-        result.passed = false;
-        result.message = golden_size.error().message + "; recreate it with: " +
-                         update_command(o, loaded.path);
-        if (Status s = add_images(std::nullopt, nullptr); !s) return s.error();
-        return check;
+        return no_golden(golden_size.error().message + "; recreate it with: " +
+                         update_command(o, loaded.path));
     }
     std::optional<Image> golden;
     if (*golden_size == encode::ImageSize{actual.width, actual.height}) {
         auto decoded = encode::read_png(golden_png.string());
         if (!decoded) {
-            result.passed = false;
-            result.message = decoded.error().message + "; recreate it with: " +
-                             update_command(o, loaded.path);
-            if (Status s = add_images(std::nullopt, nullptr); !s) return s.error();
-            return check;
+            return no_golden(decoded.error().message + "; recreate it with: " +
+                             update_command(o, loaded.path));
         }
         golden = std::move(*decoded);
     }
@@ -178,7 +174,9 @@ Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& load
     }
 
     result.passed = false;
-    if (Status s = encode::write_png(actual_png.string(), actual); !s) return s.error();
+    if (write_files) {
+        if (Status s = encode::write_png(actual_png.string(), actual); !s) return s.error();
+    }
     std::string written = "wrote " + actual_png.string();
     if (c.same_size) {
         result.message = std::to_string(c.differing_pixels) + " pixels differ (" +
@@ -186,7 +184,10 @@ Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& load
                          std::to_string(c.pixel_count) + ", " + std::to_string(allowed) +
                          " allowed; largest colour distance " + fixed(c.max_delta, 3) + ", " +
                          std::to_string(c.anti_aliased_pixels) + " anti-aliased pixels ignored)";
-        if (Status s = encode::write_png(diff_png.string(), c.diff.view()); !s) return s.error();
+        if (write_files) {
+            Status s = encode::write_png(diff_png.string(), c.diff.view());
+            if (!s) return s.error();
+        }
         written += " and " + diff_png.string();
         if (Status s = add_images(golden, &c.diff); !s) return s.error();
     } else {
@@ -204,8 +205,10 @@ Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& load
         }
         if (Status s = add_images(other_size, nullptr); !s) return s.error();
     }
-    result.details = result.message + "\n" + written;
-    check.written = written;
+    if (write_files) {
+        result.details = result.message + "\n" + written;
+        check.written = written;
+    }
     if (const auto stored = golden::read_metadata(scene_dir); stored && stored->renderer != renderer) {
         const std::string note = "rendered with a different renderer (stored: " +
                                  stored->renderer + ", now: " + renderer + ")";
