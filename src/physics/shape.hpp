@@ -11,6 +11,7 @@
 
 #include "body.hpp"
 #include "discreel/expected.hpp"
+#include "discreel/shapes.hpp"
 #include "discreel/vec2.hpp"
 
 namespace discreel::physics::detail {
@@ -40,6 +41,8 @@ Expected<PolygonResult> make_polygon(std::span<const Vec2> points, double roundi
 // A capsule: a segment of `length` along the body's x axis, swept by `radius`.
 Expected<Polygon> make_capsule(double length, double radius);
 Polygon make_circle(double radius);
+// The public plain-data shape (discreel/shapes.hpp) as a Polygon, normals computed.
+Polygon to_polygon(const Shape& shape);
 
 struct MassProperties {
     double mass = 0.0;      // kg

@@ -115,6 +115,7 @@ struct World::Impl {
     bool list_kept = false;  // BroadPhase::keeps() held for every moving disc after the last step
     std::size_t contacts_last_step = 0;
     std::optional<NonFiniteState> failure;
+    std::size_t respawns_applied = 0;
 };
 
 void World::Impl::step() {
@@ -289,6 +290,7 @@ int World::rate() const { return impl_->rate; }
 double World::time() const { return static_cast<double>(impl_->steps) / impl_->rate; }
 int World::substeps() const { return impl_->substeps; }
 std::span<const DiscState> World::discs() const { return impl_->publish(); }
+std::size_t World::respawns_applied() const { return impl_->respawns_applied; }
 std::vector<ContactEvent> World::take_events() { return std::exchange(impl_->events, {}); }
 std::optional<NonFiniteState> World::failure() const { return impl_->failure; }
 

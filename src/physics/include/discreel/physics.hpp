@@ -1,6 +1,6 @@
 #pragma once
-// 2-D rigid discs against static walls, stepped at a fixed rate. Plain definitions in, plain
-// state out: no YAML, GL or FFmpeg here. Usage:
+// 2-D rigid bodies (discs, and convex shapes: shapes.hpp) against static walls, stepped at a
+// fixed rate. Plain definitions in, plain state out: no YAML, GL or FFmpeg here. Usage:
 //     physics::World world(def);
 //     while (world.time() < t_end) world.step();
 //     for (const auto& d : world.discs()) ...
@@ -12,17 +12,23 @@
 #include <span>
 #include <vector>
 
+#include "discreel/shapes.hpp"
 #include "discreel/vec2.hpp"
 
 namespace discreel::physics {
 
+// A body: a disc of `radius`, or, with `shape`, any convex shape (the "discs" of the World's
+// interface are its bodies of every shape, in one numbering). A world whose bodies are all
+// plain discs is stepped by the disc solver; one with any shape by the manifold solver
+// (docs/physics.md).
 struct DiscDef {
-    Vec2 position;                 // metres
+    Vec2 position;                 // metres; the centroid for a shape
     Vec2 velocity;                 // m/s
     double angle = 0.0;            // radians
     double angular_velocity = 0.0; // rad/s, counter-clockwise positive
-    double radius = 0.5;           // metres, > 0
+    double radius = 0.5;           // metres, > 0; ignored when `shape` is set
     double mass = 1.0;             // kg, > 0; ignored for static discs
+    std::optional<Shape> shape;    // unset: a disc of `radius`
     double restitution = 0.8;      // coefficient of restitution, 0..1
     double friction = 0.2;         // Coulomb coefficient, >= 0
     bool is_static = false;        // a fixed peg: collides, never moves
@@ -75,6 +81,19 @@ struct Envelope {
 
 inline constexpr Envelope envelope{};
 
+// The moment of inertia about the centroid of a body of this definition's shape and mass,
+// kg m^2 (m r^2 / 2 for a disc).
+double inertia_of(const DiscDef& def);
+
+// Bodies [first, first + bodies.size()) are replaced by `bodies` at the first step that starts
+// at or after `at`: a generator's set removed and a new one scattered. Contacts of the old
+// bodies are forgotten; throws keep acting on the body slots by index.
+struct RespawnDef {
+    double at = 0.0;               // seconds
+    std::size_t first = 0;         // index into WorldDef::discs
+    std::vector<DiscDef> bodies;
+};
+
 struct WorldDef {
     Vec2 gravity{0.0, -9.81};      // m/s^2
     int rate = 480;                // steps per second; one step() advances 1/rate s
@@ -85,6 +104,7 @@ struct WorldDef {
     std::vector<DiscDef> discs;
     std::vector<WallDef> walls;
     std::vector<ThrowDef> throws;
+    std::vector<RespawnDef> respawns;   // in order of `at`
 };
 
 struct DiscState {
@@ -94,14 +114,15 @@ struct DiscState {
     double angular_velocity = 0.0; // rad/s
 };
 
-// A pair that was not touching one step before and touches now.
+// A pair that was not touching one step before and touches now: one per pair of bodies,
+// whatever the number of points their contact has.
 struct ContactEvent {
     double t = 0.0;                // seconds, time of the step that found it
     std::size_t a = 0;             // disc index
     enum class Other { disc, wall };
     Other other_kind = Other::disc;
     std::size_t other = 0;         // disc index or index into WorldDef::walls
-    double impulse = 0.0;          // N*s, normal impulse applied in that step
+    double impulse = 0.0;          // N*s, total normal impulse applied in that step
 };
 
 // A snapshot of quantities the CLI's summary and tests read; O(discs + contacts) to compute.
@@ -135,6 +156,9 @@ public:
 
     // Same order as WorldDef::discs; valid until the next step() (ask again after it).
     std::span<const DiscState> discs() const;
+
+    // How many of WorldDef::respawns have been carried out.
+    std::size_t respawns_applied() const;
 
     // Contacts that began during the steps since the last call, in a deterministic order.
     std::vector<ContactEvent> take_events();
