@@ -39,15 +39,33 @@ void set_restitution_targets(BlockContact& c, const BlockBody& a, const BlockBod
     }
 }
 
-void solve_block(BlockContact& c, BlockBody& a, BlockBody& b) {
+void prepare_block(BlockContact& c, const BlockBody& a, const BlockBody& b) {
     const V2 tangent = -perp(c.normal);
     for (int k = 0; k < c.count; ++k) {
         BlockPoint& p = c.points[k];
         const double k_t = inverse_mass_along(a, b, p, tangent);
-        if (k_t <= 0) continue;
+        p.tangent_mass = k_t > 0 ? 1 / k_t : 0;
+    }
+    const V2& n = c.normal;
+    const BlockPoint& p1 = c.points[0];
+    const BlockPoint& p2 = c.points[c.count > 1 ? 1 : 0];
+    const double ra1 = cross(p1.ra, n), rb1 = cross(p1.rb, n);
+    const double ra2 = cross(p2.ra, n), rb2 = cross(p2.rb, n);
+    const double m = a.inv_mass + b.inv_mass;
+    c.k11 = m + a.inv_inertia * ra1 * ra1 + b.inv_inertia * rb1 * rb1;
+    c.k22 = m + a.inv_inertia * ra2 * ra2 + b.inv_inertia * rb2 * rb2;
+    c.k12 = m + a.inv_inertia * ra1 * ra2 + b.inv_inertia * rb1 * rb2;
+}
+
+void solve_block(BlockContact& c, BlockBody& a, BlockBody& b) {
+    const V2 tangent = -perp(c.normal);
+    for (int k = 0; k < c.count; ++k) {
+        BlockPoint& p = c.points[k];
+        if (p.tangent_mass <= 0) continue;
         const double vt = (velocity_at(b, p.rb) - velocity_at(a, p.ra)).dot(tangent);
         const double limit = c.friction * p.normal_impulse;
-        const double total = std::clamp(p.tangent_impulse - vt / k_t, -limit, limit);
+        const double total =
+            std::clamp(p.tangent_impulse - vt * p.tangent_mass, -limit, limit);
         const double change = total - p.tangent_impulse;
         p.tangent_impulse = total;
         apply(a, b, p, change * tangent);
@@ -55,7 +73,7 @@ void solve_block(BlockContact& c, BlockBody& a, BlockBody& b) {
 
     if (c.count == 1) {
         BlockPoint& p = c.points[0];
-        const double k_n = inverse_mass_along(a, b, p, c.normal);
+        const double k_n = c.k11;
         if (k_n <= 0) return;
         const double vn = normal_velocity(c, p, a, b);
         const double total = std::max(0.0, p.normal_impulse - (vn - p.target) / k_n);
@@ -70,12 +88,7 @@ void solve_block(BlockContact& c, BlockBody& a, BlockBody& b) {
     BlockPoint& p1 = c.points[0];
     BlockPoint& p2 = c.points[1];
     const V2& n = c.normal;
-    const double ra1 = cross(p1.ra, n), rb1 = cross(p1.rb, n);
-    const double ra2 = cross(p2.ra, n), rb2 = cross(p2.rb, n);
-    const double m = a.inv_mass + b.inv_mass;
-    const double k11 = m + a.inv_inertia * ra1 * ra1 + b.inv_inertia * rb1 * rb1;
-    const double k22 = m + a.inv_inertia * ra2 * ra2 + b.inv_inertia * rb2 * rb2;
-    const double k12 = m + a.inv_inertia * ra1 * ra2 + b.inv_inertia * rb1 * rb2;
+    const double k11 = c.k11, k22 = c.k22, k12 = c.k12;
     const std::array<double, 2> old{p1.normal_impulse, p2.normal_impulse};
     // The velocities beyond target with the accumulated impulses taken out again.
     const double b1 = normal_velocity(c, p1, a, b) - p1.target - (k11 * old[0] + k12 * old[1]);

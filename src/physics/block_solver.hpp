@@ -25,6 +25,7 @@ struct BlockPoint {
     double target = 0;             // wanted normal velocity after the solve, m/s (restitution)
     double normal_impulse = 0;     // accumulated, N s (warm start in, result out)
     double tangent_impulse = 0;    // accumulated, N s
+    double tangent_mass = 0;       // 1 / (inverse mass along the tangent), kg; 0: immovable
 };
 
 struct BlockContact {
@@ -32,6 +33,9 @@ struct BlockContact {
     int count = 0;                 // 1 or 2 points
     std::array<BlockPoint, 2> points{};
     double friction = 0;           // coefficient
+    // How each point's normal impulse moves each point's normal velocity (prepare_block):
+    // constant over a step, as the offsets and masses are.
+    double k11 = 0, k12 = 0, k22 = 0;
 };
 
 // The normal velocity of B relative to A at a point, m/s (positive: separating).
@@ -42,6 +46,10 @@ double normal_velocity(const BlockContact& c, const BlockPoint& p, const BlockBo
 // is to leave at -restitution * vn; a separating one only to not close.
 void set_restitution_targets(BlockContact& c, const BlockBody& a, const BlockBody& b,
                              double restitution);
+
+// Computes the contact's effective masses from the points' offsets and the bodies' inverse
+// masses; once per step, before solve_block.
+void prepare_block(BlockContact& c, const BlockBody& a, const BlockBody& b);
 
 // One iteration: friction per point, then the normal block, updating both bodies.
 void solve_block(BlockContact& c, BlockBody& a, BlockBody& b);

@@ -10,7 +10,12 @@ namespace discreel::physics::detail {
 namespace {
 
 BlockBody velocity_of(const RigidBody& b) {
-    return {.v = b.v, .omega = b.omega, .inv_mass = b.inv_mass, .inv_inertia = b.inv_inertia};
+    BlockBody s;
+    s.v = b.v;
+    s.omega = b.omega;
+    s.inv_mass = b.inv_mass;
+    s.inv_inertia = b.inv_inertia;
+    return s;
 }
 
 void store(RigidBody& b, const BlockBody& s) {
@@ -25,136 +30,253 @@ void apply_impulse(BlockBody& a, BlockBody& b, const BlockPoint& p, const V2& im
     b.omega += b.inv_inertia * cross(p.rb, impulse);
 }
 
+V2 rotate(const V2& v, double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+}
+
 }  // namespace
+
+void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall) {
+    const std::size_t n = bodies.size();
+    boxes_.resize(n);
+    margin_.resize(n);
+    order_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const RigidBody& b = bodies[i];
+        // How far the body's surface can move in the step: the pair's speculative distance
+        // is the sum of the two, so contacts are found before a fast body passes through.
+        margin_[i] = (b.v.norm() + std::abs(b.omega) * b.bound) * dt +
+                     (b.inv_mass > 0 ? fall : 0.0) + 0.5 * def_.speculative;
+        const Transform xf = Transform::of(b.x, b.angle);
+        std::array<double, 4> box{HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+        for (int k = 0; k < b.shape.count; ++k) {
+            const V2 p = xf.apply(b.shape.vertices[k]);
+            box = {std::min(box[0], p.x()), std::min(box[1], p.y()), std::max(box[2], p.x()),
+                   std::max(box[3], p.y())};
+        }
+        const double grow = b.shape.radius + margin_[i];
+        boxes_[i] = {box[0] - grow, box[1] - grow, box[2] + grow, box[3] + grow};
+        order_[i] = static_cast<std::uint32_t>(i);
+    }
+    std::sort(order_.begin(), order_.end(), [&](std::uint32_t i, std::uint32_t j) {
+        return boxes_[i][0] != boxes_[j][0] ? boxes_[i][0] < boxes_[j][0] : i < j;
+    });
+    pairs_.clear();
+    for (std::size_t p = 0; p < n; ++p) {
+        const std::uint32_t i = order_[p];
+        const std::array<double, 4>& bi = boxes_[i];
+        for (std::size_t q = p + 1; q < n && boxes_[order_[q]][0] <= bi[2]; ++q) {
+            const std::uint32_t j = order_[q];
+            const std::array<double, 4>& bj = boxes_[j];
+            if (bj[1] > bi[3] || bi[1] > bj[3]) continue;
+            // Two bodies neither of which a contact can move (walls, pegs, held bodies).
+            if (bodies[i].inv_mass == 0 && bodies[j].inv_mass == 0) continue;
+            const std::uint64_t a = std::min(i, j), b = std::max(i, j);
+            pairs_.push_back(a << 32 | b);
+        }
+    }
+    std::sort(pairs_.begin(), pairs_.end());
+}
 
 void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
     for (RigidBody& b : bodies) {
+        if (b.bound < 0) b.bound = bounding_radius(b.shape);
         if (b.inv_mass > 0) b.v += gravity * dt;
     }
     // Restitution acts on approaches faster than gravity gives in about two steps: slower
     // ones are a body settling, which would otherwise hop by e g dt every step.
     const double settle = 2 * gravity.norm() * dt;
+    find_pairs(bodies, dt, 0.5 * gravity.norm() * dt * dt);
 
-    std::vector<double> reach(bodies.size());   // bounding radius plus the speculative distance
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        reach[i] = bounding_radius(bodies[i].shape) + 0.5 * def_.speculative;
-    }
-    std::vector<PairContact> fresh;
-    std::vector<double> restitution;                 // per pair
-    std::vector<std::array<double, 2>> approach;     // per point: normal velocity before, m/s
-    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-        for (std::uint32_t j = i + 1; j < bodies.size(); ++j) {
-            const RigidBody& a = bodies[i];
-            const RigidBody& b = bodies[j];
-            if (a.inv_mass == 0 && b.inv_mass == 0) continue;
-            const double r = reach[i] + reach[j];
-            if ((a.x - b.x).squaredNorm() > r * r) continue;   // bounding circles apart
-            PairContact pc{.a = i, .b = j, .manifold = {}, .contact = {}};
-            pc.manifold = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
-                                  Transform::of(b.x, b.angle), def_.speculative);
-            if (pc.manifold.count == 0) continue;
-            BlockContact& c = pc.contact;
-            c.normal = pc.manifold.normal;
-            c.count = pc.manifold.count;
-            c.friction = mix_friction(a.friction, b.friction);
-            restitution.push_back(mix_restitution(a.restitution, b.restitution));
-            approach.push_back({0, 0});
-            // Warm start: the impulses of the same features last step.
-            const auto by_pair = [](const PairContact& x, const PairContact& y) {
-                return x.a != y.a ? x.a < y.a : x.b < y.b;
-            };
-            const auto previous =
-                std::lower_bound(contacts_.begin(), contacts_.end(), pc, by_pair);
-            const bool had = previous != contacts_.end() && previous->a == i && previous->b == j;
-            BlockBody va = velocity_of(a), vb = velocity_of(b);
-            for (int k = 0; k < c.count; ++k) {
-                const ManifoldPoint& mp = pc.manifold.points[k];
-                BlockPoint& p = c.points[k];
-                p.ra = mp.point - a.x;
-                p.rb = mp.point - b.x;
-                // Apart: approach at most far enough to touch within the step; touching: stop
-                // closing. The bounce comes after the positions move (below), so that a body
-                // leaves from the surface at e times the speed it arrived with.
-                p.target = mp.separation > 0 ? -mp.separation / dt : 0;
-                approach.back()[static_cast<std::size_t>(k)] = normal_velocity(c, p, va, vb);
-                if (!had) continue;
-                for (int q = 0; q < previous->contact.count; ++q) {
-                    if (previous->manifold.points[q].id != mp.id) continue;
-                    p.normal_impulse = previous->contact.points[q].normal_impulse;
-                    p.tangent_impulse = previous->contact.points[q].tangent_impulse;
-                }
-            }
-            fresh.push_back(pc);
+    fresh_.clear();
+    auto previous = contacts_.begin();
+    for (const std::uint64_t key : pairs_) {
+        const auto i = static_cast<std::uint32_t>(key >> 32);
+        const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
+        const RigidBody& a = bodies[i];
+        const RigidBody& b = bodies[j];
+        PairContact pc;
+        pc.a = i;
+        pc.b = j;
+        pc.manifold = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
+                              Transform::of(b.x, b.angle), margin_[i] + margin_[j]);
+        if (pc.manifold.count == 0) continue;
+        BlockContact& c = pc.contact;
+        c.normal = pc.manifold.normal;
+        c.count = pc.manifold.count;
+        c.friction = mix_friction(a.friction, b.friction);
+        pc.restitution = mix_restitution(a.restitution, b.restitution);
+        // Warm start: the impulses of the same features last step (both lists in pair order).
+        while (previous != contacts_.end() &&
+               (previous->a < i || (previous->a == i && previous->b < j))) {
+            ++previous;
         }
+        const bool had = previous != contacts_.end() && previous->a == i && previous->b == j;
+        pc.touched = had && previous->touched;   // until this step's impulses say otherwise
+        const BlockBody va = velocity_of(a), vb = velocity_of(b);
+        for (int k = 0; k < c.count; ++k) {
+            const ManifoldPoint& mp = pc.manifold.points[k];
+            BlockPoint& p = c.points[k];
+            p.ra = mp.point - a.x;
+            p.rb = mp.point - b.x;
+            pc.anchors[k] = {p.ra, p.rb, mp.separation};
+            // Apart: approach at most far enough to touch within the step; touching: stop
+            // closing. The bounce comes after the positions move (below), so that a body
+            // leaves from the surface at e times the speed it arrived with.
+            p.target = mp.separation > 0 ? -mp.separation / dt : 0;
+            pc.approach[static_cast<std::size_t>(k)] = normal_velocity(c, p, va, vb);
+            if (!had) continue;
+            for (int q = 0; q < previous->contact.count; ++q) {
+                if (previous->manifold.points[q].id != mp.id) continue;
+                p.normal_impulse = previous->contact.points[q].normal_impulse;
+                p.tangent_impulse = previous->contact.points[q].tangent_impulse;
+            }
+        }
+        fresh_.push_back(pc);
     }
 
     // Warm start, then the velocity iterations, body states carried between contacts.
-    std::vector<BlockBody> state(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) state[i] = velocity_of(bodies[i]);
-    for (PairContact& pc : fresh) {
+    state_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) state_[i] = velocity_of(bodies[i]);
+    for (PairContact& pc : fresh_) {
+        prepare_block(pc.contact, state_[pc.a], state_[pc.b]);
         const V2 tangent = -perp(pc.contact.normal);
         for (int k = 0; k < pc.contact.count; ++k) {
             const BlockPoint& p = pc.contact.points[k];
-            apply_impulse(state[pc.a], state[pc.b], p,
+            apply_impulse(state_[pc.a], state_[pc.b], p,
                           p.normal_impulse * pc.contact.normal + p.tangent_impulse * tangent);
         }
     }
     for (int it = 0; it < def_.iterations; ++it) {
-        for (PairContact& pc : fresh) solve_block(pc.contact, state[pc.a], state[pc.b]);
+        for (PairContact& pc : fresh_) solve_block(pc.contact, state_[pc.a], state_[pc.b]);
     }
-    for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state[i]);
+    for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 
-    for (RigidBody& b : bodies) {
-        b.x += b.v * dt;
-        b.angle += b.omega * dt;
+    std::vector<V2>& moved = moved_;
+    moved.resize(bodies.size());
+    std::vector<double>& turned = turned_;
+    turned.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        RigidBody& b = bodies[i];
+        moved[i] = b.v * dt;
+        turned[i] = b.omega * dt;
+        b.x += moved[i];
+        b.angle += turned[i];
     }
 
     // Restitution: points that arrived faster than settling and pushed this step leave at e
     // times their approach speed, both points of a manifold solved together (no spin from a
-    // flat landing). Velocities only, frictionless, from the impulses already applied.
-    for (std::size_t n = 0; n < fresh.size(); ++n) {
-        BlockContact& c = fresh[n].contact;
+    // flat landing). Velocities only, frictionless, from the impulses already applied. The
+    // bodies have moved: each point is taken midway between where its two anchors are now,
+    // so that both bodies feel the impulse at one place and angular momentum is kept.
+    for (PairContact& pc : fresh_) {
+        BlockContact& c = pc.contact;
         bool bounce = false;
         for (int k = 0; k < c.count; ++k) {
-            const double vn = approach[n][static_cast<std::size_t>(k)];
+            const double vn = pc.approach[static_cast<std::size_t>(k)];
             const bool hit = vn < -settle && c.points[k].normal_impulse > 0;
-            c.points[k].target = hit ? -restitution[n] * vn : 0;
-            bounce = bounce || (hit && restitution[n] > 0);
+            c.points[k].target = hit ? -pc.restitution * vn : 0;
+            bounce = bounce || (hit && pc.restitution > 0);
         }
         if (!bounce) continue;
+        for (int k = 0; k < c.count; ++k) {
+            BlockPoint& p = c.points[k];
+            const V2 ra = rotate(p.ra, turned[pc.a]), rb = rotate(p.rb, turned[pc.b]);
+            const V2 point = 0.5 * ((bodies[pc.a].x + ra) + (bodies[pc.b].x + rb));
+            p.ra = point - bodies[pc.a].x;
+            p.rb = point - bodies[pc.b].x;
+        }
+        prepare_block(c, state_[pc.a], state_[pc.b]);
         const double friction = c.friction;
         c.friction = 0;
-        solve_block(c, state[fresh[n].a], state[fresh[n].b]);
+        solve_block(c, state_[pc.a], state_[pc.b]);
         c.friction = friction;
     }
-    for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state[i]);
+    for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 
-    // Whatever overlap is left beyond the slop is pushed out, point by point, on fresh
-    // manifolds: positions only, so no velocity (and no energy) is added.
+    // Whatever overlap is left beyond the slop is pushed out, point by point: positions only,
+    // so no velocity (and no energy) is added. A point's separation follows from how far its
+    // two anchors moved along the manifold's normal since the manifold was made, which is
+    // accurate for the small motions of a step and costs no new manifold.
+    spin_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) spin_[i] = {std::cos(turned[i]), std::sin(turned[i])};
+    const auto rotate_by = [&](const V2& v, std::size_t i) {
+        const auto [c, s] = spin_[i];
+        return V2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
+    };
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
-        for (const PairContact& pc : fresh) {
+        for (const PairContact& pc : fresh_) {
             RigidBody& a = bodies[pc.a];
             RigidBody& b = bodies[pc.b];
-            const Manifold m = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
-                                       Transform::of(b.x, b.angle), 0);
-            for (int k = 0; k < m.count; ++k) {
-                const double overlap = m.points[k].separation + def_.slop;
+            const V2& n = pc.contact.normal;
+            for (int k = 0; k < pc.contact.count; ++k) {
+                const Anchor& an = pc.anchors[k];
+                const V2 ra = rotate_by(an.ra, pc.a), rb = rotate_by(an.rb, pc.b);
+                const V2 drift = (moved[pc.b] + rb - an.rb) - (moved[pc.a] + ra - an.ra);
+                const double overlap = an.separation + n.dot(drift) + def_.slop;
                 if (overlap >= 0) continue;
                 const double push = std::min(-overlap, def_.max_correction);
-                const V2 ra = m.points[k].point - a.x, rb = m.points[k].point - b.x;
-                const double rna = cross(ra, m.normal), rnb = cross(rb, m.normal);
+                const double rna = cross(ra, n), rnb = cross(rb, n);
                 const double k_n = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna +
                                    b.inv_inertia * rnb * rnb;
                 if (k_n <= 0) continue;
-                const V2 impulse = (push / k_n) * m.normal;
-                a.x -= a.inv_mass * impulse;
-                a.angle -= a.inv_inertia * cross(ra, impulse);
-                b.x += b.inv_mass * impulse;
-                b.angle += b.inv_inertia * cross(rb, impulse);
+                const V2 impulse = (push / k_n) * n;
+                const V2 da = a.inv_mass * impulse, db = b.inv_mass * impulse;
+                const double ta = a.inv_inertia * cross(ra, impulse);
+                const double tb = b.inv_inertia * cross(rb, impulse);
+                a.x -= da;
+                a.angle -= ta;
+                b.x += db;
+                b.angle += tb;
+                moved[pc.a] -= da;
+                turned[pc.a] -= ta;
+                moved[pc.b] += db;
+                turned[pc.b] += tb;
+                spin_[pc.a] = {std::cos(turned[pc.a]), std::sin(turned[pc.a])};
+                spin_[pc.b] = {std::cos(turned[pc.b]), std::sin(turned[pc.b])};
             }
         }
     }
-    contacts_ = std::move(fresh);
+
+    touches_.clear();
+    for (PairContact& pc : fresh_) {
+        double impulse = 0;
+        for (int k = 0; k < pc.contact.count; ++k) impulse += pc.contact.points[k].normal_impulse;
+        const bool touching = impulse > 0;
+        if (touching) {
+            PairTouch t;
+            t.a = pc.a;
+            t.b = pc.b;
+            t.impulse = impulse;
+            t.began = !pc.touched;
+            touches_.push_back(t);
+        }
+        pc.touched = touching;
+    }
+    std::swap(contacts_, fresh_);
+}
+
+BodySolver::Overlap BodySolver::max_overlap(const std::vector<RigidBody>& bodies) const {
+    Overlap deepest;
+    for (const PairContact& pc : contacts_) {
+        const RigidBody& a = bodies[pc.a];
+        const RigidBody& b = bodies[pc.b];
+        const Manifold m = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
+                                   Transform::of(b.x, b.angle), 0);
+        for (int k = 0; k < m.count; ++k) {
+            if (-m.points[k].separation <= deepest.depth) continue;
+            deepest.depth = -m.points[k].separation;
+            deepest.a = pc.a;
+            deepest.b = pc.b;
+        }
+    }
+    return deepest;
+}
+
+void BodySolver::forget(std::size_t first, std::size_t last) {
+    const auto replaced = [&](std::size_t i) { return i >= first && i < last; };
+    std::erase_if(contacts_, [&](const PairContact& pc) { return replaced(pc.a) || replaced(pc.b); });
 }
 
 }  // namespace discreel::physics::detail

@@ -1,11 +1,15 @@
 #pragma once
-// One step of rigid bodies of any shape (shape.hpp) against each other: the contact manifolds
-// of every pair (manifold.hpp, speculative), warm-started from the last step by feature id,
-// solved with the two-point block solve (block_solver.hpp), then positions integrated and
-// pushed out of any remaining overlap one point at a time. It is the shapes' solver on its
-// own, tested here before the world steps shapes with it; pairs are found by testing every
-// pair, so it is meant for the small islands the tests build.
+// The manifold solver: one step of rigid bodies of any shape (shape.hpp) against each other.
+// A sweep over bounding boxes finds the pairs; each near pair gets its contact manifold
+// (manifold.hpp, speculative by as far as the pair can close within the step, which is what
+// keeps a fast body from passing through a thin wall), warm-started from the last step by
+// feature id, solved with the two-point block solve (block_solver.hpp); then positions are
+// integrated, bounces added, and whatever overlap remains is pushed out point by point from
+// each manifold's anchors. The solver sees contact rows, never shapes: `collide` is the only
+// place shapes meet.
 #include <cstdint>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "block_solver.hpp"
@@ -20,18 +24,29 @@ struct RigidBody {
     double angle = 0;              // radians
     V2 v = V2::Zero();             // m/s
     double omega = 0;              // rad/s
-    double inv_mass = 0;           // 1/kg; 0: static
+    double mass = 0;               // kg (kept while held, for the release)
+    double inertia = 0;            // kg m^2
+    double inv_mass = 0;           // 1/kg; 0: static or held
     double inv_inertia = 0;        // 1/(kg m^2)
     double restitution = 0;
     double friction = 0;
+    Motion motion = Motion::dynamic;   // read by throws; the solver reads inv_mass
+    double bound = -1;             // bounding radius, metres; < 0: not computed yet
 };
 
 struct BodySolverDef {
-    int iterations = 8;            // velocity iterations per step
+    int iterations = 8;            // velocity iterations per step (docs/physics.md)
     int position_iterations = 3;   // overlap-removal sweeps per step
     double speculative = 0.02;     // metres: points this far apart are already contacts
     double slop = 5e-4;            // metres of overlap left alone (resting contact jitters less)
     double max_correction = 0.02;  // metres pushed out per point and sweep at most
+};
+
+// A pair of bodies that touched (exchanged a normal impulse) during the step.
+struct PairTouch {
+    std::uint32_t a = 0, b = 0;    // body indices, a < b
+    double impulse = 0;            // N s, the total normal impulse of its points
+    bool began = false;            // it did not touch the step before
 };
 
 class BodySolver {
@@ -39,14 +54,45 @@ public:
     explicit BodySolver(BodySolverDef def = {}) : def_(def) {}
     void step(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
 
+    // The pairs that touched during the last step, in (a, b) order.
+    std::span<const PairTouch> touches() const { return touches_; }
+    // The deepest overlap between two bodies now (depth 0 when none overlap).
+    struct Overlap {
+        double depth = 0;              // metres
+        std::uint32_t a = 0, b = 0;    // the pair
+    };
+    Overlap max_overlap(const std::vector<RigidBody>& bodies) const;
+    // Forgets contacts of bodies [first, last): they were replaced.
+    void forget(std::size_t first, std::size_t last);
+
 private:
+    struct Anchor {
+        V2 ra = V2::Zero(), rb = V2::Zero();   // world offsets from each centroid, metres
+        double separation = 0;                 // metres, when the manifold was made
+    };
     struct PairContact {
         std::uint32_t a = 0, b = 0;    // body indices, a < b
         Manifold manifold;
         BlockContact contact;
+        std::array<Anchor, 2> anchors{};
+        double restitution = 0;
+        std::array<double, 2> approach{};   // normal velocity before the solve, m/s
+        bool touched = false;
     };
+    void find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall);
+
     BodySolverDef def_;
-    std::vector<PairContact> contacts_;   // the last step's, in (a, b) order
+    std::vector<PairContact> contacts_;     // the last step's, in (a, b) order
+    std::vector<PairContact> fresh_;        // scratch
+    std::vector<std::uint64_t> pairs_;      // scratch: a << 32 | b
+    std::vector<std::uint32_t> order_;      // scratch: bodies by the low x of their box
+    std::vector<std::array<double, 4>> boxes_;   // scratch: lo x, lo y, hi x, hi y
+    std::vector<double> margin_;            // scratch: metres a body can close in the step
+    std::vector<BlockBody> state_;          // scratch
+    std::vector<V2> moved_;                 // scratch: metres each body moved this step
+    std::vector<double> turned_;            // scratch: radians each body turned
+    std::vector<std::pair<double, double>> spin_;   // scratch: cos and sin of turned_
+    std::vector<PairTouch> touches_;
 };
 
 }  // namespace discreel::physics::detail

@@ -1,5 +1,7 @@
 #include "throws.hpp"
 
+#include "body_solver.hpp"
+
 namespace discreel::physics::detail {
 namespace {
 
@@ -26,14 +28,16 @@ V2 final_velocity(const std::vector<Waypoint>& path) {
     return (to_v2(p1.position) - to_v2(p0.position)) / (p1.t - p0.t);
 }
 
-void hold(Body& b) {
+template <class B>
+void hold(B& b) {
     b.motion = Motion::held;
     b.inv_mass = 0.0;
     b.inv_inertia = 0.0;
     b.omega = 0.0;
 }
 
-void release(Body& b, const V2& v) {
+template <class B>
+void release(B& b, const V2& v) {
     b.motion = Motion::dynamic;
     b.inv_mass = 1.0 / b.mass;
     b.inv_inertia = 1.0 / b.inertia;
@@ -46,10 +50,11 @@ Throws::Throws(const std::vector<ThrowDef>& defs) {
     for (const ThrowDef& d : defs) throws_.push_back(Throw{d, Stage::waiting});
 }
 
-void Throws::start(std::vector<Body>& bodies) {
+template <class B>
+void Throws::start(std::vector<B>& bodies) {
     for (Throw& th : throws_) {
         std::vector<Waypoint>& path = th.def.path;
-        Body& b = bodies[th.def.disc];
+        B& b = bodies[th.def.disc];
         if (path.empty() || b.motion == Motion::fixed) continue;
         if (path.front().t > 0) path.insert(path.begin(), Waypoint{0.0, Vec2{b.x.x(), b.x.y()}});
         b.x = to_v2(path.front().position);
@@ -59,11 +64,12 @@ void Throws::start(std::vector<Body>& bodies) {
     }
 }
 
-bool Throws::begin_step(double t0, double t1, std::vector<Body>& bodies) {
+template <class B>
+bool Throws::begin_step(double t0, double t1, std::vector<B>& bodies) {
     bool changed = false;
     for (Throw& th : throws_) {
         if (th.stage == Stage::done) continue;
-        Body& b = bodies[th.def.disc];
+        B& b = bodies[th.def.disc];
         if (b.motion == Motion::fixed) {
             th.stage = Stage::done;
             continue;
@@ -89,11 +95,19 @@ bool Throws::begin_step(double t0, double t1, std::vector<Body>& bodies) {
     return changed;
 }
 
-void Throws::end_step(double t1, std::vector<Body>& bodies) const {
+template <class B>
+void Throws::end_step(double t1, std::vector<B>& bodies) const {
     for (const Throw& th : throws_) {
         if (th.stage != Stage::holding) continue;
         bodies[th.def.disc].x = path_at(th.def.path, t1);
     }
 }
+
+template void Throws::start(std::vector<Body>&);
+template void Throws::start(std::vector<RigidBody>&);
+template bool Throws::begin_step(double, double, std::vector<Body>&);
+template bool Throws::begin_step(double, double, std::vector<RigidBody>&);
+template void Throws::end_step(double, std::vector<Body>&) const;
+template void Throws::end_step(double, std::vector<RigidBody>&) const;
 
 }  // namespace discreel::physics::detail

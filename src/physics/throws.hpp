@@ -5,7 +5,8 @@
 // arriving at that waypoint's time, so the disc is where the path says from then on and never
 // jumps; it then moves along the straight segments between waypoints with the path's
 // velocity, and is released at the first step starting at or after the last waypoint with the
-// `release` velocity, or the last segment's. Throws on static discs do nothing.
+// `release` velocity, or the last segment's. Throws on static discs do nothing. The same for
+// the disc solver's bodies (Body) and the manifold solver's (RigidBody).
 #include <cstddef>
 #include <vector>
 
@@ -20,14 +21,17 @@ public:
 
     // Takes hold of the grabbed discs in `bodies`, their state at t = 0; called once, before
     // the first step.
-    void start(std::vector<Body>& bodies);
+    template <class B>
+    void start(std::vector<B>& bodies);
 
     // For the step [t0, t1]: applies due flicks, starts and ends grabs, and gives held discs
     // their position at t0 and the velocity that brings them to their path point at t1.
     // True when it changed a body.
-    bool begin_step(double t0, double t1, std::vector<Body>& bodies);
+    template <class B>
+    bool begin_step(double t0, double t1, std::vector<B>& bodies);
     // Puts held discs exactly on their paths at t1 (integration would round).
-    void end_step(double t1, std::vector<Body>& bodies) const;
+    template <class B>
+    void end_step(double t1, std::vector<B>& bodies) const;
 
 private:
     enum class Stage { waiting, holding, done };

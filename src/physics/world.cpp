@@ -11,6 +11,7 @@
 #include "contact.hpp"
 #include "discreel/physics.hpp"
 #include "geometry.hpp"
+#include "shape_world.hpp"
 #include "substep.hpp"
 #include "throws.hpp"
 
@@ -68,6 +69,11 @@ struct World::Impl {
         substeps = def.substeps > 0
                        ? def.substeps
                        : std::max(1, static_cast<int>(std::ceil(1.0 / (longest_substep * rate))));
+        if (detail::ShapeWorld::wanted(def)) {
+            shapes = std::make_unique<detail::ShapeWorld>(def, substeps);
+            if (const auto i = shapes->non_finite()) failure = NonFiniteState{*i, 0.0};
+            return;
+        }
         for (const DiscDef& d : def.discs) bodies.push_back(make_disc(d));
         for (const detail::Feature& f : features) {
             Body b;
@@ -115,7 +121,7 @@ struct World::Impl {
     bool list_kept = false;  // BroadPhase::keeps() held for every moving disc after the last step
     std::size_t contacts_last_step = 0;
     std::optional<NonFiniteState> failure;
-    std::size_t respawns_applied = 0;
+    std::unique_ptr<detail::ShapeWorld> shapes;   // set when any body has a shape
 };
 
 void World::Impl::step() {
@@ -124,6 +130,14 @@ void World::Impl::step() {
     const double t0 = static_cast<double>(steps) / rate;
     const double t1 = static_cast<double>(steps + 1) / rate;
     const double dt = 1.0 / rate;
+    if (shapes) {
+        shapes->step(t0, t1);
+        ++steps;
+        std::vector<ContactEvent> fresh = shapes->take_events();
+        events.insert(events.end(), fresh.begin(), fresh.end());
+        if (const auto i = shapes->non_finite()) failure = NonFiniteState{*i, t1};
+        return;
+    }
     const bool thrown = throws.begin_step(t0, t1, bodies);
     if (thrown) ++bodies_version;
     if (broad_phase.update(bodies, disc_count, features, dt, gravity.norm(), contacts,
@@ -269,6 +283,7 @@ void World::Impl::end_step(double dt, bool runaways) {
 }
 
 std::span<const DiscState> World::Impl::publish() const {
+    if (shapes) return shapes->states();
     if (published_steps != steps) {
         published_steps = steps;
         for (std::size_t i = 0; i < disc_count; ++i) {
@@ -290,12 +305,15 @@ int World::rate() const { return impl_->rate; }
 double World::time() const { return static_cast<double>(impl_->steps) / impl_->rate; }
 int World::substeps() const { return impl_->substeps; }
 std::span<const DiscState> World::discs() const { return impl_->publish(); }
-std::size_t World::respawns_applied() const { return impl_->respawns_applied; }
+std::size_t World::respawns_applied() const {
+    return impl_->shapes ? impl_->shapes->respawns_applied() : 0;
+}
 std::vector<ContactEvent> World::take_events() { return std::exchange(impl_->events, {}); }
 std::optional<NonFiniteState> World::failure() const { return impl_->failure; }
 
 WorldStats World::stats() const {
     const Impl& w = *impl_;
+    if (w.shapes) return w.shapes->stats(w.gravity);
     WorldStats s;
     for (std::size_t i = 0; i < w.disc_count; ++i) {
         const Body& b = w.bodies[i];

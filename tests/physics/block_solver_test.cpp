@@ -33,6 +33,7 @@ TEST(BlockSolverTest, FlatLandingReboundsWithoutSpinInOneIteration) {
         BlockBody ground;
         BlockBody b = box(V2(0, -2));
         BlockContact c = two_points(left, right);
+        prepare_block(c, ground, b);
         set_restitution_targets(c, ground, b, 0.5);
         solve_block(c, ground, b);
         EXPECT_NEAR(b.v.y(), 1.0, 1e-12) << left;   // e * 2 m/s
@@ -57,6 +58,7 @@ TEST(BlockSolverTest, OnlyTheClosingPointPushes) {
     // Left point: -0.5 + (-3)(-(-0.5))... its normal velocity is v.y + omega * x = -0.5 + 1.5.
     EXPECT_NEAR(normal_velocity(c, c.points[0], ground, b), 1.0, 1e-12);
     EXPECT_NEAR(normal_velocity(c, c.points[1], ground, b), -2.0, 1e-12);
+    prepare_block(c, ground, b);
     set_restitution_targets(c, ground, b, 0.0);
     solve_block(c, ground, b);
     EXPECT_EQ(c.points[0].normal_impulse, 0.0);
@@ -74,6 +76,7 @@ TEST(BlockSolverTest, FrictionTakesMuTimesTheNormalImpulse) {
     BlockBody b = box(V2(3, -g_dt));
     BlockContact c = two_points(-0.5, 0.5);
     c.friction = 0.5;
+    prepare_block(c, ground, b);
     set_restitution_targets(c, ground, b, 0.0);
     for (int i = 0; i < 20; ++i) solve_block(c, ground, b);
     EXPECT_NEAR(b.v.x(), 3 - 0.5 * g_dt, 1e-9);

@@ -63,6 +63,48 @@ inline std::uint64_t state_hash(const World& world) {
     return h;
 }
 
+// What run_mixed_scene() gives, pinned like busy_scene_hash.
+inline constexpr std::uint64_t mixed_scene_hash = 2621395057576605485ull;
+
+// Boxes, rounded hexagons, capsules and discs falling into a box past a slanted segment, with
+// a flick and a grab: the manifold solver's determinism.
+inline WorldDef mixed_scene() {
+    WorldDef def;
+    const Material material{.restitution = 0.5, .friction = 0.4};
+    def.walls.push_back(box({0, 0}, {8, 12}, material));
+    def.walls.push_back(segment({0.5, 6}, {5, 4}, 0.05, material));
+    const std::vector<Vec2> hexagon{{0.25, 0}, {0.125, 0.2}, {-0.125, 0.2},
+                                    {-0.25, 0}, {-0.125, -0.2}, {0.125, -0.2}};
+    const Shape shapes[] = {*box_shape(0.5, 0.3), polygon_shape(hexagon, 0.02)->shape,
+                            *capsule_shape(0.4, 0.1)};
+    Rng rng(7);
+    for (int k = 0; k < 80; ++k) {
+        const Vec2 at{0.5 + 0.7 * (k % 10), 6.5 + 0.7 * (k / 10)};
+        DiscDef d = k % 4 == 3 ? disc(at, {}, 0.2, 0.125, material)
+                               : body(shapes[k % 4], at, 1.0, material);
+        d.angle = rng.uniform(0, 3);
+        d.velocity = {rng.uniform(-2, 2), rng.uniform(-2, 2)};
+        d.angular_velocity = rng.uniform(-4, 4);
+        def.discs.push_back(d);
+    }
+    ThrowDef flick;
+    flick.disc = 5;
+    flick.at = 0.5;
+    flick.velocity = Vec2{30, 10};
+    def.throws.push_back(flick);
+    ThrowDef grab;
+    grab.disc = 2;
+    grab.path = {{0.3, {2, 3}}, {0.9, {6, 3}}, {1.2, {4, 8}}};
+    def.throws.push_back(grab);
+    return def;
+}
+
+inline std::uint64_t run_mixed_scene() {
+    World world(mixed_scene());
+    run_for(world, 2.0);
+    return state_hash(world);
+}
+
 // The busy scene's state after two seconds, hashed.
 inline std::uint64_t run_busy_scene() {
     World world(busy_scene());

@@ -1,6 +1,7 @@
-// Determinism.BusySceneGivesTheSameBitsEveryRun without GoogleTest, for builds that have none
+// Determinism.*GivesTheSameBitsEveryRun without GoogleTest, for builds that have none
 // (DISCREEL_PHYSICS_ONLY: the `arch` tests build it for aarch64 and without the AVX2 clones).
-// Runs the busy scene twice and prints its hash; exits 0 only if both runs give the pinned one.
+// Runs the busy scene (the disc solver) and the mixed scene (the manifold solver) twice each
+// and prints their hashes; exits 0 only if every run gives the pinned one.
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
@@ -18,22 +19,28 @@ constexpr const char* target =
     "another target";
 #endif
 
+bool check(const char* name, std::uint64_t (*run)(), std::uint64_t pinned) {
+    const std::uint64_t first = run();
+    const std::uint64_t second = run();
+    std::printf("%s on %s: %" PRIu64 ", pinned: %" PRIu64 "\n", name, target, first, pinned);
+    if (second != first) {
+        std::printf("FAILED: a second run gave %" PRIu64 "\n", second);
+        return false;
+    }
+    if (first != pinned) {
+        std::printf("FAILED: not the pinned hash (tests/physics/busy_scene.hpp)\n");
+        return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 int main() {
     using namespace discreel::physics::testing;
-    const std::uint64_t first = run_busy_scene();
-    const std::uint64_t second = run_busy_scene();
-    std::printf("busy scene on %s: %" PRIu64 ", pinned: %" PRIu64 "\n", target, first,
-                busy_scene_hash);
-    if (second != first) {
-        std::printf("FAILED: a second run gave %" PRIu64 "\n", second);
-        return 1;
-    }
-    if (first != busy_scene_hash) {
-        std::printf("FAILED: not the pinned hash (tests/physics/busy_scene.hpp)\n");
-        return 1;
-    }
+    const bool busy = check("busy scene", run_busy_scene, busy_scene_hash);
+    const bool mixed = check("mixed scene", run_mixed_scene, mixed_scene_hash);
+    if (!busy || !mixed) return 1;
     std::printf("OK\n");
     return 0;
 }

@@ -15,5 +15,11 @@ TEST(Determinism, BusySceneGivesTheSameBitsEveryRun) {
     EXPECT_EQ(first, testing::busy_scene_hash) << first;
 }
 
+TEST(Determinism, MixedSceneGivesTheSameBitsEveryRun) {
+    const std::uint64_t first = testing::run_mixed_scene();
+    EXPECT_EQ(testing::run_mixed_scene(), first);
+    EXPECT_EQ(first, testing::mixed_scene_hash) << first;
+}
+
 }  // namespace
 }  // namespace discreel::physics

@@ -28,6 +28,19 @@ inline DiscDef disc(Vec2 position, Vec2 velocity, double radius, double mass,
     return d;
 }
 
+// A body of any shape (discreel/shapes.hpp) centred at `position` (m), of `density` (kg/m^2).
+inline DiscDef body(const Shape& shape, Vec2 position, double density = 1.0,
+                    Material material = {}) {
+    DiscDef d;
+    d.shape = shape;
+    d.position = position;
+    d.radius = bounding_radius(shape);
+    d.mass = shape_mass(shape, density).mass;
+    d.restitution = material.restitution;
+    d.friction = material.friction;
+    return d;
+}
+
 // A closed box with corners lo and hi (m).
 inline WallDef box(Vec2 lo, Vec2 hi, Material material = {}) {
     WallDef w;

@@ -1,0 +1,160 @@
+#include "shape_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace discreel::physics::detail {
+namespace {
+
+V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
+
+RigidBody make_body(const DiscDef& d) {
+    RigidBody b;
+    b.shape = d.shape ? to_polygon(*d.shape) : make_circle(d.radius);
+    b.x = to_v2(d.position);
+    b.angle = d.angle;
+    b.restitution = d.restitution;
+    b.friction = d.friction;
+    if (d.is_static) {
+        b.motion = Motion::fixed;
+        return b;
+    }
+    b.v = to_v2(d.velocity);
+    b.omega = d.angular_velocity;
+    b.mass = d.mass;
+    b.inertia = inertia_of(d);
+    b.inv_mass = 1 / b.mass;
+    b.inv_inertia = b.inertia > 0 ? 1 / b.inertia : 0;
+    return b;
+}
+
+RigidBody make_fixed(const Polygon& shape, const V2& at, double angle, const WallDef& w) {
+    RigidBody b;
+    b.shape = shape;
+    b.x = at;
+    b.angle = angle;
+    b.restitution = w.restitution;
+    b.friction = w.friction;
+    b.motion = Motion::fixed;
+    return b;
+}
+
+}  // namespace
+
+bool ShapeWorld::wanted(const WorldDef& def) {
+    const auto shaped = [](const DiscDef& d) { return d.shape.has_value(); };
+    return !def.respawns.empty() || std::any_of(def.discs.begin(), def.discs.end(), shaped);
+}
+
+ShapeWorld::ShapeWorld(const WorldDef& def, int substeps)
+    : gravity_(to_v2(def.gravity)),
+      substeps_(substeps),
+      body_count_(def.discs.size()),
+      throws_(def.throws),
+      respawns_(def.respawns) {
+    for (const DiscDef& d : def.discs) bodies_.push_back(make_body(d));
+    for (std::size_t i = 0; i < def.walls.size(); ++i) {
+        const WallDef& w = def.walls[i];
+        if (w.shape == WallDef::Shape::box) {
+            const V2 lo(std::min(w.a.x, w.b.x), std::min(w.a.y, w.b.y));
+            const V2 hi(std::max(w.a.x, w.b.x), std::max(w.a.y, w.b.y));
+            for (const Slab& s : container_slabs(lo, hi)) {
+                bodies_.push_back(make_fixed(s.shape, s.centre, 0, w));
+                wall_of_.push_back(i);
+            }
+            continue;
+        }
+        const V2 a = to_v2(w.a), b = to_v2(w.b);
+        const double length = (b - a).norm();
+        const auto capsule = make_capsule(length, 0.5 * w.thickness);
+        const Polygon shape = capsule ? *capsule : make_circle(0.5 * w.thickness);
+        bodies_.push_back(make_fixed(shape, 0.5 * (a + b), std::atan2(b.y() - a.y(), b.x() - a.x()), w));
+        wall_of_.push_back(i);
+    }
+    throws_.start(bodies_);
+    states_.resize(body_count_);
+}
+
+void ShapeWorld::respawn(double t0) {
+    while (respawns_applied_ < respawns_.size() && respawns_[respawns_applied_].at <= t0) {
+        const RespawnDef& r = respawns_[respawns_applied_++];
+        const std::size_t last = std::min(body_count_, r.first + r.bodies.size());
+        for (std::size_t i = r.first; i < last; ++i) {
+            RigidBody fresh = make_body(r.bodies[i - r.first]);
+            // A held body stays held: its throw still owns it.
+            if (bodies_[i].motion == Motion::held) {
+                fresh.x = bodies_[i].x;
+                fresh.v = bodies_[i].v;
+                fresh.motion = Motion::held;
+                fresh.inv_mass = 0;
+                fresh.inv_inertia = 0;
+            }
+            bodies_[i] = fresh;
+        }
+        solver_.forget(r.first, last);
+    }
+}
+
+void ShapeWorld::step(double t0, double t1) {
+    respawn(t0);
+    throws_.begin_step(t0, t1, bodies_);
+    const double h = (t1 - t0) / substeps_;
+    for (int k = 0; k < substeps_; ++k) {
+        solver_.step(bodies_, gravity_, h);
+        for (const PairTouch& touch : solver_.touches()) {
+            if (!touch.began) continue;
+            ContactEvent e;
+            e.t = t1;
+            e.a = touch.a;
+            if (touch.b >= body_count_) {
+                e.other_kind = ContactEvent::Other::wall;
+                e.other = wall_of_[touch.b - body_count_];
+            } else {
+                e.other_kind = ContactEvent::Other::disc;
+                e.other = touch.b;
+            }
+            e.impulse = touch.impulse;
+            events_.push_back(e);
+        }
+        touching_ = solver_.touches().size();
+    }
+    throws_.end_step(t1, bodies_);
+}
+
+std::span<const DiscState> ShapeWorld::states() const {
+    for (std::size_t i = 0; i < body_count_; ++i) {
+        const RigidBody& b = bodies_[i];
+        states_[i] = DiscState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
+    }
+    return states_;
+}
+
+std::optional<std::size_t> ShapeWorld::non_finite() const {
+    for (std::size_t i = 0; i < body_count_; ++i) {
+        const RigidBody& b = bodies_[i];
+        if (!std::isfinite(b.x.x() + b.x.y() + b.v.x() + b.v.y() + b.angle + b.omega)) return i;
+    }
+    return std::nullopt;
+}
+
+WorldStats ShapeWorld::stats(const V2& gravity) const {
+    WorldStats s;
+    for (std::size_t i = 0; i < body_count_; ++i) {
+        const RigidBody& b = bodies_[i];
+        if (b.motion == Motion::fixed) continue;
+        s.kinetic_energy += 0.5 * b.mass * b.v.squaredNorm() + 0.5 * b.inertia * b.omega * b.omega;
+        s.potential_energy -= b.mass * gravity.dot(b.x);
+    }
+    const BodySolver::Overlap o = solver_.max_overlap(bodies_);
+    s.max_overlap = o.depth;
+    if (o.depth > 0) {
+        const double a = bodies_[o.a].bound;
+        const double b = o.b < body_count_ ? bodies_[o.b].bound : a;
+        s.max_overlap_ratio = o.depth / std::min(a, b);
+    }
+    s.contact_count = touching_;
+    return s;
+}
+
+}  // namespace discreel::physics::detail
