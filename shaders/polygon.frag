@@ -1,7 +1,7 @@
 #version 330 core
 // Signed distance to a convex polygon swept by a rounding radius: inside, the largest signed
 // distance to an edge's line; outside, the distance to the nearest edge. Edges anti-aliased
-// over one pixel and a darker rim, as on discs.
+// over one pixel, a darker rim and a spin marker along the body's x axis, as on discs.
 in vec2 v_local;
 flat in float v_half_size;
 flat in vec4 v_v01;
@@ -10,6 +10,9 @@ flat in vec4 v_v45;
 flat in vec4 v_v67;
 flat in vec2 v_shape;
 flat in vec4 v_color;
+flat in vec4 v_outline;
+flat in vec4 v_spoke;
+flat in vec4 v_marker;
 
 uniform bool u_point_sprites;
 
@@ -64,6 +67,9 @@ void main() {
 
     float outline_width = 1.5;
     float in_outline = 1.0 - coverage(dist - rounding + outline_width);
-    vec3 color = mix(v_color.rgb, v_color.rgb * 0.62, in_outline);
+    vec3 color = mix(v_color.rgb, v_outline.rgb, in_outline * v_outline.a);
+    float along = clamp(dot(local, v_spoke.xy), 0.0, v_spoke.z);
+    float spoke_dist = length(local - v_spoke.xy * along) - v_spoke.w;
+    color = mix(color, v_marker.rgb, coverage(spoke_dist) * v_marker.a);
     o_color = vec4(color, v_color.a * edge);
 }

@@ -117,13 +117,17 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
                                        static_cast<float>(w.thickness / 2), to_rgba(w.color)});
         }
     }
-    frame_.discs.resize(scene.discs.size());
+    slots_.resize(scene.discs.size());
+    trail_radius_.resize(scene.discs.size());
+    fill_.resize(scene.discs.size());
     for (std::size_t i = 0; i < scene.discs.size(); ++i) {
-        const scene::Disc& d = scene.discs[i];
-        frame_.discs[i].radius = static_cast<float>(d.radius);
-        frame_.discs[i].fill = to_rgba(d.color);
-        frame_.discs[i].is_static = d.is_static;
+        const bool polygon = scene.discs[i].shape.has_value();
+        std::size_t& count = polygon ? polygon_count_ : disc_count_;
+        slots_[i] = {polygon, count++};
     }
+    frame_.discs.resize(disc_count_);
+    frame_.polygons.resize(polygon_count_);
+    for (std::size_t i = 0; i < scene.discs.size(); ++i) set_look(i, scene.discs[i]);
 
     const scene::Trails& trails = scene.style.trails;
     if (trails.enabled) {
@@ -136,6 +140,44 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
         const std::size_t affordable = max_trail_points / trailed_.size();
         trail_capacity_ = std::max<std::size_t>(2, std::min(wanted, affordable));
         trail_points_.resize(trail_capacity_ * trailed_.size());
+    }
+}
+
+void FrameSceneBuilder::set_look(std::size_t body, const scene::Disc& d) {
+    const Slot slot = slots_[body];
+    fill_[body] = to_rgba(d.color);
+    trail_radius_[body] = static_cast<float>(scene_.style.trails.width * d.radius);
+    if (!slot.polygon) {
+        render::DiscGeom& g = frame_.discs[slot.slot];
+        g.radius = static_cast<float>(d.radius);
+        g.fill = fill_[body];
+        g.is_static = d.is_static;
+        return;
+    }
+    render::PolygonGeom& g = frame_.polygons[slot.slot];
+    g = {};
+    if (d.shape) {
+        const std::size_t n = std::min<std::size_t>(d.shape->vertices.size(), 8);
+        for (std::size_t k = 0; k < n; ++k) {
+            g.vertices[2 * k] = static_cast<float>(d.shape->vertices[k].x);
+            g.vertices[2 * k + 1] = static_cast<float>(d.shape->vertices[k].y);
+        }
+        g.count = static_cast<int>(n);
+        g.rounding = static_cast<float>(d.shape->radius);
+    } else {   // a plain disc in a polygon's place: a circle is one vertex swept by its radius
+        g.count = 1;
+        g.rounding = static_cast<float>(d.radius);
+    }
+    g.fill = fill_[body];
+    g.is_static = d.is_static;
+}
+
+void FrameSceneBuilder::respawned(std::size_t applied) {
+    for (; respawns_applied_ < std::min(applied, scene_.respawns.size()); ++respawns_applied_) {
+        const scene::Respawn& r = scene_.respawns[respawns_applied_];
+        for (std::size_t k = 0; k < r.bodies.size() && r.first + k < slots_.size(); ++k) {
+            set_look(r.first + k, r.bodies[k]);
+        }
     }
 }
 
@@ -170,9 +212,20 @@ const render::FrameScene& FrameSceneBuilder::build(int frame,
                                                    std::span<const physics::DiscState> discs) {
     observe(frame, discs);
     for (std::size_t i = 0; i < discs.size(); ++i) {
-        frame_.discs[i].x = static_cast<float>(discs[i].position.x);
-        frame_.discs[i].y = static_cast<float>(discs[i].position.y);
-        frame_.discs[i].angle = static_cast<float>(discs[i].angle);
+        const auto x = static_cast<float>(discs[i].position.x);
+        const auto y = static_cast<float>(discs[i].position.y);
+        const auto angle = static_cast<float>(discs[i].angle);
+        if (slots_[i].polygon) {
+            render::PolygonGeom& g = frame_.polygons[slots_[i].slot];
+            g.x = x;
+            g.y = y;
+            g.angle = angle;
+        } else {
+            render::DiscGeom& g = frame_.discs[slots_[i].slot];
+            g.x = x;
+            g.y = y;
+            g.angle = angle;
+        }
     }
     if (scene_.camera.follow) {
         frame_.camera.center_x = follow_center_.x;
@@ -192,8 +245,8 @@ void FrameSceneBuilder::add_trails() {
     const std::size_t segments = trail_rows_filled_ - 1;
     const float oldest_age = static_cast<float>(trail_capacity_ - 1);
     for (std::size_t j = 0; j < n; ++j) {
-        const render::DiscGeom& disc = frame_.discs[trailed_[j]];
-        const float full_radius = static_cast<float>(style.width) * disc.radius;
+        const float full_radius = trail_radius_[trailed_[j]];
+        const render::Rgba& fill = fill_[trailed_[j]];
         // Oldest first, so newer stretches lie on top where a trail crosses itself.
         for (std::size_t k = segments; k-- > 0;) {
             const std::size_t newer = (trail_newest_ + trail_capacity_ - k) % trail_capacity_;
@@ -208,7 +261,7 @@ void FrameSceneBuilder::add_trails() {
             const float radius =
                 full_radius * (style.fade ? kTrailThinnest + (1 - kTrailThinnest) * fresh : 1.0f);
             frame_.trails.push_back({a.x, a.y, b.x, b.y, radius,
-                                     toward(frame_.background, disc.fill, kTrailStrength * fresh)});
+                                     toward(frame_.background, fill, kTrailStrength * fresh)});
         }
     }
 }

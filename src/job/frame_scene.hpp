@@ -32,20 +32,35 @@ public:
     // until the next call.
     const render::FrameScene& build(int frame, std::span<const physics::DiscState> discs);
 
+    // The world has carried out the first `applied` of the scene's respawns: later frames
+    // draw the new bodies' shapes and colours.
+    void respawned(std::size_t applied);
+
 private:
+    // Where body i is drawn: frame_.discs or frame_.polygons, at `slot`.
+    struct Slot {
+        bool polygon = false;
+        std::size_t slot = 0;
+    };
+    void set_look(std::size_t body, const scene::Disc& d);
     void add_trails();
     void add_arrows(std::span<const physics::DiscState> discs);
     void add_clock(int frame);
 
     const scene::Scene& scene_;
     render::FrameScene frame_;
+    std::vector<Slot> slots_;            // per body, in the scene's numbering
+    std::vector<float> trail_radius_;    // per body: the trail's full width is this, metres
+    std::vector<render::Rgba> fill_;     // per body
+    std::size_t respawns_applied_ = 0;
+    std::size_t disc_count_ = 0, polygon_count_ = 0;
     render::Camera fitted_camera_;
 
     // Follow camera: the smoothed centre, metres, and the frame it was last moved for.
     Vec2 follow_center_;
     int last_frame_ = -1;
 
-    // Trail history: a ring of the last `trail_capacity_` positions of every moving disc.
+    // Trail history: a ring of the last `trail_capacity_` positions of every moving body.
     // Row k holds one frame's positions of all trailed discs.
     struct Point {
         float x, y;

@@ -31,6 +31,7 @@ Status Playback::advance_to(int frame) { return impl_->stepper.advance_to(frame)
 void Playback::observe(int frame) { impl_->builder.observe(frame, impl_->world.discs()); }
 
 const render::FrameScene& Playback::frame_scene(int frame) {
+    impl_->builder.respawned(impl_->world.respawns_applied());
     return impl_->builder.build(frame, impl_->world.discs());
 }
 

@@ -38,6 +38,8 @@ void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
 void make_polygon_instances(const FrameScene& frame, double pixels_per_metre,
                             std::vector<PolygonInstance>& out) {
     const ToPixels to_px{frame.camera, pixels_per_metre};
+    const std::uint32_t style_flags = (frame.disc_outlines ? 0u : kPolygonNoOutline) |
+                                      (frame.spin_markers ? 0u : kPolygonNoSpinMarker);
     out.clear();
     for (const PolygonGeom& p : frame.polygons) {
         PolygonInstance instance{};
@@ -58,6 +60,28 @@ void make_polygon_instances(const FrameScene& frame, double pixels_per_metre,
         instance.shape[0] = static_cast<float>(count);
         instance.shape[1] = rounding;
         instance.shape[2] = static_cast<float>(extent) + rounding;
+        instance.shape[3] = static_cast<float>((p.is_static ? kPolygonStatic : 0u) | style_flags);
+        // The marker runs from the centroid along the body's x axis to 70 % of the way to the
+        // outline: the core's nearest edge crossing on that ray (the segment's end for a
+        // capsule, the centre for a circle), plus the rounding.
+        double reach = 0;
+        if (count == 2) {
+            reach = std::abs(p.vertices[0]);
+        } else if (count > 2) {
+            reach = HUGE_VAL;
+            for (std::size_t i = 0; i < count; ++i) {
+                const std::size_t j = (i + 1) % count;
+                const double ex = p.vertices[2 * j] - p.vertices[2 * i];
+                const double ey = p.vertices[2 * j + 1] - p.vertices[2 * i + 1];
+                const double nx = ey, ny = -ex;   // outward for counter-clockwise vertices
+                if (nx <= 0) continue;           // the ray +x leaves through edges facing +x
+                reach = std::min(reach, (nx * p.vertices[2 * i] + ny * p.vertices[2 * i + 1]) / nx);
+            }
+            if (!std::isfinite(reach)) reach = 0;
+        }
+        instance.spoke[0] = static_cast<float>(c);
+        instance.spoke[1] = static_cast<float>(s);
+        instance.spoke[2] = static_cast<float>(0.7 * (reach * pixels_per_metre) + 0.7 * rounding);
         instance.color[0] = p.fill.r;
         instance.color[1] = p.fill.g;
         instance.color[2] = p.fill.b;

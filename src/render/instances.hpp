@@ -43,9 +43,15 @@ inline constexpr std::uint32_t kCapsuleFlat = 1;  // kFlat in capsule.frag (chec
 struct PolygonInstance {
     float center[2];     // pixels
     float vertices[16];  // (x, y) pairs, pixels relative to the centre, rotated, y up
-    float shape[3];      // vertex count, rounding (pixels), extent: farthest point (pixels)
+    float shape[4];      // vertex count, rounding (pixels), extent: farthest point (pixels),
+                         // flags (kPolygon*, as a float)
+    float spoke[3];      // unit vector along the body's x axis; the spin marker's length (px)
     float color[4];
 };
+// Flag bits of PolygonInstance::shape[3]; polygon.vert says the same (checked).
+inline constexpr std::uint32_t kPolygonStatic = 1;
+inline constexpr std::uint32_t kPolygonNoOutline = 2;
+inline constexpr std::uint32_t kPolygonNoSpinMarker = 4;
 
 // Replaces the contents of `out` (its capacity is reused from frame to frame).
 void make_polygon_instances(const FrameScene& frame, double pixels_per_metre,

@@ -170,8 +170,9 @@ Status Renderer::Impl::init(const RendererDef& def) {
                                   {2, 4, GL_FLOAT, offsetof(PolygonInstance, vertices) + 16},
                                   {3, 4, GL_FLOAT, offsetof(PolygonInstance, vertices) + 32},
                                   {4, 4, GL_FLOAT, offsetof(PolygonInstance, vertices) + 48},
-                                  {5, 3, GL_FLOAT, offsetof(PolygonInstance, shape)},
-                                  {6, 4, GL_FLOAT, offsetof(PolygonInstance, color)}});
+                                  {5, 4, GL_FLOAT, offsetof(PolygonInstance, shape)},
+                                  {6, 3, GL_FLOAT, offsetof(PolygonInstance, spoke)},
+                                  {7, 4, GL_FLOAT, offsetof(PolygonInstance, color)}});
     glyph_stream = InstanceStream::create(
         sizeof(GlyphInstance), {{0, 2, GL_FLOAT, offsetof(GlyphInstance, origin)},
                                 {1, 1, GL_FLOAT, offsetof(GlyphInstance, dot)},

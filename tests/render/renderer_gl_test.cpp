@@ -164,6 +164,7 @@ TEST_F(RendererGLTest, PolygonsFillTheirOutlineAndNothingElse) {
     const auto check = [&](const PolygonGeom& shape, std::vector<std::pair<float, float>> in,
                            std::vector<std::pair<float, float>> out) {
         FrameScene frame = empty_frame();
+        frame.spin_markers = false;   // PolygonSpinMarkerFollowsTheAngle looks at it
         frame.polygons.push_back(shape);
         const Image image = draw(frame);
         for (const auto& [x, y] : in) {
@@ -187,6 +188,33 @@ TEST_F(RendererGLTest, PolygonsFillTheirOutlineAndNothingElse) {
     // A rounded box: core 2 m x 1 m, rounding 0.3 m; the corner is cut round.
     check(polygon({{-1, -0.5f}, {1, -0.5f}, {1, 0.5f}, {-1, 0.5f}}, 0, 0.3f),
           {{0.8f, 0}, {0, 0.4f}}, {{1.3f, 0.8f}, {1.45f, 0}, {0, 1.0f}});
+}
+
+// As on discs, a contrasting spoke from the centroid along the body's x axis shows its spin;
+// a static body is drawn darker and has none.
+TEST_F(RendererGLTest, PolygonSpinMarkerFollowsTheAngle) {
+    const std::vector<std::pair<float, float>> box{{-2, -1}, {2, -1}, {2, 1}, {-2, 1}};
+    for (const float angle : {0.0f, std::numbers::pi_v<float> / 2}) {
+        FrameScene frame = empty_frame();
+        frame.polygons.push_back(polygon(box, angle));
+        const Image image = draw(frame);
+        const float c = std::cos(angle), s = std::sin(angle);
+        const Pixel marker = pixel_at_world(image.view(), kCamera, 0.8f * c, 0.8f * s);
+        EXPECT_GT(std::abs(channel_sum(marker) - channel_sum(opaque(kRed))), 150) << angle;
+        // Behind the centroid and across the axis: the fill.
+        expect_near_color(pixel_at_world(image.view(), kCamera, -0.8f * c, -0.8f * s),
+                          opaque(kRed));
+        expect_near_color(pixel_at_world(image.view(), kCamera, -0.5f * s, 0.5f * c),
+                          opaque(kRed));
+    }
+    FrameScene frame = empty_frame();
+    PolygonGeom peg = polygon(box);
+    peg.is_static = true;
+    frame.polygons.push_back(peg);
+    const Image image = draw(frame);
+    const Pixel core = pixel_at_world(image.view(), kCamera, 0.8f, 0);
+    EXPECT_EQ(core, pixel_at_world(image.view(), kCamera, -0.8f, 0));   // no marker
+    EXPECT_LT(channel_sum(core) + 60, channel_sum(opaque(kRed)));        // darker
 }
 
 TEST_F(RendererGLTest, CornersKeepTheClearColourAroundADisc) {

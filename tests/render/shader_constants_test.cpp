@@ -63,6 +63,12 @@ TEST(ShaderConstantsTest, DiscQuadSizeMatchesThePointSpriteTest) {
     EXPECT_EQ(shader_float(discreel_shaders::disc_vert, "kQuadMargin"), kDiscQuadMargin);
 }
 
+TEST(ShaderConstantsTest, PolygonFlagsMatchTheInstanceRecord) {
+    EXPECT_EQ(shader_uint(discreel_shaders::polygon_vert, "kStatic"), kPolygonStatic);
+    EXPECT_EQ(shader_uint(discreel_shaders::polygon_vert, "kNoOutline"), kPolygonNoOutline);
+    EXPECT_EQ(shader_uint(discreel_shaders::polygon_vert, "kNoSpinMarker"), kPolygonNoSpinMarker);
+}
+
 TEST(ShaderConstantsTest, PolygonQuadSizeMatchesThePointSpriteTest) {
     EXPECT_EQ(shader_float(discreel_shaders::polygon_vert, "kQuadMargin"), kPolygonQuadMargin);
 }

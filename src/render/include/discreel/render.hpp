@@ -36,6 +36,7 @@ struct PolygonGeom {
     int count = 0;                  // vertices used, 2..8
     float rounding = 0;             // metres swept around the outline
     Rgba fill;
+    bool is_static = false;         // drawn darker, without the spin marker
 };
 
 struct CapsuleGeom {                // walls: segment a..b swept by a circle of `radius`

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "discreel/shapes.hpp"
 #include "discreel/vec2.hpp"
 
 namespace discreel::scene {
@@ -123,14 +124,18 @@ struct Wall {
     Color color{0x88, 0x99, 0xaa, 0xff};
 };
 
+// A body: a disc of `radius` from `discs:` (or a `circle:` body), or a body of another shape
+// from `bodies:`. Discs and bodies share one list and one numbering (Scene::discs).
 struct Disc {
     std::string id;                // from the file, or the index / "<generator>.<k>"
-    Vec2 position;                 // metres
+    Vec2 position;                 // metres; the centroid for a shape
     Vec2 velocity;                 // m/s
     double angle = 0.0;            // radians
     double angular_velocity = 0.0; // rad/s, counter-clockwise positive
-    double radius = 0.0;           // metres, > 0
-    double mass = 0.0;             // kg; from mass, or density (kg/m^2, default 1) * pi r^2
+    double radius = 0.0;           // metres, > 0; for a shape its bounding radius
+    double mass = 0.0;             // kg; from mass, or density (kg/m^2, default 1) * area
+    double inertia = 0.0;          // kg m^2 about the centroid, from the shape and mass
+    std::optional<physics::Shape> shape;   // unset: a disc of `radius`
     double restitution = 0.8;      // resolved from physics.restitution when not given
     double friction = 0.2;         // resolved from physics.friction when not given
     Color color;                   // resolved from a palette by index when not given
@@ -153,6 +158,13 @@ struct Throw {
     std::optional<Vec2> release;   // m/s
 };
 
+// A generator's bodies [first, first + bodies.size()) replaced by a new set at time `at`.
+struct Respawn {
+    double at = 0.0;               // seconds
+    std::size_t first = 0;         // index into Scene::discs
+    std::vector<Disc> bodies;
+};
+
 struct Scene {
     std::string name;              // file stem ("demo" for configs/demo.yaml)
     int version = 1;
@@ -163,6 +175,7 @@ struct Scene {
     std::vector<Wall> walls;
     std::vector<Disc> discs;
     std::vector<Throw> throws;
+    std::vector<Respawn> respawns;   // in order of `at`
     std::vector<int> golden_frames;  // default: first, middle, last
 };
 
