@@ -35,7 +35,7 @@ struct RigidBody {
 };
 
 struct BodySolverDef {
-    int iterations = 8;            // velocity iterations per step (docs/physics.md)
+    int iterations = 6;            // velocity iterations per step (docs/physics.md)
     int position_iterations = 3;   // overlap-removal sweeps per step
     double speculative = 0.02;     // metres: points this far apart are already contacts
     double slop = 5e-4;            // metres of overlap left alone (resting contact jitters less)
