@@ -41,6 +41,7 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
     const std::size_t n = bodies.size();
     boxes_.resize(n);
     margin_.resize(n);
+    transforms_.resize(n);
     order_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const RigidBody& b = bodies[i];
@@ -48,7 +49,8 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
         // is the sum of the two, so contacts are found before a fast body passes through.
         margin_[i] = (b.v.norm() + std::abs(b.omega) * b.bound) * dt +
                      (b.inv_mass > 0 ? fall : 0.0) + 0.5 * def_.speculative;
-        const Transform xf = Transform::of(b.x, b.angle);
+        transforms_[i] = Transform::of(b.x, b.angle);
+        const Transform& xf = transforms_[i];
         std::array<double, 4> box{HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
         for (int k = 0; k < b.shape.count; ++k) {
             const V2 p = xf.apply(b.shape.vertices[k]);
@@ -99,8 +101,8 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         PairContact pc;
         pc.a = i;
         pc.b = j;
-        pc.manifold = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
-                              Transform::of(b.x, b.angle), margin_[i] + margin_[j]);
+        pc.manifold =
+            collide(a.shape, transforms_[i], b.shape, transforms_[j], margin_[i] + margin_[j]);
         if (pc.manifold.count == 0) continue;
         BlockContact& c = pc.contact;
         c.normal = pc.manifold.normal;

@@ -88,6 +88,7 @@ private:
     std::vector<std::uint32_t> order_;      // scratch: bodies by the low x of their box
     std::vector<std::array<double, 4>> boxes_;   // scratch: lo x, lo y, hi x, hi y
     std::vector<double> margin_;            // scratch: metres a body can close in the step
+    std::vector<Transform> transforms_;     // scratch: each body's at the step's start
     std::vector<BlockBody> state_;          // scratch
     std::vector<V2> moved_;                 // scratch: metres each body moved this step
     std::vector<double> turned_;            // scratch: radians each body turned
