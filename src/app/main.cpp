@@ -86,7 +86,8 @@ CLI::Validator finite_number(double low = -std::numeric_limits<double>::max(),
 
 // The protective limits of docs/scene-format.md, raised (or lowered) per run.
 void add_limit_options(CLI::App& cmd, discreel::scene::Limits& limits) {
-    cmd.add_option("--max-discs", limits.discs, "Most discs a scene may have")
+    cmd.add_option("--max-bodies,--max-discs", limits.discs,
+                   "Most bodies (discs and other shapes) a scene may have")
         ->check(CLI::PositiveNumber)
         ->capture_default_str()
         ->group("Limits");

@@ -2,6 +2,25 @@
 
 namespace discreel::job {
 
+namespace {
+
+physics::DiscDef body_of(const scene::Disc& d) {
+    physics::DiscDef disc;
+    disc.position = d.position;
+    disc.velocity = d.velocity;
+    disc.angle = d.angle;
+    disc.angular_velocity = d.angular_velocity;
+    disc.radius = d.radius;
+    disc.mass = d.mass;
+    disc.restitution = d.restitution;
+    disc.friction = d.friction;
+    disc.is_static = d.is_static;
+    disc.shape = d.shape;
+    return disc;
+}
+
+}  // namespace
+
 physics::WorldDef build_world(const scene::Scene& scene) {
     physics::WorldDef def;
     def.gravity = scene.physics.gravity;
@@ -9,18 +28,13 @@ physics::WorldDef build_world(const scene::Scene& scene) {
     def.substeps = scene.physics.substeps;
     def.iterations = scene.physics.iterations;
     def.discs.reserve(scene.discs.size());
-    for (const scene::Disc& d : scene.discs) {
-        physics::DiscDef disc;
-        disc.position = d.position;
-        disc.velocity = d.velocity;
-        disc.angle = d.angle;
-        disc.angular_velocity = d.angular_velocity;
-        disc.radius = d.radius;
-        disc.mass = d.mass;
-        disc.restitution = d.restitution;
-        disc.friction = d.friction;
-        disc.is_static = d.is_static;
-        def.discs.push_back(disc);
+    for (const scene::Disc& d : scene.discs) def.discs.push_back(body_of(d));
+    for (const scene::Respawn& r : scene.respawns) {
+        physics::RespawnDef respawn;
+        respawn.at = r.at;
+        respawn.first = r.first;
+        for (const scene::Disc& d : r.bodies) respawn.bodies.push_back(body_of(d));
+        def.respawns.push_back(std::move(respawn));
     }
     def.walls.reserve(scene.walls.size());
     for (const scene::Wall& w : scene.walls) {

@@ -78,7 +78,7 @@ Expected<RenderSummary> render(const RenderDef& def) {
             simulated = playback.advance_to(frame);
             if (!simulated) return nullptr;
             outputs->record(frame, playback.time_of_frame(frame), playback.discs(),
-                            playback.take_events());
+                            playback.take_events(), playback.world().respawns_applied());
             if (frame < range.first) {
                 playback.observe(frame);   // trails and the follow camera
                 return nullptr;

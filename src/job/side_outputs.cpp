@@ -20,8 +20,8 @@ Expected<SideOutputs> SideOutputs::open(const std::optional<std::string>& trace,
 }
 
 void SideOutputs::record(int frame, double t, std::span<const physics::DiscState> discs,
-                         std::span<const physics::ContactEvent> events) {
-    if (trace_) trace_->write_frame(frame, t, discs);
+                         std::span<const physics::ContactEvent> events, std::size_t respawns) {
+    if (trace_) trace_->write_frame(frame, t, discs, respawns);
     if (events_) events_->write(events);
 }
 

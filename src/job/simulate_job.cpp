@@ -22,7 +22,8 @@ Expected<SimulateSummary> simulate(const SimulateDef& def) {
         if (Status stepped = playback.advance_to(frame); !stepped) return stepped.error();
         const std::vector<physics::ContactEvent> events = playback.take_events();
         summary.contacts += events.size();
-        outputs->record(frame, playback.time_of_frame(frame), playback.discs(), events);
+        outputs->record(frame, playback.time_of_frame(frame), playback.discs(), events,
+                        playback.world().respawns_applied());
         const physics::WorldStats stats = playback.world().stats();
         if (stats.max_overlap > summary.deepest.max_overlap) summary.deepest = stats;
     }

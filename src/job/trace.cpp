@@ -1,5 +1,6 @@
 #include "trace.hpp"
 
+#include <algorithm>
 #include <charconv>
 
 namespace discreel::job {
@@ -12,12 +13,20 @@ Expected<TraceWriter> TraceWriter::create(const std::string& path, const scene::
 
 TraceWriter::TraceWriter(AtomicTextFile file, const scene::Scene& scene)
     : file_(std::move(file)), scene_(&scene) {
-    file_.write("frame,t,id,x,y,angle,vx,vy,omega,radius,mass\n");
+    file_.write("frame,t,id,x,y,angle,vx,vy,omega,radius,mass,inertia\n");
+    for (const scene::Disc& d : scene.discs) bodies_.push_back(&d);
 }
 
-void TraceWriter::write_frame(int frame, double t, std::span<const physics::DiscState> discs) {
+void TraceWriter::write_frame(int frame, double t, std::span<const physics::DiscState> discs,
+                              std::size_t respawns) {
+    for (; respawns_ < std::min(respawns, scene_->respawns.size()); ++respawns_) {
+        const scene::Respawn& r = scene_->respawns[respawns_];
+        for (std::size_t k = 0; k < r.bodies.size() && r.first + k < bodies_.size(); ++k) {
+            bodies_[r.first + k] = &r.bodies[k];
+        }
+    }
     for (std::size_t i = 0; i < discs.size(); ++i) {
-        const scene::Disc& def = scene_->discs[i];
+        const scene::Disc& def = *bodies_[i];
         const physics::DiscState& s = discs[i];
         row_.clear();
         row_ += std::to_string(frame);
@@ -26,7 +35,8 @@ void TraceWriter::write_frame(int frame, double t, std::span<const physics::Disc
         row_ += ',';
         row_ += def.id;
         for (double v : {s.position.x, s.position.y, s.angle, s.velocity.x, s.velocity.y,
-                         s.angular_velocity, def.radius, def.is_static ? 0.0 : def.mass}) {
+                         s.angular_velocity, def.radius, def.is_static ? 0.0 : def.mass,
+                         def.is_static ? 0.0 : def.inertia}) {
             row_ += ',';
             append_number(row_, v);
         }

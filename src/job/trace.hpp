@@ -17,15 +17,21 @@ namespace discreel::job {
 
 class TraceWriter {
 public:
-    // frame,t,id,x,y,angle,vx,vy,omega,radius,mass — one row per disc per frame.
+    // frame,t,id,x,y,angle,vx,vy,omega,radius,mass,inertia — one row per body per frame;
+    // radius is a shape's bounding radius.
     static Expected<TraceWriter> create(const std::string& path, const scene::Scene& scene);
-    void write_frame(int frame, double t, std::span<const physics::DiscState> discs);
+    // `respawns`: how many of the scene's respawns the world has carried out (their bodies'
+    // radius, mass and inertia are the ones written from then on).
+    void write_frame(int frame, double t, std::span<const physics::DiscState> discs,
+                     std::size_t respawns = 0);
     AtomicTextFile& file() { return file_; }
 
 private:
     TraceWriter(AtomicTextFile file, const scene::Scene& scene);
     AtomicTextFile file_;
     const scene::Scene* scene_;
+    std::vector<const scene::Disc*> bodies_;   // each body's current definition
+    std::size_t respawns_ = 0;
     std::string row_;
 };
 

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "color.hpp"
+#include "entries.hpp"
 #include "generators.hpp"
 #include "loader.hpp"
 #include "overlap.hpp"
@@ -35,18 +36,7 @@ constexpr std::array<std::string_view, 16> random_keys{
     "count", "radius",  "region", "speed",   "colors",      "id",       "velocity", "angle",
     "angular_velocity", "mass", "density", "restitution", "friction", "color", "static", "position"};
 
-// The per-disc keys of an entry: a single disc's own, or what a generator gives every disc.
-struct Properties {
-    Vec2 velocity;
-    double angle = 0;
-    double angular_velocity = 0;
-    std::optional<double> mass;       // kg
-    double density = 1;               // kg/m^2, used when mass is not given
-    double restitution = 0.8;
-    double friction = 0.2;
-    std::optional<Color> color;       // none: from the palette by disc index
-    bool is_static = false;
-};
+}  // namespace
 
 Properties read_properties(Loader& loader, const Fields& fields, const Value& item) {
     auto& d = loader.diagnostics;
@@ -111,6 +101,7 @@ Disc make_disc(const Properties& p, std::string id, Vec2 position, double radius
     disc.friction = p.friction;
     disc.color = p.color ? *p.color : palette_color(index);
     disc.is_static = p.is_static;
+    disc.inertia = p.is_static ? 0.0 : 0.5 * disc.mass * radius * radius;
     return disc;
 }
 
@@ -158,6 +149,8 @@ void add_disc(Loader& loader, Disc disc, const Value& item, const std::optional<
     loader.sources.push_back(std::move(source));
 }
 
+namespace {
+
 void read_single_disc(Loader& loader, const Fields& fields, const Value& item) {
     auto& d = loader.diagnostics;
     const std::size_t index = loader.scene.discs.size();
@@ -183,35 +176,7 @@ void read_single_disc(Loader& loader, const Fields& fields, const Value& item) {
     add_disc(loader, std::move(disc), item, id_value, fields.get("velocity"), usable);
 }
 
-// A number (min = max) or a range [min, max]; each end checked by `check`.
-struct Range {
-    double min = 0, max = 0;
-};
-template <class Check>
-std::optional<Range> read_range(const Value& value, Check check, Diagnostics& d) {
-    if (value.node.IsScalar()) {
-        const auto v = read_number(value, d);
-        if (!v || !check(value, *v, d)) return std::nullopt;
-        return Range{*v, *v};
-    }
-    if (!value.node.IsSequence() || value.node.size() != 2) {
-        d.error(value.where, value.path + ": expected a number or a range [min, max], got " +
-                                 describe(value.node));
-        return std::nullopt;
-    }
-    const auto items = read_list(value, d);
-    const auto lo = read_number((*items)[0], d);
-    const auto hi = read_number((*items)[1], d);
-    const bool lo_ok = lo && check((*items)[0], *lo, d);
-    const bool hi_ok = hi && check((*items)[1], *hi, d);
-    if (!lo_ok || !hi_ok) return std::nullopt;
-    if (*lo > *hi) {
-        d.error(value.where, value.path + ": the minimum " + format_number(*lo) +
-                                 " is larger than the maximum " + format_number(*hi));
-        return std::nullopt;
-    }
-    return Range{*lo, *hi};
-}
+}  // namespace
 
 std::optional<std::vector<Color>> read_colors(const Value& value, Diagnostics& d) {
     const auto items = read_list(value, d);
@@ -231,14 +196,16 @@ std::optional<std::vector<Color>> read_colors(const Value& value, Diagnostics& d
     return colors;
 }
 
-double max_discs_of(const Loader& loader) { return static_cast<double>(loader.limits.discs); }
-
 std::optional<Value> required(const Fields& fields, std::string_view key, Diagnostics& d) {
     auto value = fields.get(key);
     if (!value)
         d.error(fields.where(), fields.path() + ": missing required key '" + std::string(key) + "'");
     return value;
 }
+
+namespace {
+
+double max_discs_of(const Loader& loader) { return static_cast<double>(loader.limits.discs); }
 
 std::string position_hint(std::string_view kind) {
     return kind == "grid" ? "'position' does not apply to a grid; give the centre of its first "
@@ -551,9 +518,20 @@ void check_discs(Loader& loader) {
         const Disc& a = discs[later];
         const Disc& b = discs[earlier];
         const double dx = a.position.x - b.position.x, dy = a.position.y - b.position.y;
-        const double depth = a.radius + b.radius - std::sqrt(dx * dx + dy * dy);
+        double depth = a.radius + b.radius - std::sqrt(dx * dx + dy * dy);
+        // A shape's circle is only its bound: the shapes themselves decide.
+        if (a.shape || b.shape) {
+            const auto shape_of = [](const Disc& body) {
+                return body.shape ? *body.shape : physics::circle_shape(body.radius);
+            };
+            depth = -physics::separation(shape_of(a), a.position, a.angle, shape_of(b),
+                                         b.position, b.angle, 0.0);
+            // Touching is allowed: a stack's boxes start face to face.
+            if (depth <= 1e-9 * std::max(a.radius, b.radius)) continue;
+        }
+        const std::string kind_a = a.shape ? "body" : "disc", kind_b = b.shape ? "body" : "disc";
         d.error(sources[later].entry,
-                sources[later].where + ": disc '" + a.id + "' overlaps disc '" + b.id +
+                sources[later].where + ": " + kind_a + " '" + a.id + "' overlaps " + kind_b + " '" + b.id +
                     "' (line " + std::to_string(sources[earlier].entry.line) + ") by " +
                     format_short(depth) + " m at t = 0");
     }

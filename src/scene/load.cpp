@@ -23,8 +23,9 @@ using detail::Fields;
 using detail::Location;
 using detail::Value;
 
-constexpr std::array<std::string_view, 9> top_level_keys{
-    "version", "video", "camera", "style", "physics", "walls", "discs", "throws", "golden"};
+constexpr std::array<std::string_view, 10> top_level_keys{
+    "version", "video", "camera", "style", "physics", "walls", "discs", "bodies", "throws",
+    "golden"};
 constexpr int supported_version = 1;
 // Values under unknown top-level keys beyond which a file is refused before it is parsed into
 // nodes: a misspelt section of an ordinary scene holds fewer, and is reported with the file's
@@ -214,7 +215,7 @@ private:
             refuse(key_mark_, "unknown top-level key '" + section_ +
                                   "', holding more values than any scene needs; expected one "
                                   "of: version, video, camera, style, physics, walls, discs, "
-                                  "throws, golden");
+                                  "bodies, throws, golden");
         }
         if (open_.size() == 2 && !parent.is_map) {   // an entry of a top-level list
             const std::size_t entries = index + 1;
@@ -287,6 +288,9 @@ void read_scene(const Value& root, detail::Loader& loader) {
     }
     if (const auto v = fields->get("walls")) detail::read_walls(loader, *v);
     if (const auto v = fields->get("discs")) detail::read_discs(loader, *v);
+    if (const auto v = fields->get("bodies"); v && !loader.disc_limit_reached) {
+        detail::read_bodies(loader, *v);
+    }
     detail::check_discs(loader);
     detail::resolve_camera_follow(loader);
     if (const auto v = fields->get("style")) detail::read_style(loader, *v);

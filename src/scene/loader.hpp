@@ -50,6 +50,7 @@ void read_style(Loader& loader, const Value& value);
 void read_physics(Loader& loader, const Value& value);
 void read_walls(Loader& loader, const Value& value);
 void read_discs(Loader& loader, const Value& value);
+void read_bodies(Loader& loader, const Value& value);   // after read_discs: one numbering
 void check_discs(Loader& loader);   // ids, overlaps at t = 0
 void read_throws(Loader& loader, const Value& value);
 void read_golden(Loader& loader, const std::optional<Value>& value);

@@ -8,7 +8,9 @@
 namespace discreel::scene::detail {
 namespace {
 
-constexpr std::array<std::string_view, 5> throw_keys{"disc", "at", "velocity", "path", "release"};
+// `body` is the same as `disc`: bodies of every shape share the discs' numbering.
+constexpr std::array<std::string_view, 6> throw_keys{"disc", "body", "at", "velocity", "path",
+                                                     "release"};
 
 bool read_path(Loader& loader, const Value& value, Throw& t) {
     auto& d = loader.diagnostics;
@@ -76,7 +78,11 @@ void read_throws(Loader& loader, const Value& value) {
         if (!fields) continue;
         Throw t;
         bool ok = true;
-        if (const auto disc = fields->get("disc")) {
+        if (fields->has("disc") && fields->has("body")) {
+            d.error(fields->key_location(fields->later_of("disc", "body")),
+                    item.path + ": give 'disc' or 'body', not both (they mean the same)");
+            ok = false;
+        } else if (const auto disc = fields->get(fields->has("body") ? "body" : "disc")) {
             const auto index = resolve_disc(loader, *disc, ids);
             if (index && loader.scene.discs[*index].is_static) {
                 d.error(disc->where, disc->path + ": disc '" + loader.scene.discs[*index].id +
@@ -86,7 +92,7 @@ void read_throws(Loader& loader, const Value& value) {
             ok = ok && index;
             t.disc = index.value_or(0);
         } else {
-            d.error(item.where, item.path + ": missing required key 'disc'");
+            d.error(item.where, item.path + ": missing required key 'disc' (or 'body')");
             ok = false;
         }
         const bool is_grab = fields->has("path");

@@ -327,7 +327,7 @@ TEST(CliTest, TraceAgreesAcrossFrameRates) {
     };
     const auto t30 = rows(read_file(dir / "t30.csv"));
     const auto t60 = rows(read_file(dir / "t60.csv"));
-    ASSERT_EQ(t30.front(), "frame,t,id,x,y,angle,vx,vy,omega,radius,mass");
+    ASSERT_EQ(t30.front(), "frame,t,id,x,y,angle,vx,vy,omega,radius,mass,inertia");
     const std::size_t discs = 3;
     ASSERT_EQ(t30.size(), 1 + discs * 38);   // round(1.25 * 30) = 38 frames
     ASSERT_EQ(t60.size(), 1 + discs * 75);

@@ -1,0 +1,153 @@
+// `bodies:` in scene files: each shape arrives with the mass and inertia its geometry gives,
+// polygons centred on their area centroid, circles as plain discs; shapes are checked for
+// overlap by their outlines, not their bounding circles; `random_polygons` scatters convex
+// polygons without overlap, the same for the same seed, and respawns them on schedule.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "discreel/shapes.hpp"
+#include "scene_test_support.hpp"
+
+namespace discreel::scene {
+namespace {
+
+using testing::load_ok;
+using testing::problems;
+
+TEST(Bodies, EachShapeHasTheMassAndInertiaOfItsGeometry) {
+    const Scene s = load_ok(R"(
+version: 1
+discs:
+  - {position: [0, 5], radius: 0.5}
+bodies:
+  - {id: crate, box: [0.8, 0.5], position: [3, 2], density: 2}
+  - {polygon: [[0, 0], [3, 0], [0, 3]], position: [6, 3], mass: 4.5}
+  - {capsule: {length: 1.0, radius: 0.2}, position: [9, 2]}
+  - {circle: 0.3, position: [12, 4], density: 2}
+)");
+    ASSERT_EQ(s.discs.size(), 5u);
+    EXPECT_EQ(s.discs[1].id, "crate");   // one numbering: discs, then bodies
+    const Disc& crate = s.discs[1];
+    ASSERT_TRUE(crate.shape);
+    EXPECT_NEAR(crate.mass, 2 * 0.8 * 0.5, 1e-12);
+    EXPECT_NEAR(crate.inertia, crate.mass * (0.64 + 0.25) / 12, 1e-12);
+    EXPECT_NEAR(crate.radius, std::hypot(0.4, 0.25), 1e-12);   // the bounding radius
+    // A right triangle: its centroid (1, 1) is the origin of its vertices, the body's position.
+    const Disc& wedge = s.discs[2];
+    ASSERT_TRUE(wedge.shape);
+    EXPECT_NEAR(wedge.shape->vertices[0].x, -1, 1e-12);
+    EXPECT_NEAR(wedge.shape->vertices[0].y, -1, 1e-12);
+    EXPECT_EQ(wedge.position, (Vec2{6, 3}));
+    EXPECT_NEAR(wedge.mass, 4.5, 1e-12);
+    EXPECT_NEAR(wedge.inertia, 4.5 * (9 + 9) / 18, 1e-12);   // m (a^2 + b^2) / 18 about the centroid
+    const Disc& capsule = s.discs[3];
+    EXPECT_NEAR(capsule.mass, 1.0 * 0.4 + std::numbers::pi * 0.04, 1e-12);
+    EXPECT_NEAR(capsule.radius, 0.7, 1e-12);
+    const Disc& circle = s.discs[4];
+    EXPECT_FALSE(circle.shape);   // exactly a disc
+    EXPECT_NEAR(circle.radius, 0.3, 1e-12);
+    EXPECT_NEAR(circle.mass, 2 * std::numbers::pi * 0.09, 1e-12);
+    EXPECT_NEAR(circle.inertia, 0.5 * circle.mass * 0.09, 1e-12);
+}
+
+TEST(Bodies, TouchingBoxesLoadAndOverlappingOnesAreRefused) {
+    load_ok(R"(
+version: 1
+bodies:
+  - {box: [1, 1], position: [0, 0.5]}
+  - {box: [1, 1], position: [0, 1.5]}
+  - {box: [1, 1], position: [1.25, 0.5], angle: 0.78}
+)");
+    EXPECT_EQ(problems(R"(
+version: 1
+bodies:
+  - {id: a, box: [1, 1], position: [0, 0.5]}
+  - {id: b, box: [1, 1], position: [0, 1.4]}
+)"),
+              (std::vector<std::string>{
+                  "s.yaml:5:5: bodies[1]: body 'b' overlaps body 'a' (line 4) by 0.1 m at t = 0"}));
+}
+
+TEST(Bodies, RandomPolygonsScatterWithoutOverlapTheSameForTheSameSeed) {
+    const std::string yaml = R"(
+version: 1
+video: {duration: 10}
+walls:
+  - box: [[0, 0], [12, 7]]
+bodies:
+  - random_polygons:
+      count: 40
+      region: [[1, 1], [11, 6]]
+      sides: [3, 8]
+      size: [0.2, 0.5]
+      speed: [0, 2]
+      angular_speed: [1, 3]
+      respawn_every: 4.0
+)";
+    const Scene a = load_ok(yaml);
+    const Scene b = load_ok(yaml);
+    ASSERT_EQ(a.discs.size(), 40u);
+    EXPECT_EQ(a.discs[0].id, "body0.0");
+    EXPECT_EQ(a.discs[39].id, "body0.39");
+    for (std::size_t i = 0; i < a.discs.size(); ++i) {
+        const Disc& p = a.discs[i];
+        ASSERT_TRUE(p.shape);
+        EXPECT_GE(p.shape->vertices.size(), 3u);
+        EXPECT_LE(p.shape->vertices.size(), 8u);
+        EXPECT_LE(p.radius, 0.5 + 1e-12);
+        EXPECT_GE(std::abs(p.angular_velocity), 1.0);
+        EXPECT_EQ(p.position, b.discs[i].position);
+        EXPECT_EQ(p.shape->vertices.size(), b.discs[i].shape->vertices.size());
+        for (std::size_t j = 0; j < i; ++j) {
+            const Disc& q = a.discs[j];
+            EXPECT_GE(physics::separation(*p.shape, p.position, p.angle, *q.shape, q.position,
+                                          q.angle, 0.0),
+                      0.0);
+        }
+    }
+    // Respawned at 4 and 8 s (not 12: past the 10 s clip), each a new draw of 40.
+    ASSERT_EQ(a.respawns.size(), 2u);
+    EXPECT_EQ(a.respawns[0].at, 4.0);
+    EXPECT_EQ(a.respawns[1].at, 8.0);
+    EXPECT_EQ(a.respawns[0].first, 0u);
+    ASSERT_EQ(a.respawns[0].bodies.size(), 40u);
+    EXPECT_EQ(a.respawns[0].bodies[7].id, "body0.7");
+    EXPECT_NE(a.respawns[0].bodies[7].position, a.discs[7].position);
+    EXPECT_EQ(a.respawns[1].bodies[7].position, b.respawns[1].bodies[7].position);
+}
+
+TEST(Bodies, ThrowsNameBodiesWithBodyOrDisc) {
+    const Scene s = load_ok(R"(
+version: 1
+discs:
+  - {position: [0, 0], radius: 0.5}
+bodies:
+  - {id: crate, box: [1, 1], position: [3, 0]}
+throws:
+  - {body: crate, at: 1, velocity: [1, 0]}
+  - {disc: crate, at: 2, velocity: [0, 1]}
+)");
+    ASSERT_EQ(s.throws.size(), 2u);
+    EXPECT_EQ(s.throws[0].disc, 1u);
+    EXPECT_EQ(s.throws[1].disc, 1u);
+}
+
+TEST(Bodies, RespawnsCountAgainstTheLimitOnBodies) {
+    Limits limits;
+    limits.discs = 100;
+    const LoadResult r = load_scene_text(R"(
+version: 1
+video: {duration: 10}
+bodies:
+  - random_polygons: {count: 30, region: [[0, 0], [10, 10]], size: 0.2, respawn_every: 2}
+)", "s.yaml", limits);
+    ASSERT_EQ(r.diagnostics.size(), 1u);
+    EXPECT_EQ(r.diagnostics[0].to_string(),
+              "s.yaml:5:73: bodies[0].respawn_every: respawning every 2 s brings the scene to 120 "
+              "bodies over the clip; the limit is 100 (raise it with --max-discs)");
+}
+
+}  // namespace
+}  // namespace discreel::scene
