@@ -18,3 +18,6 @@ still cradle 1.92
 still billiards 1.33
 still grab 4.33
 still rain 2.0
+still polygons 3.0
+still pyramid 2.6
+still shapes 4.0
