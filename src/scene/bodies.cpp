@@ -123,15 +123,7 @@ void read_single_body(Loader& loader, const Fields& fields, const Value& item,
     auto& d = loader.diagnostics;
     const std::size_t index = loader.scene.discs.size();
     const Properties p = read_properties(loader, fields, item);
-    std::string id = std::to_string(index);
-    const auto id_value = fields.get("id");
-    if (id_value)
-        if (const auto explicit_id = read_id(*id_value, d)) id = *explicit_id;
-    std::optional<Vec2> position;
-    if (const auto v = fields.get("position"))
-        position = read_vec2(*v, "[x, y]", d);
-    else
-        d.error(item.where, item.path + ": missing required key 'position'");
+    auto [id, id_value, position] = read_placement(loader, fields, item);
     if (key == "circle") {   // exactly a disc of that radius
         const auto radius = read_positive(*fields.get("circle"), d);
         if (fields.has("rounding")) {

@@ -149,22 +149,28 @@ void add_disc(Loader& loader, Disc disc, const Value& item, const std::optional<
     loader.sources.push_back(std::move(source));
 }
 
+Placement read_placement(Loader& loader, const Fields& fields, const Value& item) {
+    auto& d = loader.diagnostics;
+    Placement placement;
+    placement.id = std::to_string(loader.scene.discs.size());
+    placement.id_value = fields.get("id");
+    if (placement.id_value)
+        if (const auto explicit_id = read_id(*placement.id_value, d)) placement.id = *explicit_id;
+    if (const auto v = fields.get("position"))
+        placement.position = read_vec2(*v, "[x, y]", d);
+    else
+        d.error(item.where, item.path + ": missing required key 'position'");
+    return placement;
+}
+
 namespace {
 
 void read_single_disc(Loader& loader, const Fields& fields, const Value& item) {
     auto& d = loader.diagnostics;
     const std::size_t index = loader.scene.discs.size();
     const Properties p = read_properties(loader, fields, item);
-    std::string id = std::to_string(index);
-    const auto id_value = fields.get("id");
-    if (id_value)
-        if (const auto explicit_id = read_id(*id_value, d)) id = *explicit_id;
-    std::optional<Vec2> position;
+    auto [id, id_value, position] = read_placement(loader, fields, item);
     std::optional<double> radius;
-    if (const auto v = fields.get("position"))
-        position = read_vec2(*v, "[x, y]", d);
-    else
-        d.error(item.where, item.path + ": missing required key 'position'");
     if (const auto v = fields.get("radius"))
         radius = read_positive(*v, d);
     else

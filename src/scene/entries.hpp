@@ -36,6 +36,15 @@ bool check_mass(const Disc& disc, const Value& item, Diagnostics& d);
 bool room_for(Loader& loader, const Value& item, std::size_t count);
 void add_disc(Loader& loader, Disc disc, const Value& item, const std::optional<Value>& id_value,
               const std::optional<Value>& velocity_value, bool usable);
+// What names and places a single body: its id (written, or its index) and its required
+// position (reported when missing).
+struct Placement {
+    std::string id;
+    std::optional<Value> id_value;
+    std::optional<Vec2> position;
+};
+Placement read_placement(Loader& loader, const Fields& fields, const Value& item);
+
 std::optional<std::vector<Color>> read_colors(const Value& value, Diagnostics& d);
 std::optional<Value> required(const Fields& fields, std::string_view key, Diagnostics& d);
 
