@@ -25,11 +25,11 @@ constexpr std::array<std::string_view, 17> entry_keys{
 constexpr std::array<std::string_view, 5> shape_keys{"box", "polygon", "capsule", "circle",
                                                       "random_polygons"};
 constexpr std::array<std::string_view, 2> capsule_keys{"length", "radius"};
-// The generator's own keys, then the per-body keys it applies to every body.
-constexpr std::array<std::string_view, 9> generator_keys{
-    "count", "region", "sides", "size", "speed", "angular_speed", "respawn_every", "colors", "id"};
+// The per-body keys a generator applies to every body, written inside it or beside it.
 constexpr std::array<std::string_view, 8> shared_body_keys{
     "id", "mass", "density", "restitution", "friction", "color", "static", "rounding"};
+// The generator's own keys, the shared ones, and `angle`, recognised so that the message can
+// say what to use instead.
 constexpr std::array<std::string_view, 17> random_polygon_keys{
     "count",   "region",  "sides",       "size",     "speed", "angular_speed",
     "respawn_every", "colors", "id",     "mass",     "density", "restitution",
