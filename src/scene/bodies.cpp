@@ -149,7 +149,7 @@ void read_single_body(Loader& loader, const Fields& fields, const Value& item,
 // A convex polygon of `sides` vertices on a circle of radius `size`: evenly spaced angles,
 // each moved by less than a third of a step, so the outline stays convex with no point on a
 // line between its neighbours.
-physics::Shape random_polygon(int sides, double size, double rounding, Rng& rng) {
+std::optional<physics::Shape> random_polygon(int sides, double size, double rounding, Rng& rng) {
     const double step = 2 * std::numbers::pi / sides;
     std::vector<Vec2> points;
     for (int k = 0; k < sides; ++k) {
@@ -158,7 +158,10 @@ physics::Shape random_polygon(int sides, double size, double rounding, Rng& rng)
     }
     // Convex by construction. Moving the centroid to the origin can put a point beyond
     // `size`; the outline is then scaled about the centroid to fit the circle it was placed by.
-    physics::Shape shape = physics::polygon_shape(points, rounding)->shape;
+    // Sizes at the ends of double's range give outlines without area or finite corners.
+    auto made = physics::polygon_shape(points, rounding);
+    if (!made) return std::nullopt;
+    physics::Shape shape = std::move(made->shape);
     const double bound = physics::bounding_radius(shape);
     if (bound > size) {
         const double scale = (size - rounding) / (bound - rounding);
@@ -175,17 +178,24 @@ struct PolygonSpec {
 };
 
 // One set: places bounding circles without overlap against `existing`, then gives each a
-// polygon and a spin. Fewer than asked when the region is full.
+// polygon and a spin. Fewer than asked when the region is full or a polygon cannot be made
+// at its size (or weighs nothing, or infinitely much).
 std::vector<Disc> scatter(const PolygonSpec& spec, const Properties& p,
                           const std::vector<Circle>& existing, Rng& rng,
                           const std::optional<std::vector<Color>>& colors,
-                          const std::string& prefix, std::size_t first_index) {
+                          const std::string& prefix, std::size_t first_index,
+                          bool& unmakeable) {
     std::vector<Disc> set;
+    unmakeable = false;
     for (const PlacedDisc& placed : place_random(spec.placement, existing, rng)) {
         const int sides =
             spec.sides_min + static_cast<int>(rng.unit() * (spec.sides_max - spec.sides_min + 1));
-        const physics::Shape shape =
+        const auto shape =
             random_polygon(std::min(sides, spec.sides_max), placed.radius, spec.rounding, rng);
+        if (!shape) {
+            unmakeable = true;
+            break;
+        }
         Properties each = p;
         each.velocity = placed.velocity;
         each.angle = rng.uniform(0, 2 * std::numbers::pi);
@@ -195,7 +205,11 @@ std::vector<Disc> scatter(const PolygonSpec& spec, const Properties& p,
         if (colors) each.color = (*colors)[k % colors->size()];
         Disc body = make_disc(each, prefix + "." + std::to_string(k), placed.position, 1.0,
                               first_index + k);
-        give_shape(body, shape, each);
+        give_shape(body, *shape, each);
+        if (!std::isfinite(body.mass) || !(body.mass > 0) || !std::isfinite(body.inertia)) {
+            unmakeable = true;
+            break;
+        }
         set.push_back(std::move(body));
     }
     return set;
@@ -314,7 +328,15 @@ void read_random_polygons(Loader& loader, const Fields& fields, const Value& ite
     }
     Rng rng(loader.scene.physics.seed, body_streams + entry_index);
     const std::size_t first = loader.scene.discs.size();
-    std::vector<Disc> set = scatter(spec, p, existing, rng, colors, prefix, first);
+    bool unmakeable = false;
+    std::vector<Disc> set = scatter(spec, p, existing, rng, colors, prefix, first, unmakeable);
+    if (unmakeable) {
+        d.error(own->get("size")->where,
+                own->get("size")->path + ": polygons of this size have no finite, positive area "
+                                         "or mass; choose sizes nearer 1 m");
+        loader.discs_complete = false;
+        return;
+    }
     if (set.size() < spec.placement.count) {
         d.error(item.where, item.path + ": could place only " + std::to_string(set.size()) +
                                 " of " + std::to_string(spec.placement.count) +
@@ -342,7 +364,7 @@ void read_random_polygons(Loader& loader, const Fields& fields, const Value& ite
         Respawn r;
         r.at = at;
         r.first = first;
-        r.bodies = scatter(spec, p, fixed, rng, colors, prefix, first);
+        r.bodies = scatter(spec, p, fixed, rng, colors, prefix, first, unmakeable);
         if (r.bodies.size() < spec.placement.count) {
             d.error(item.where, item.path + ": the respawn at t = " + format_number(at) +
                                     " s could place only " + std::to_string(r.bodies.size()) +

@@ -2,6 +2,7 @@
 // Whatever the input, load_scene_text must return (no crash, no hang, no unbounded memory,
 // no sanitizer report) and its result must be self-consistent; a violation aborts so that
 // libFuzzer records the input. Built only by DISCREEL_FUZZ=ON (see tests/fuzz/run.sh).
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -22,7 +23,11 @@ void check_scene(const discreel::scene::Scene& scene) {
     require(scene.throws.size() <= max_throws);
     require(scene.golden_frames.size() <= max_golden_frames);
     require(scene.video.frame_count() > 0);
-    for (const Disc& disc : scene.discs) require(disc.radius > 0.0 && disc.mass > 0.0);
+    for (const Disc& disc : scene.discs) {
+        require(disc.radius > 0.0 && disc.mass > 0.0 && std::isfinite(disc.inertia));
+        if (disc.shape) require(!disc.shape->vertices.empty() && disc.shape->vertices.size() <= 8);
+    }
+    for (const Respawn& r : scene.respawns) require(r.first + r.bodies.size() <= scene.discs.size());
     for (const Throw& t : scene.throws) {
         require(t.disc < scene.discs.size());
         require(t.velocity.has_value() != !t.path.empty());
