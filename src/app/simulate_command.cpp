@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 
@@ -35,8 +36,9 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     const std::string name = scene.name;
     const std::size_t discs = scene.discs.size(), walls = scene.walls.size(),
                       throws = scene.throws.size();
-    const int fps = scene.video.fps, rate = scene.physics.rate,
-              iterations = scene.physics.iterations;
+    const int fps = scene.video.fps, rate = scene.physics.rate;
+    const bool shaped = std::any_of(scene.discs.begin(), scene.discs.end(),
+                                    [](const scene::Disc& d) { return d.shape.has_value(); });
     job::SimulateDef def;
     def.scene = std::move(scene);
     def.trace = o.files.trace;
@@ -53,14 +55,16 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     }
 
     out << std::setprecision(6);
-    out << "scene     " << printable(name) << ": " << count_of(discs, "disc", "discs") << ", "
+    out << "scene     " << printable(name) << ": "
+        << (shaped ? count_of(discs, "body", "bodies") : count_of(discs, "disc", "discs")) << ", "
         << count_of(walls, "wall", "walls") << ", " << count_of(throws, "throw", "throws") << '\n';
     out << "frames    " << run->frames << " at " << fps << " fps (" << run->steps
         << " physics steps at " << rate << " Hz, t = " << run->t << " s)\n";
     const int substeps = run->substeps;
-    out << "solver    " << count_of(static_cast<std::size_t>(substeps), "substep", "substeps")
+    out << "solver    " << (run->manifold_solver ? "manifold, " : "")
+        << count_of(static_cast<std::size_t>(substeps), "substep", "substeps")
         << " per step (1/" << rate * substeps << " s" << (substeps > 1 ? " each" : "") << "), "
-        << count_of(static_cast<std::size_t>(iterations), "iteration", "iterations")
+        << count_of(static_cast<std::size_t>(run->iterations), "iteration", "iterations")
         << " per substep\n";
     out << "contacts  " << run->contacts << " new contacts\n";
     out << "overlap   " << run->deepest.max_overlap << " m at most, "

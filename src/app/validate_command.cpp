@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <iostream>
 
 #include "commands.hpp"
@@ -13,7 +14,10 @@ int run_validate(const ValidateOptions& o, std::ostream& out, std::ostream& err)
     for (const std::string& path : o.scene_paths) {
         const auto loaded = scene::load_scene_file(path, o.limits);
         if (report_diagnostics(loaded, err)) {
-            out << printable(path) << ": ok (" << loaded.scene.discs.size() << " discs, "
+            const auto& bodies = loaded.scene.discs;
+            const bool shaped = std::any_of(bodies.begin(), bodies.end(),
+                                            [](const scene::Disc& d) { return d.shape.has_value(); });
+            out << printable(path) << ": ok (" << bodies.size() << (shaped ? " bodies, " : " discs, ")
                 << loaded.scene.video.frame_count() << " frames)\n";
         } else {
             all_ok = false;

@@ -35,6 +35,8 @@ Expected<SimulateSummary> simulate(const SimulateDef& def) {
     summary.steps = world.step_count();
     summary.t = world.time();
     summary.substeps = world.substeps();
+    summary.iterations = world.iterations();
+    summary.manifold_solver = world.manifold_solver();
     summary.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return summary;

@@ -304,6 +304,10 @@ std::int64_t World::step_count() const { return impl_->steps; }
 int World::rate() const { return impl_->rate; }
 double World::time() const { return static_cast<double>(impl_->steps) / impl_->rate; }
 int World::substeps() const { return impl_->substeps; }
+bool World::manifold_solver() const { return impl_->shapes != nullptr; }
+int World::iterations() const {
+    return impl_->shapes ? detail::BodySolverDef{}.iterations : impl_->iterations;
+}
 std::span<const DiscState> World::discs() const { return impl_->publish(); }
 std::size_t World::respawns_applied() const {
     return impl_->shapes ? impl_->shapes->respawns_applied() : 0;

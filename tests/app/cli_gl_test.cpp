@@ -415,5 +415,43 @@ TEST(CliTest, UnwritableTraceFailsBeforeAnyWork) {
         << run.err;
 }
 
+// A box resting flat on the floor of a box wall, through the binary: the summary names the
+// manifold solver and counts bodies, the trace carries the box's inertia m (w^2 + h^2) / 12,
+// and its contact with the floor on two points is one event row.
+TEST(CliTest, BodiesSimulateWithTheirInertiaAndOneEventPerPair) {
+    TempDir dir;
+    testing::write_file(dir / "box.yaml", R"(version: 1
+video: {fps: 10, duration: 0.5}
+physics: {restitution: 0, friction: 0.5}
+walls:
+  - box: [[0, 0], [4, 4]]
+bodies:
+  - {id: crate, box: [1, 0.5], position: [2, 0.5], density: 2}
+)");
+    const auto run = run_command({bin, "simulate", dir / "box.yaml", "--trace", dir / "t.csv",
+                                  "--events", dir / "e.csv"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.out.find("scene     box: 1 body, 1 wall, 0 throws\n"), std::string::npos)
+        << run.out;
+    EXPECT_NE(run.out.find("solver    manifold, 1 substep per step (1/480 s), 6 iterations per "
+                           "substep\n"),
+              std::string::npos)
+        << run.out;
+    std::istringstream trace(read_file(dir / "t.csv"));
+    std::string header, first;
+    std::getline(trace, header);
+    std::getline(trace, first);
+    EXPECT_EQ(header, "frame,t,id,x,y,angle,vx,vy,omega,radius,mass,inertia");
+    // mass 2 * 0.5 = 1 kg; inertia (1 + 0.25) / 12 kg m^2 (to the last bit of its sum of
+    // parts); radius the half-diagonal.
+    EXPECT_EQ(first, "0,0,crate,2,0.5,0,0,0,0,0.5590169943749475,1,0.10416666666666666");
+    EXPECT_EQ(read_file(dir / "e.csv").substr(0, 14), "t,a,b,impulse\n");
+    std::istringstream events(read_file(dir / "e.csv"));
+    std::string line;
+    int rows = 0;
+    while (std::getline(events, line)) rows += line.find(",crate,wall:0,") != std::string::npos;
+    EXPECT_EQ(rows, 1);
+}
+
 }  // namespace
 }  // namespace discreel

@@ -106,6 +106,8 @@ struct SimulateSummary {
     std::int64_t steps = 0;                  // physics steps taken
     double t = 0;                            // seconds of simulated time at the end
     int substeps = 1;                        // per step
+    int iterations = 1;                      // velocity iterations per substep
+    bool manifold_solver = false;            // bodies of other shapes: the manifold solver
     std::size_t contacts = 0;                // new contacts over the run
     physics::WorldStats deepest;             // at the frame with the deepest overlap
     double energy_start = 0, energy_end = 0; // joules

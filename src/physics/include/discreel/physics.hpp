@@ -153,6 +153,10 @@ public:
     int rate() const;              // steps per second (WorldDef::rate)
     double time() const;           // step_count() / rate(), seconds
     int substeps() const;          // per step: WorldDef::substeps, or the count chosen for 0
+    // True when some body has a shape: the manifold solver steps the world (docs/physics.md).
+    bool manifold_solver() const;
+    // Velocity iterations per substep of the solver in use: WorldDef::iterations for discs.
+    int iterations() const;
 
     // Same order as WorldDef::discs; valid until the next step() (ask again after it).
     std::span<const DiscState> discs() const;
