@@ -23,7 +23,7 @@ struct RenderOptions {
     std::optional<double> at;                // seconds, for a .png still
     std::optional<std::string> frames;       // "A-B" or "A-": a range of frames, any format
     std::optional<std::string> quality;      // low, medium, high, 4k: size, fps and crf
-    scene::Limits limits;                    // --max-discs, --max-duration, --max-scene-bytes
+    scene::Limits limits;                    // --max-bodies, --max-duration, --max-scene-bytes
     VideoOverrides video;
     std::optional<int> crf;                  // none: the codec's default
     std::string preset;                      // x264 preset; empty: veryfast

@@ -31,7 +31,7 @@ struct GoldenOptions {
     std::optional<std::string> report;            // write an HTML report here
     VideoOverrides video;                         // --size only
     ProgressRequest progress = ProgressRequest::none;   // --progress [json]
-    scene::Limits limits;                         // --max-discs, --max-duration, ...
+    scene::Limits limits;                         // --max-bodies, --max-duration, ...
 };
 
 // Exit codes: 0 every frame matched (or was written), 1 a frame differs or has no golden,

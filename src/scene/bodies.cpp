@@ -358,7 +358,7 @@ void read_random_polygons(Loader& loader, const Fields& fields, const Value& ite
                     item.path + ".respawn_every: respawning every " + format_number(*every) +
                         " s brings the scene to " + std::to_string(total) +
                         " bodies over the clip; the limit is " +
-                        std::to_string(loader.limits.discs) + " (raise it with --max-discs)");
+                        std::to_string(loader.limits.discs) + " (raise it with --max-bodies)");
             return;
         }
         Respawn r;

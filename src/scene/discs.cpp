@@ -115,14 +115,15 @@ bool check_mass(const Disc& disc, const Value& item, Diagnostics& d) {
     return false;
 }
 
-// Whether `count` more discs still fit under the limit; reports the entry that breaks it.
+// Whether `count` more bodies (discs or shapes) still fit under the limit; reports the entry
+// that breaks it.
 bool room_for(Loader& loader, const Value& item, std::size_t count) {
     const std::size_t total = loader.scene.discs.size() + count;
     if (total <= loader.limits.discs) return true;
     loader.diagnostics.error(item.where, item.path + ": this entry brings the scene to " +
-                                             std::to_string(total) + " discs; the limit is " +
+                                             std::to_string(total) + " bodies; the limit is " +
                                              std::to_string(loader.limits.discs) +
-                                             " (raise it with --max-discs)");
+                                             " (raise it with --max-bodies)");
     loader.discs_complete = false;
     loader.disc_limit_reached = true;
     return false;
@@ -280,7 +281,8 @@ std::optional<Generated> read_grid(Loader& loader, const Fields& fields, Rng& rn
                         count_value->path + ": " + std::to_string(*columns) + " x " +
                             std::to_string(*rows) + " = " + std::to_string(*columns * *rows) +
                             " discs is more than the limit of " +
-                            std::to_string(loader.limits.discs) + " (raise it with --max-discs)");
+                            std::to_string(loader.limits.discs) +
+                            " bodies (raise it with --max-bodies)");
                 ok = false;
             }
             ok = ok && columns_ok && rows_ok;

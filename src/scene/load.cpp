@@ -219,10 +219,12 @@ private:
         }
         if (open_.size() == 2 && !parent.is_map) {   // an entry of a top-level list
             const std::size_t entries = index + 1;
-            if (section_ == "discs" && entries > limits_.discs) {
-                refuse(mark, "discs: more than " + std::to_string(limits_.discs) +
-                                 " entries, and each makes at least one disc; the limit is " +
-                                 std::to_string(limits_.discs) + " (raise it with --max-discs)");
+            // Each entry of `discs` or `bodies` makes at least one body; both count together.
+            if ((section_ == "discs" || section_ == "bodies") && ++body_entries_ > limits_.discs) {
+                refuse(mark, section_ + ": more than " + std::to_string(limits_.discs) +
+                                 " entries in 'discs' and 'bodies', and each makes at least one "
+                                 "body; the limit is " +
+                                 std::to_string(limits_.discs) + " (raise it with --max-bodies)");
             }
             if (section_ == "walls" && entries > max_walls) {
                 refuse(mark, "walls: too many walls (more than " + std::to_string(max_walls) +
@@ -247,6 +249,7 @@ private:
     std::optional<YAML::Mark> too_many_aliased_;
     const Limits& limits_;
     std::size_t values_ = 0;          // nodes of the first document so far
+    std::size_t body_entries_ = 0;    // entries of `discs` and `bodies` so far
     std::string section_;             // the top-level key being read
     YAML::Mark key_mark_;
     bool known_section_ = true;

@@ -303,6 +303,29 @@ TEST(CliTest, ValidateReportsEachScene) {
     EXPECT_EQ(bad.err.rfind(dir / "bad.yaml" + ":3:3: ", 0), 0u) << bad.err;
 }
 
+// --max-bodies limits discs and shapes together, generated ones included; --max-discs is the
+// same option.
+TEST(CliTest, MaxBodiesAndItsAliasMaxDiscsLimitEveryKindOfBody) {
+    TempDir dir;
+    testing::write_file(dir / "three.yaml", R"(version: 1
+discs:
+  - {position: [0, 0], radius: 0.5}
+bodies:
+  - random_polygons: {count: 2, region: [[2, -1], [8, 1]], size: 0.3}
+)");
+    const std::string refused = dir / "three.yaml" +
+                                ":5:5: bodies[0]: this entry brings the scene to 3 bodies; the "
+                                "limit is 2 (raise it with --max-bodies)\n";
+    for (const char* option : {"--max-bodies", "--max-discs"}) {
+        const auto two = run_command({bin, "validate", dir / "three.yaml", option, "2"});
+        EXPECT_EQ(two.exit_code, 2) << option;
+        EXPECT_EQ(two.err, refused) << option;
+        const auto three = run_command({bin, "validate", dir / "three.yaml", option, "3"});
+        EXPECT_EQ(three.exit_code, 0) << option << three.err;
+        EXPECT_EQ(three.out, dir / "three.yaml" + ": ok (3 bodies, 480 frames)\n") << option;
+    }
+}
+
 // The trajectory depends on the physics rate only: at 30 and 60 fps, frames at the same time
 // show bit-identical states.
 TEST(CliTest, TraceAgreesAcrossFrameRates) {

@@ -317,8 +317,22 @@ TEST(HostileInputGLTest, WhatCannotBeASceneIsRefusedBeforeItIsParsed) {
     run = run_command({bin, "validate", dir / "discs.yaml", "--max-discs", "1000"});
     EXPECT_EQ(run.exit_code, 2);
     EXPECT_EQ(run.err, dir / "discs.yaml" +
-                           ":1003:5: discs: more than 1000 entries, and each makes at least one "
-                           "disc; the limit is 1000 (raise it with --max-discs)\n");
+                           ":1003:5: discs: more than 1000 entries in 'discs' and 'bodies', and "
+                           "each makes at least one body; the limit is 1000 (raise it with "
+                           "--max-bodies)\n");
+
+    // Discs and bodies count together, under either name of the option.
+    std::string mixed = "version: 1\ndiscs:\n";
+    for (int i = 0; i < 600; ++i) mixed += "  - {position: [1, 1], radius: 0.1}\n";
+    mixed += "bodies:\n";
+    for (int i = 0; i < 401; ++i) mixed += "  - {circle: 0.1, position: [1, 1]}\n";
+    write_file(dir / "mixed.yaml", mixed);
+    run = run_command({bin, "validate", dir / "mixed.yaml", "--max-bodies", "1000"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, dir / "mixed.yaml" +
+                           ":1004:5: bodies: more than 1000 entries in 'discs' and 'bodies', and "
+                           "each makes at least one body; the limit is 1000 (raise it with "
+                           "--max-bodies)\n");
 
     run = run_command({bin, "validate", dir / "discs.yaml", "--max-scene-values", "5000"});
     EXPECT_EQ(run.exit_code, 2);

@@ -146,7 +146,7 @@ bodies:
     ASSERT_EQ(r.diagnostics.size(), 1u);
     EXPECT_EQ(r.diagnostics[0].to_string(),
               "s.yaml:5:73: bodies[0].respawn_every: respawning every 2 s brings the scene to 120 "
-              "bodies over the clip; the limit is 100 (raise it with --max-discs)");
+              "bodies over the clip; the limit is 100 (raise it with --max-bodies)");
 }
 
 }  // namespace

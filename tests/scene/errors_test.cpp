@@ -190,7 +190,7 @@ TEST(Errors, AFloodOfProblemsIsCutShortWithACount) {
     EXPECT_EQ(lines[100], "s.yaml:103:32: too many problems; 50 more not shown");
 }
 
-// The protective limits are the caller's to set: the CLI's --max-discs and friends.
+// The protective limits are the caller's to set: the CLI's --max-bodies and friends.
 TEST(Errors, LimitsAreTheCallersToRaise) {
     const std::string text = "version: 1\nvideo: {duration: 5000}\n"
                              "discs:\n  - grid: {count: [400, 300], radius: 0.01, spacing: [0.03, 0.03]}\n";
@@ -201,7 +201,7 @@ TEST(Errors, LimitsAreTheCallersToRaise) {
               "5000 (raise the limit with --max-duration)");
     EXPECT_EQ(strict.diagnostics[1].to_string(),
               "s.yaml:4:19: discs[0].grid.count: 400 x 300 = 120000 discs is more than the limit "
-              "of 100000 (raise it with --max-discs)");
+              "of 100000 bodies (raise it with --max-bodies)");
 
     const LoadResult raised =
         load_scene_text(text, "s.yaml", Limits{.discs = 200'000, .duration = 6000});

@@ -17,10 +17,11 @@ namespace discreel::scene {
 
 // Limits that protect the machine from a scene that asks too much (memory, time, disk). A scene
 // beyond one is rejected with a message that states the limit and the command-line option that
-// raises it; the CLI fills this from --max-discs, --max-duration, --max-scene-bytes,
-// --max-scene-values and --max-substeps. At the defaults any input is judged in well under
-// 1 GiB of memory (docs/reliability.md).
+// raises it; the CLI fills this from --max-bodies (alias --max-discs), --max-duration,
+// --max-scene-bytes, --max-scene-values and --max-substeps. At the defaults any input is judged
+// in well under 1 GiB of memory (docs/reliability.md).
 struct Limits {
+    // Bodies of every kind: discs, shapes, and every set a respawning generator will bring.
     std::size_t discs = 100'000;
     double duration = 3600;                   // seconds of video
     std::uintmax_t file_bytes = 64u << 20;    // size of the scene file; more is never read
