@@ -498,6 +498,15 @@ static void check_radii_against_reach(Loader& loader) {
     }
 }
 
+// How deep two bodies' outlines overlap at t = 0 (negative: the gap between them), metres.
+static double shape_overlap(const Disc& a, const Disc& b) {
+    const auto shape_of = [](const Disc& body) {
+        return body.shape ? *body.shape : physics::circle_shape(body.radius);
+    };
+    return -physics::separation(shape_of(a), a.position, a.angle, shape_of(b), b.position,
+                                b.angle, 0.0);
+}
+
 void check_discs(Loader& loader) {
     auto& d = loader.diagnostics;
     const auto& discs = loader.scene.discs;
@@ -521,22 +530,23 @@ void check_discs(Loader& loader) {
         circles.push_back({discs[i].position, discs[i].radius, discs[i].is_static});
         include.push_back(sources[i].usable);
     }
-    for (const auto& [later, earlier] : find_overlaps(circles, include)) {
+    // A shape's circle is only its bound: for a pair with a shape the outlines decide, and a
+    // pair clear by its outlines does not hide a later overlap of the same body.
+    const auto confirm = [&](std::size_t later, std::size_t earlier) {
+        const Disc& a = discs[later];
+        const Disc& b = discs[earlier];
+        if (!a.shape && !b.shape) return true;
+        // Touching is allowed: a stack's boxes start face to face.
+        return shape_overlap(a, b) > 1e-9 * std::max(a.radius, b.radius);
+    };
+    for (const auto& [later, earlier] : find_overlaps(circles, include, confirm)) {
         if (d.full()) break;
         const Disc& a = discs[later];
         const Disc& b = discs[earlier];
         const double dx = a.position.x - b.position.x, dy = a.position.y - b.position.y;
-        double depth = a.radius + b.radius - std::sqrt(dx * dx + dy * dy);
-        // A shape's circle is only its bound: the shapes themselves decide.
-        if (a.shape || b.shape) {
-            const auto shape_of = [](const Disc& body) {
-                return body.shape ? *body.shape : physics::circle_shape(body.radius);
-            };
-            depth = -physics::separation(shape_of(a), a.position, a.angle, shape_of(b),
-                                         b.position, b.angle, 0.0);
-            // Touching is allowed: a stack's boxes start face to face.
-            if (depth <= 1e-9 * std::max(a.radius, b.radius)) continue;
-        }
+        const double depth = a.shape || b.shape
+                                 ? shape_overlap(a, b)
+                                 : a.radius + b.radius - std::sqrt(dx * dx + dy * dy);
         const std::string kind_a = a.shape ? "body" : "disc", kind_b = b.shape ? "body" : "disc";
         d.error(sources[later].entry,
                 sources[later].where + ": " + kind_a + " '" + a.id + "' overlaps " + kind_b + " '" + b.id +

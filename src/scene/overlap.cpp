@@ -29,7 +29,8 @@ void CircleGrid::insert(std::size_t index, const Circle& circle) {
     cells_[cell_of(circle.centre)].emplace_back(index, circle);
 }
 
-std::optional<std::size_t> CircleGrid::first_overlap(const Circle& circle) const {
+std::optional<std::size_t> CircleGrid::first_overlap(
+    const Circle& circle, const std::function<bool(std::size_t)>& confirm) const {
     const Cell home = cell_of(circle.centre);
     std::optional<std::size_t> first;
     for (long long dx = -1; dx <= 1; ++dx) {
@@ -38,7 +39,7 @@ std::optional<std::size_t> CircleGrid::first_overlap(const Circle& circle) const
             if (cell == cells_.end()) continue;
             for (const auto& [index, other] : cell->second) {
                 if (first && index >= *first) break;  // entries are in index order
-                if (overlapping(circle, other)) {
+                if (overlapping(circle, other) && (!confirm || confirm(index))) {
                     first = index;
                     break;
                 }
@@ -49,7 +50,8 @@ std::optional<std::size_t> CircleGrid::first_overlap(const Circle& circle) const
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> find_overlaps(const std::vector<Circle>& circles,
-                                                               const std::vector<bool>& include) {
+                                                               const std::vector<bool>& include,
+                                                               const ConfirmOverlap& confirm) {
     double largest = 0;
     for (std::size_t i = 0; i < circles.size(); ++i)
         if (include[i]) largest = std::max(largest, circles[i].radius);
@@ -60,9 +62,11 @@ std::vector<std::pair<std::size_t, std::size_t>> find_overlaps(const std::vector
     for (std::size_t i = 0; i < circles.size(); ++i) {
         if (!include[i]) continue;
         const Circle& c = circles[i];
-        std::optional<std::size_t> first = moving.first_overlap(c);
+        std::function<bool(std::size_t)> confirm_i;
+        if (confirm) confirm_i = [&](std::size_t earlier) { return confirm(i, earlier); };
+        std::optional<std::size_t> first = moving.first_overlap(c, confirm_i);
         if (!c.is_static) {
-            const auto with_fixed = fixed.first_overlap(c);
+            const auto with_fixed = fixed.first_overlap(c, confirm_i);
             if (with_fixed && (!first || *with_fixed < *first)) first = with_fixed;
         }
         if (first) overlaps.emplace_back(i, *first);

@@ -3,6 +3,7 @@
 // disc can only overlap discs in its own and the eight neighbouring cells. Used to check the
 // scene at t = 0 and to place random discs, and fast enough for 100 000 discs.
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <optional>
 #include <utility>
@@ -31,9 +32,11 @@ public:
 
     void insert(std::size_t index, const Circle& circle);
 
-    // The lowest index among the inserted circles that overlap `circle`. Two static circles
-    // never count: fixed pegs may be merged into one obstacle on purpose.
-    std::optional<std::size_t> first_overlap(const Circle& circle) const;
+    // The lowest index among the inserted circles that overlap `circle` and that `confirm`
+    // (when given) accepts: a circle may only bound a shape, which can still be clear. Two
+    // static circles never count: fixed pegs may be merged into one obstacle on purpose.
+    std::optional<std::size_t> first_overlap(
+        const Circle& circle, const std::function<bool(std::size_t)>& confirm = {}) const;
 
 private:
     using Cell = std::pair<long long, long long>;
@@ -44,7 +47,12 @@ private:
 };
 
 // For every circle that overlaps an earlier one: (its index, the earliest such other index).
+// `confirm(later, earlier)`, when given, decides a pair whose circles overlap: a shaped body's
+// circle only bounds it, and the earliest overlapping circle may belong to a shape that is clear
+// while a later one is not.
+using ConfirmOverlap = std::function<bool(std::size_t later, std::size_t earlier)>;
 std::vector<std::pair<std::size_t, std::size_t>> find_overlaps(const std::vector<Circle>& circles,
-                                                               const std::vector<bool>& include);
+                                                               const std::vector<bool>& include,
+                                                               const ConfirmOverlap& confirm = {});
 
 }  // namespace discreel::scene::detail

@@ -70,6 +70,20 @@ bodies:
                   "s.yaml:5:5: bodies[1]: body 'b' overlaps body 'a' (line 4) by 0.1 m at t = 0"}));
 }
 
+// A body whose bounding circle first meets a body it is clear of is still checked against the
+// later one it does overlap.
+TEST(Bodies, AnOverlapBehindAClearNeighbourIsFound) {
+    EXPECT_EQ(problems(R"(
+version: 1
+bodies:
+  - {id: a, box: [1, 1], position: [0, 0.5]}
+  - {id: b, box: [1, 1], position: [0, 1.5]}
+  - {id: c, box: [1, 1], position: [0.5, 1.5]}
+)"),
+              (std::vector<std::string>{
+                  "s.yaml:6:5: bodies[2]: body 'c' overlaps body 'b' (line 5) by 0.5 m at t = 0"}));
+}
+
 TEST(Bodies, RandomPolygonsScatterWithoutOverlapTheSameForTheSameSeed) {
     const std::string yaml = R"(
 version: 1
