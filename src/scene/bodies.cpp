@@ -6,7 +6,10 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "color.hpp"
 #include "discreel/shapes.hpp"
@@ -177,17 +180,18 @@ struct PolygonSpec {
     double rounding = 0;                   // metres
 };
 
-// One set: places bounding circles without overlap against `existing`, then gives each a
+// One set: places bounding circles clear of `existing`, `walls` and each other, then gives each a
 // polygon and a spin. Fewer than asked when the region is full or a polygon cannot be made
 // at its size (or weighs nothing, or infinitely much).
 std::vector<Disc> scatter(const PolygonSpec& spec, const Properties& p,
-                          const std::vector<Circle>& existing, Rng& rng,
+                          const std::vector<Circle>& existing, std::span<const Wall> walls,
+                          Rng& rng,
                           const std::optional<std::vector<Color>>& colors,
                           const std::string& prefix, std::size_t first_index,
                           bool& unmakeable) {
     std::vector<Disc> set;
     unmakeable = false;
-    for (const PlacedDisc& placed : place_random(spec.placement, existing, rng)) {
+    for (const PlacedDisc& placed : place_random(spec.placement, existing, rng, walls)) {
         const int sides =
             spec.sides_min + static_cast<int>(rng.unit() * (spec.sides_max - spec.sides_min + 1));
         const auto shape =
@@ -200,7 +204,10 @@ std::vector<Disc> scatter(const PolygonSpec& spec, const Properties& p,
         each.velocity = placed.velocity;
         each.angle = rng.uniform(0, 2 * std::numbers::pi);
         const double spin = rng.uniform(spec.spin_min, spec.spin_max);
-        each.angular_velocity = rng.unit() < 0.5 ? -spin : spin;
+        // Drawn even at no spin, so that the stream does not depend on the range; no spin is 0,
+        // not a -0 that would show up in traces.
+        const bool clockwise = rng.unit() < 0.5;
+        each.angular_velocity = clockwise && spin != 0 ? -spin : spin;
         const std::size_t k = set.size();
         if (colors) each.color = (*colors)[k % colors->size()];
         Disc body = make_disc(each, prefix + "." + std::to_string(k), placed.position, 1.0,
@@ -215,14 +222,28 @@ std::vector<Disc> scatter(const PolygonSpec& spec, const Properties& p,
     return set;
 }
 
-void read_random_polygons(Loader& loader, const Fields& fields, const Value& item,
-                          std::size_t entry_index) {
+// A generator's respawns, drawn once every entry is read: a new set must keep clear of every
+// static body, those declared after the generator too.
+struct PendingRespawns {
+    PolygonSpec spec;
+    Properties properties;
+    std::optional<std::vector<Color>> colors;
+    std::string prefix;
+    std::size_t first = 0;           // index of the generator's first body
+    double every = 0;                // seconds
+    Rng rng;                         // the generator's stream, after its first set
+    Value item;
+    Location every_where;
+};
+
+std::optional<PendingRespawns> read_random_polygons(Loader& loader, const Fields& fields,
+                                                    const Value& item, std::size_t entry_index) {
     auto& d = loader.diagnostics;
     const Value spec_value = *fields.get("random_polygons");
     const auto own = Fields::open(spec_value, random_polygon_keys, d);
     if (!own) {
         loader.discs_complete = false;
-        return;
+        return std::nullopt;
     }
     Fields merged = fields;
     merged.adopt(*own, shared_body_keys, d);
@@ -316,26 +337,25 @@ void read_random_polygons(Loader& loader, const Fields& fields, const Value& ite
     }
     if (!ok || !room_for(loader, item, spec.placement.count)) {
         loader.discs_complete = false;
-        return;
+        return std::nullopt;
     }
     std::vector<Circle> existing;
-    std::vector<Circle> fixed;   // what a respawned set must avoid: the bodies that never move
     for (std::size_t i = 0; i < loader.scene.discs.size(); ++i) {
         const Disc& body = loader.scene.discs[i];
-        if (!loader.sources[i].usable) continue;
-        existing.push_back({body.position, body.radius, body.is_static});
-        if (body.is_static) fixed.push_back(existing.back());
+        if (loader.sources[i].usable)
+            existing.push_back({body.position, body.radius, body.is_static});
     }
     Rng rng(loader.scene.physics.seed, body_streams + entry_index);
     const std::size_t first = loader.scene.discs.size();
     bool unmakeable = false;
-    std::vector<Disc> set = scatter(spec, p, existing, rng, colors, prefix, first, unmakeable);
+    std::vector<Disc> set =
+        scatter(spec, p, existing, loader.scene.walls, rng, colors, prefix, first, unmakeable);
     if (unmakeable) {
         d.error(own->get("size")->where,
                 own->get("size")->path + ": polygons of this size have no finite, positive area "
                                          "or mass; choose sizes nearer 1 m");
         loader.discs_complete = false;
-        return;
+        return std::nullopt;
     }
     if (set.size() < spec.placement.count) {
         d.error(item.where, item.path + ": could place only " + std::to_string(set.size()) +
@@ -343,36 +363,57 @@ void read_random_polygons(Loader& loader, const Fields& fields, const Value& ite
                                 " polygons without overlap; make the region larger, the sizes "
                                 "smaller or the count lower");
         loader.discs_complete = false;
-        return;
+        return std::nullopt;
     }
     const auto speed_value = own->get("speed");
     for (Disc& body : set) add_disc(loader, std::move(body), item, id_value, speed_value, true);
-    if (!every) return;
-    // Respawns: a new set at every multiple of the period within the clip, each counted
-    // against the limit on bodies (they are held in memory from the start).
-    std::size_t total = loader.scene.discs.size();
-    for (double at = *every; at < loader.scene.video.duration; at += *every) {
-        total += spec.placement.count;
-        if (total > loader.limits.discs) {
-            d.error(own->key_location("respawn_every"),
-                    item.path + ".respawn_every: respawning every " + format_number(*every) +
-                        " s brings the scene to " + std::to_string(total) +
-                        " bodies over the clip; the limit is " +
-                        std::to_string(loader.limits.discs) + " (raise it with --max-bodies)");
-            return;
-        }
-        Respawn r;
-        r.at = at;
-        r.first = first;
-        r.bodies = scatter(spec, p, fixed, rng, colors, prefix, first, unmakeable);
-        if (r.bodies.size() < spec.placement.count) {
-            d.error(item.where, item.path + ": the respawn at t = " + format_number(at) +
-                                    " s could place only " + std::to_string(r.bodies.size()) +
-                                    " of " + std::to_string(spec.placement.count) + " polygons");
-            return;
-        }
-        loader.scene.respawns.push_back(std::move(r));
+    if (!every) return std::nullopt;
+    return PendingRespawns{spec, p, colors, prefix, first, *every, rng, item,
+                           own->key_location("respawn_every")};
+}
+
+// Every respawn of every generator, in order of time (a tie keeps declaration order). Each set
+// is held in memory from the start, so each counts against the limit on bodies.
+void draw_respawns(Loader& loader, std::vector<PendingRespawns>& pending) {
+    auto& d = loader.diagnostics;
+    std::vector<Circle> fixed;   // the bodies that never move; the others will have moved
+    for (std::size_t i = 0; i < loader.scene.discs.size(); ++i) {
+        const Disc& body = loader.scene.discs[i];
+        if (body.is_static && loader.sources[i].usable)
+            fixed.push_back({body.position, body.radius, true});
     }
+    std::size_t total = loader.scene.discs.size();
+    for (PendingRespawns& g : pending) {
+        const Value& item = g.item;
+        for (double k = 1; k * g.every < loader.scene.video.duration; ++k) {
+            const double at = k * g.every;
+            total += g.spec.placement.count;
+            if (total > loader.limits.discs) {
+                d.error(g.every_where,
+                        item.path + ".respawn_every: respawning every " + format_number(g.every) +
+                            " s brings the scene to " + std::to_string(total) +
+                            " bodies over the clip; the limit is " +
+                            std::to_string(loader.limits.discs) + " (raise it with --max-bodies)");
+                return;
+            }
+            bool unmakeable = false;
+            Respawn r;
+            r.at = at;
+            r.first = g.first;
+            r.bodies = scatter(g.spec, g.properties, fixed, loader.scene.walls, g.rng, g.colors,
+                               g.prefix, g.first, unmakeable);
+            if (r.bodies.size() < g.spec.placement.count) {
+                d.error(item.where, item.path + ": the respawn at t = " + format_number(at) +
+                                        " s could place only " + std::to_string(r.bodies.size()) +
+                                        " of " + std::to_string(g.spec.placement.count) +
+                                        " polygons");
+                return;
+            }
+            loader.scene.respawns.push_back(std::move(r));
+        }
+    }
+    std::stable_sort(loader.scene.respawns.begin(), loader.scene.respawns.end(),
+                     [](const Respawn& a, const Respawn& b) { return a.at < b.at; });
 }
 
 }  // namespace
@@ -384,6 +425,7 @@ void read_bodies(Loader& loader, const Value& value) {
         loader.discs_complete = false;
         return;
     }
+    std::vector<PendingRespawns> pending;
     for (std::size_t i = 0; i < items->size() && !d.full() && !loader.disc_limit_reached; ++i) {
         const Value& item = (*items)[i];
         const auto fields = Fields::open(item, entry_keys, d);
@@ -407,11 +449,14 @@ void read_bodies(Loader& loader, const Value& value) {
             loader.discs_complete = false;
             continue;
         }
-        if (given[0] == "random_polygons")
-            read_random_polygons(loader, *fields, item, i);
-        else
+        if (given[0] == "random_polygons") {
+            if (auto respawns = read_random_polygons(loader, *fields, item, i))
+                pending.push_back(std::move(*respawns));
+        } else {
             read_single_body(loader, *fields, item, given[0]);
+        }
     }
+    if (!d.full() && !loader.disc_limit_reached) draw_respawns(loader, pending);
 }
 
 }  // namespace discreel::scene::detail

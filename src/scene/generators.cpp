@@ -39,7 +39,7 @@ std::vector<Vec2> grid_positions(const GridSpec& spec, Rng& rng) {
 }
 
 std::vector<PlacedDisc> place_random(const RandomSpec& spec, const std::vector<Circle>& existing,
-                                     Rng& rng) {
+                                     Rng& rng, std::span<const Wall> walls) {
     double largest = spec.radius_max;
     for (const Circle& c : existing) largest = std::max(largest, c.radius);
     CircleGrid grid(2 * largest);
@@ -62,7 +62,9 @@ std::vector<PlacedDisc> place_random(const RandomSpec& spec, const std::vector<C
         Circle circle{{}, radius, false};
         for (int attempt = 0; attempt < placement_attempts && !found; ++attempt) {
             circle.centre = {rng.uniform(x0, x1), rng.uniform(y0, y1)};
-            found = !grid.first_overlap(circle);
+            found = !grid.first_overlap(circle) &&
+                    std::none_of(walls.begin(), walls.end(),
+                                 [&](const Wall& wall) { return overlaps_wall(circle, wall); });
         }
         if (!found) break;
         grid.insert(existing.size() + k, circle);

@@ -2,6 +2,7 @@
 // Disc generators, as plain geometry: where the discs of a `grid` or a `random` entry go.
 // Reading the YAML and giving the discs their other properties happens in discs.cpp.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "discreel/vec2.hpp"
@@ -37,9 +38,10 @@ struct PlacedDisc {
 // How many random spots one disc may try before the region counts as full.
 inline constexpr int placement_attempts = 1000;
 
-// Places discs one after another, each where it overlaps neither `existing` nor the discs
-// placed before it. Stops early (fewer than spec.count discs) when a disc finds no room.
+// Places discs one after another, each where it overlaps neither `existing`, nor `walls`, nor
+// the discs placed before it. Stops early (fewer than spec.count discs) when a disc finds no
+// room.
 std::vector<PlacedDisc> place_random(const RandomSpec& spec, const std::vector<Circle>& existing,
-                                     Rng& rng);
+                                     Rng& rng, std::span<const Wall> walls = {});
 
 }  // namespace discreel::scene::detail

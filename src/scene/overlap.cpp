@@ -4,6 +4,24 @@
 #include <cmath>
 
 namespace discreel::scene::detail {
+namespace {
+
+double distance_to_rectangle(Vec2 p, Vec2 lo, Vec2 hi) {
+    const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
+    const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
+    return std::hypot(dx, dy);
+}
+
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+    const double abx = b.x - a.x, aby = b.y - a.y;
+    const double length2 = abx * abx + aby * aby;
+    const double s =
+        length2 > 0 ? std::clamp(((p.x - a.x) * abx + (p.y - a.y) * aby) / length2, 0.0, 1.0)
+                    : 0.0;
+    return std::hypot(p.x - (a.x + s * abx), p.y - (a.y + s * aby));
+}
+
+}  // namespace
 
 bool overlapping(const Circle& a, const Circle& b) {
     if (a.is_static && b.is_static) return false;
@@ -11,6 +29,20 @@ bool overlapping(const Circle& a, const Circle& b) {
     if (reach <= 0) return false;
     const double dx = a.centre.x - b.centre.x, dy = a.centre.y - b.centre.y;
     return dx * dx + dy * dy < reach * reach;
+}
+
+bool overlaps_wall(const Circle& circle, const Wall& wall) {
+    const double r = circle.radius - overlap_tolerance;   // touching is not overlapping
+    const Vec2 c = circle.centre;
+    if (wall.shape == Wall::Shape::segment)
+        return distance_to_segment(c, wall.a, wall.b) < r + wall.thickness / 2;
+    const Vec2 lo{std::min(wall.a.x, wall.b.x), std::min(wall.a.y, wall.b.y)};
+    const Vec2 hi{std::max(wall.a.x, wall.b.x), std::max(wall.a.y, wall.b.y)};
+    if (c.x - r >= lo.x && c.x + r <= hi.x && c.y - r >= lo.y && c.y + r <= hi.y) return false;
+    // Outside the inside, the sides reach as far out as the box's larger extent
+    // (physics::detail::container_slabs).
+    const double depth = std::max(hi.x - lo.x, hi.y - lo.y);
+    return distance_to_rectangle(c, {lo.x - depth, lo.y - depth}, {hi.x + depth, hi.y + depth}) < r;
 }
 
 CircleGrid::CircleGrid(double cell_size)

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "discreel/scene.hpp"
 #include "discreel/vec2.hpp"
 
 namespace discreel::scene::detail {
@@ -24,6 +25,10 @@ struct Circle {
 inline constexpr double overlap_tolerance = 1e-9;  // metres
 
 bool overlapping(const Circle& a, const Circle& b);
+
+// Whether a circle overlaps a wall as physics builds it: a box's sides lie outside its corners
+// (its inside is free room), a segment is a capsule of half the wall's thickness.
+bool overlaps_wall(const Circle& circle, const Wall& wall);
 
 class CircleGrid {
 public:

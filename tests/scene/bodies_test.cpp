@@ -2,8 +2,13 @@
 // polygons centred on their area centroid, circles as plain discs; shapes are checked for
 // overlap by their outlines, not their bounding circles; `random_polygons` scatters convex
 // polygons without overlap, the same for the same seed, and respawns them on schedule.
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -130,6 +135,73 @@ bodies:
     EXPECT_EQ(a.respawns[0].bodies[7].id, "body0.7");
     EXPECT_NE(a.respawns[0].bodies[7].position, a.discs[7].position);
     EXPECT_EQ(a.respawns[1].bodies[7].position, b.respawns[1].bodies[7].position);
+}
+
+// Without an id, the generator's bodies take its index in `bodies:`; respawns of several
+// generators come in order of time (physics applies them in list order).
+TEST(Bodies, RespawnsOfSeveralGeneratorsAreInOrderOfTime) {
+    const Scene s = load_ok(R"(
+version: 1
+video: {duration: 10}
+bodies:
+  - {box: [1, 1], position: [-5, -5]}
+  - random_polygons: {count: 3, region: [[0, 0], [5, 5]], size: 0.3, respawn_every: 4}
+  - random_polygons: {count: 2, region: [[10, 0], [15, 5]], size: 0.3, respawn_every: 3}
+)");
+    ASSERT_EQ(s.discs.size(), 6u);
+    for (const Disc& body : s.discs) EXPECT_FALSE(std::signbit(body.angular_velocity)) << body.id;
+    EXPECT_EQ(s.discs[1].id, "body1.0");
+    EXPECT_EQ(s.discs[4].id, "body2.0");
+    std::vector<std::pair<double, std::size_t>> schedule;
+    for (const Respawn& r : s.respawns) {
+        schedule.emplace_back(r.at, r.first);
+        const std::size_t expected = r.first == 1 ? 3 : 2;
+        ASSERT_EQ(r.bodies.size(), expected);
+        EXPECT_EQ(r.bodies[0].id, s.discs[r.first].id);
+        EXPECT_EQ(r.bodies[expected - 1].id, s.discs[r.first + expected - 1].id);
+    }
+    EXPECT_EQ(schedule, (std::vector<std::pair<double, std::size_t>>{
+                            {3, 4}, {4, 1}, {6, 4}, {8, 1}, {9, 4}}));
+}
+
+// Every set, the first and each respawned one, keeps clear of walls; a respawned set also keeps
+// clear of static bodies, those declared after its generator too.
+TEST(Bodies, RandomPolygonsKeepClearOfWallsAndOfStaticBodies) {
+    const Scene s = load_ok(R"(
+version: 1
+video: {duration: 10}
+walls:
+  - segment: [[0, 4], [8, 4]]
+    thickness: 0.2
+bodies:
+  - random_polygons:
+      count: 15
+      region: [[0, 0], [8, 8]]
+      size: 0.3
+      respawn_every: 1
+  - random_polygons: {count: 10, region: [[0, 0], [8, 8]], size: 0.5, static: true}
+)");
+    ASSERT_EQ(s.discs.size(), 25u);
+    ASSERT_EQ(s.respawns.size(), 9u);
+    std::vector<std::vector<Disc>> sets{s.discs};
+    for (const Respawn& r : s.respawns) {
+        std::vector<Disc> now = s.discs;
+        std::copy(r.bodies.begin(), r.bodies.end(),
+                  now.begin() + static_cast<std::ptrdiff_t>(r.first));
+        sets.push_back(now);
+    }
+    for (const std::vector<Disc>& set : sets) {
+        for (const Disc& body : set) {
+            EXPECT_GE(std::abs(body.position.y - 4), body.radius + 0.1 - 1e-9) << body.id;
+        }
+        for (std::size_t i = 0; i < 15; ++i) {
+            for (std::size_t j = 15; j < 25; ++j) {
+                const double gap = std::hypot(set[i].position.x - set[j].position.x,
+                                              set[i].position.y - set[j].position.y);
+                EXPECT_GE(gap, set[i].radius + set[j].radius - 1e-9) << set[i].id << set[j].id;
+            }
+        }
+    }
 }
 
 TEST(Bodies, ThrowsNameBodiesWithBodyOrDisc) {
