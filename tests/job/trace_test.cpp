@@ -6,6 +6,9 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <vector>
+
+#include "test_support.hpp"
 
 namespace discreel::job {
 namespace {
@@ -34,6 +37,50 @@ TEST(TraceNumberTest, ReadsBackBitForBit) {
         const double back = std::strtod(text.c_str(), nullptr);
         EXPECT_EQ(std::memcmp(&v, &back, sizeof v), 0) << text;
     }
+}
+
+scene::Disc body(const std::string& id, double radius, double mass, double inertia,
+                 bool is_static) {
+    scene::Disc d;
+    d.id = id;
+    d.radius = radius;
+    d.mass = mass;
+    d.inertia = inertia;
+    d.is_static = is_static;
+    return d;
+}
+
+// Each row carries the body's inertia (0, like its mass, for a static body), and a respawned
+// body's radius, mass and inertia from the frame its respawn has been carried out.
+TEST(TraceWriterTest, InertiaColumnAndRespawnedDefinitions) {
+    testing::TempDir dir;
+    scene::Scene scene;
+    scene.discs.push_back(body("peg", 0.5, 2, 0, true));
+    scene.discs.push_back(body("rock.0", 0.25, 1.5, 0.125, false));
+    scene::Respawn respawn;
+    respawn.at = 1;
+    respawn.first = 1;
+    respawn.bodies.push_back(body("rock.0", 0.75, 3, 0.5, false));
+    scene.respawns.push_back(respawn);
+
+    auto trace = TraceWriter::create(dir / "t.csv", scene);
+    ASSERT_TRUE(trace);
+    std::vector<physics::DiscState> states(2);
+    states[1].position = {1, 2};
+    states[1].angle = 0.5;
+    states[1].angular_velocity = -3;
+    trace->write_frame(0, 0, states, 0);
+    trace->write_frame(1, 0.5, states, 0);
+    trace->write_frame(2, 1, states, 1);
+    ASSERT_TRUE(trace->file().commit());
+    EXPECT_EQ(testing::read_file(dir / "t.csv"),
+              "frame,t,id,x,y,angle,vx,vy,omega,radius,mass,inertia\n"
+              "0,0,peg,0,0,0,0,0,0,0.5,0,0\n"
+              "0,0,rock.0,1,2,0.5,0,0,-3,0.25,1.5,0.125\n"
+              "1,0.5,peg,0,0,0,0,0,0,0.5,0,0\n"
+              "1,0.5,rock.0,1,2,0.5,0,0,-3,0.25,1.5,0.125\n"
+              "2,1,peg,0,0,0,0,0,0,0.5,0,0\n"
+              "2,1,rock.0,1,2,0.5,0,0,-3,0.75,3,0.5\n");
 }
 
 }  // namespace

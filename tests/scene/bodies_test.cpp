@@ -75,6 +75,45 @@ bodies:
                   "s.yaml:5:5: bodies[1]: body 'b' overlaps body 'a' (line 4) by 0.1 m at t = 0"}));
 }
 
+// A capsule is a rectangle and two half discs; the inertia about its centre is theirs summed
+// (the half discs' centroids lie 4 r / (3 pi) beyond the segment's ends).
+TEST(Bodies, CapsuleInertiaIsTheRectangleAndTheTwoHalfDiscs) {
+    const Scene s = load_ok(R"(
+version: 1
+bodies:
+  - {capsule: {length: 1.0, radius: 0.2}, position: [0, 0], density: 3}
+)");
+    const double length = 1.0, r = 0.2, density = 3;
+    const double rectangle = density * length * 2 * r;
+    const double discs = density * std::numbers::pi * r * r;
+    const double inertia = rectangle * (length * length + 4 * r * r) / 12 +
+                           discs * (r * r / 2 + length * length / 4 +
+                                    length * 4 * r / (3 * std::numbers::pi));
+    ASSERT_EQ(s.discs.size(), 1u);
+    EXPECT_NEAR(s.discs[0].mass, rectangle + discs, 1e-12);
+    EXPECT_NEAR(s.discs[0].inertia, inertia, 1e-12);
+}
+
+// Either winding gives the same body; a static body keeps its mass but has no inertia.
+TEST(Bodies, PolygonWindingDoesNotMatterAndStaticBodiesHaveNoInertia) {
+    const Scene s = load_ok(R"(
+version: 1
+bodies:
+  - {polygon: [[0, 0], [2, 0], [2, 1], [0, 1]], position: [0, 0]}
+  - {polygon: [[0, 1], [2, 1], [2, 0], [0, 0]], position: [5, 0]}
+  - {box: [2, 1], position: [10, 0], static: true}
+)");
+    ASSERT_EQ(s.discs.size(), 3u);
+    EXPECT_NEAR(s.discs[0].mass, 2.0, 1e-12);
+    EXPECT_NEAR(s.discs[0].inertia, 2.0 * (4 + 1) / 12, 1e-12);
+    EXPECT_NEAR(s.discs[1].mass, s.discs[0].mass, 1e-12);
+    EXPECT_NEAR(s.discs[1].inertia, s.discs[0].inertia, 1e-12);
+    EXPECT_NEAR(s.discs[1].radius, std::hypot(1.0, 0.5), 1e-12);
+    EXPECT_TRUE(s.discs[2].is_static);
+    EXPECT_NEAR(s.discs[2].mass, 2.0, 1e-12);
+    EXPECT_EQ(s.discs[2].inertia, 0.0);
+}
+
 // A body whose bounding circle first meets a body it is clear of is still checked against the
 // later one it does overlap.
 TEST(Bodies, AnOverlapBehindAClearNeighbourIsFound) {
@@ -135,6 +174,40 @@ bodies:
     EXPECT_EQ(a.respawns[0].bodies[7].id, "body0.7");
     EXPECT_NE(a.respawns[0].bodies[7].position, a.discs[7].position);
     EXPECT_EQ(a.respawns[1].bodies[7].position, b.respawns[1].bodies[7].position);
+}
+
+// The generator's `id` names its bodies, `colors` cycle, `sides` bounds the vertex count, and
+// the single-body keys apply to each.
+TEST(Bodies, RandomPolygonsTakeAnIdPrefixColoursSidesAndBodyKeys) {
+    const Scene s = load_ok(R"(
+version: 1
+discs:
+  - {position: [20, 20], radius: 0.5}
+bodies:
+  - {box: [1, 1], position: [20, 22]}
+  - random_polygons:
+      id: rock
+      count: 5
+      region: [[0, 0], [10, 10]]
+      sides: [4, 5]
+      size: [0.3, 0.4]
+      colors: ["#ff0000", "#00ff00"]
+    density: 2
+    static: true
+)");
+    ASSERT_EQ(s.discs.size(), 7u);
+    for (std::size_t k = 0; k < 5; ++k) {
+        const Disc& p = s.discs[2 + k];
+        EXPECT_EQ(p.id, "rock." + std::to_string(k));
+        EXPECT_EQ(p.color, (k % 2 == 0 ? Color{0xff, 0, 0, 0xff} : Color{0, 0xff, 0, 0xff}));
+        ASSERT_TRUE(p.shape);
+        EXPECT_GE(p.shape->vertices.size(), 4u);
+        EXPECT_LE(p.shape->vertices.size(), 5u);
+        EXPECT_TRUE(p.is_static);
+        EXPECT_EQ(p.inertia, 0.0);
+        EXPECT_NEAR(p.mass, 2 * physics::shape_mass(*p.shape, 1.0).area, 1e-12);
+    }
+    EXPECT_TRUE(s.respawns.empty());
 }
 
 // Without an id, the generator's bodies take its index in `bodies:`; respawns of several
