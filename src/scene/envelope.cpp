@@ -2,8 +2,11 @@
 // (physics::envelope) is rejected up front rather than rendered wrong, at the value to change.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "discreel/physics.hpp"
 #include "loader.hpp"
@@ -31,6 +34,91 @@ std::optional<Extremes> dynamic_extremes(const std::vector<Disc>& discs) {
 }
 
 double speed_of(Vec2 v) { return std::hypot(v.x, v.y); }
+
+// The moving bodies alive at one time: their masses, radii and speeds (with their slots, the
+// index in Scene::discs whose entry a message points at), kept as respawns replace bodies.
+class Alive {
+public:
+    void add(const Disc& body, std::size_t slot) {
+        if (body.is_static) return;
+        masses_.insert(body.mass);
+        radii_.insert(body.radius);
+        speeds_.emplace(speed_of(body.velocity), slot);
+    }
+    void remove(const Disc& body, std::size_t slot) {
+        if (body.is_static) return;
+        masses_.erase(masses_.find(body.mass));
+        radii_.erase(radii_.find(body.radius));
+        auto [from, to] = speeds_.equal_range(speed_of(body.velocity));
+        while (from->second != slot) ++from;
+        speeds_.erase(from);
+    }
+    bool empty() const { return masses_.empty(); }
+    double mass_ratio() const { return *masses_.rbegin() / *masses_.begin(); }
+    double smallest_radius() const { return *radii_.begin(); }
+    std::pair<double, std::size_t> fastest() const { return *speeds_.rbegin(); }
+
+private:
+    std::multiset<double> masses_, radii_;
+    std::multimap<double, std::size_t> speeds_;
+};
+
+// Each respawned set is judged with the bodies alive beside it, not with the sets it replaces
+// or that replace it: a body is never in contact with its own successor. The first time the
+// moving bodies leave the envelope is reported, at the entry of the generator that respawned.
+void check_respawns(Loader& loader) {
+    const Scene& scene = loader.scene;
+    if (scene.respawns.empty()) return;
+    std::vector<const Disc*> current;
+    Alive alive;
+    for (std::size_t i = 0; i < scene.discs.size(); ++i) {
+        current.push_back(&scene.discs[i]);
+        alive.add(scene.discs[i], i);
+    }
+    const double max_mass_ratio = physics::envelope.max_mass_ratio;
+    for (std::size_t n = 0; n < scene.respawns.size(); ++n) {
+        const Respawn& r = scene.respawns[n];
+        for (std::size_t k = 0; k < r.bodies.size(); ++k) {
+            alive.remove(*current[r.first + k], r.first + k);
+            current[r.first + k] = &r.bodies[k];
+            alive.add(r.bodies[k], r.first + k);
+        }
+        // Respawns at one time are judged together.
+        if (n + 1 < scene.respawns.size() && scene.respawns[n + 1].at == r.at) continue;
+        if (alive.empty()) continue;
+        const DiscSource& source = loader.sources[r.first];
+        const std::string when = "the respawn at t = " + format_number(r.at) + " s";
+        const double ratio = alive.mass_ratio();
+        if (ratio > max_mass_ratio) {
+            loader.diagnostics.error(
+                source.entry, source.where + ": after " + when +
+                                  ", the moving bodies differ in mass by a factor of " +
+                                  format_short(ratio) + "; moving bodies of one scene may differ "
+                                  "by a factor of at most " + format_number(max_mass_ratio) +
+                                  " (docs/physics.md, Limits)");
+            return;
+        }
+        const double radii_per_step = physics::envelope.radii_per_step(ratio);
+        const double limit = radii_per_step * alive.smallest_radius() * scene.physics.rate;
+        const auto [speed, slot] = alive.fastest();
+        if (speed > limit) {
+            const DiscSource& fast = loader.sources[slot];
+            const double needed = std::ceil(speed / (radii_per_step * alive.smallest_radius()));
+            loader.diagnostics.error(
+                fast.velocity_where,
+                fast.velocity_path + ": after " + when + ", " + format_short(speed) +
+                    " m/s is too fast: at most " + format_short(limit) + " m/s at " +
+                    format_number(scene.physics.rate) + " Hz, i.e. " +
+                    format_short(radii_per_step) + " radii of the smallest moving body (" +
+                    format_number(alive.smallest_radius()) +
+                    " m) per physics step; " +
+                    (needed <= 100000 ? "raise physics.rate to " + format_number(needed) + " or more"
+                                      : std::string("lower it")) +
+                    " (docs/physics.md, Limits)");
+            return;
+        }
+    }
+}
 
 }  // namespace
 
@@ -109,6 +197,7 @@ void check_envelope(Loader& loader) {
         }
         check(fastest, source.path_where, source.path_path);
     }
+    if (d.empty()) check_respawns(loader);
 }
 
 }  // namespace discreel::scene::detail

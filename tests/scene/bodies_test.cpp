@@ -277,6 +277,49 @@ bodies:
     }
 }
 
+// A respawned set is judged with the bodies alive beside it: one polygon's successors may
+// differ from it in mass without limit, but not from a body they meet. (The seeds pick draws
+// whose first sets are within the limits and a later respawn is not.)
+TEST(Bodies, RespawnedSetsAreJudgedWithTheBodiesAliveBesideThem) {
+    const Scene alone = load_ok(R"(
+version: 1
+video: {duration: 12}
+bodies:
+  - random_polygons: {count: 1, region: [[0, 0], [10, 10]], size: [0.01, 1], respawn_every: 1}
+)");
+    double lightest = alone.discs[0].mass, heaviest = lightest;
+    for (const Respawn& r : alone.respawns) {
+        lightest = std::min(lightest, r.bodies[0].mass);
+        heaviest = std::max(heaviest, r.bodies[0].mass);
+    }
+    EXPECT_GT(heaviest / lightest, 1000);
+
+    EXPECT_EQ(problems(R"(
+version: 1
+video: {duration: 6}
+physics: {seed: 6}
+bodies:
+  - {id: anvil, box: [1, 1], position: [20, 20], mass: 1000}
+  - random_polygons: {count: 1, region: [[0, 0], [10, 10]], size: [0.3, 1], respawn_every: 1}
+)"),
+              (std::vector<std::string>{
+                  "s.yaml:7:5: bodies[1]: after the respawn at t = 3 s, the moving bodies differ "
+                  "in mass by a factor of 2433; moving bodies of one scene may differ by a "
+                  "factor of at most 1000 (docs/physics.md, Limits)"}));
+    EXPECT_EQ(problems(R"(
+version: 1
+video: {duration: 12}
+physics: {seed: 20}
+bodies:
+  - random_polygons: {count: 1, region: [[0, 0], [10, 10]], size: [0.01, 1], speed: 20, respawn_every: 1}
+)"),
+              (std::vector<std::string>{
+                  "s.yaml:6:85: bodies[0].random_polygons.speed: after the respawn at t = 6 s, "
+                  "20 m/s is too fast: at most 9.935 m/s at 480 Hz, i.e. 2 radii of the smallest "
+                  "moving body (0.010349239269430727 m) per physics step; raise physics.rate to "
+                  "967 or more (docs/physics.md, Limits)"}));
+}
+
 TEST(Bodies, ThrowsNameBodiesWithBodyOrDisc) {
     const Scene s = load_ok(R"(
 version: 1
