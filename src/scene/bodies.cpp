@@ -47,8 +47,8 @@ void give_shape(Disc& body, const physics::Shape& shape, const Properties& p) {
     const physics::ShapeMass unit = physics::shape_mass(shape, 1.0);
     body.radius = physics::bounding_radius(shape);
     body.mass = p.mass ? *p.mass : p.density * unit.area;
-    body.inertia = p.is_static ? 0.0 : body.mass * unit.inertia / unit.mass;
     body.shape = shape;
+    body.inertia = inertia_of(body);
 }
 
 std::optional<double> read_rounding(const Fields& fields, Diagnostics& d) {

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "color.hpp"
+#include "discreel/physics.hpp"
 #include "entries.hpp"
 #include "generators.hpp"
 #include "loader.hpp"
@@ -101,8 +102,17 @@ Disc make_disc(const Properties& p, std::string id, Vec2 position, double radius
     disc.friction = p.friction;
     disc.color = p.color ? *p.color : palette_color(index);
     disc.is_static = p.is_static;
-    disc.inertia = p.is_static ? 0.0 : 0.5 * disc.mass * radius * radius;
+    disc.inertia = inertia_of(disc);
     return disc;
+}
+
+double inertia_of(const Disc& body) {
+    if (body.is_static) return 0.0;
+    physics::DiscDef def;
+    def.radius = body.radius;
+    def.mass = body.mass;
+    def.shape = body.shape;
+    return physics::inertia_of(def);
 }
 
 // A mass from density * pi r^2 can overflow or underflow for absurd radii; physics divides

@@ -135,7 +135,7 @@ struct Disc {
     double angular_velocity = 0.0; // rad/s, counter-clockwise positive
     double radius = 0.0;           // metres, > 0; for a shape its bounding radius
     double mass = 0.0;             // kg; from mass, or density (kg/m^2, default 1) * area
-    double inertia = 0.0;          // kg m^2 about the centroid, from the shape and mass
+    double inertia = 0.0;          // kg m^2 about the centroid (physics::inertia_of); 0 if static
     std::optional<physics::Shape> shape;   // unset: a disc of `radius`
     double restitution = 0.8;      // resolved from physics.restitution when not given
     double friction = 0.2;         // resolved from physics.friction when not given
