@@ -233,7 +233,7 @@ std::optional<std::vector<LoadedScene>> load_scenes(const GoldenOptions& o, std:
     bool all_loaded = true;
     std::map<std::string, std::string> path_of_name;
     for (const std::string& path : o.scene_paths) {
-        scene::LoadResult loaded = scene::load_scene_file(path, o.limits);
+        scene::LoadResult loaded = scene::load_scene_file(path, o.limits, o.video.duration);
         if (!report_diagnostics(loaded, err)) {
             all_loaded = false;
             continue;

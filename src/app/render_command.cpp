@@ -236,7 +236,7 @@ void report_details(const job::RenderSummary& run, int frames, std::ostream& err
 
 int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = Clock::now();
-    scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits);
+    scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits, o.video.duration);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
     const auto output = encode::describe_output(o.output, o.stream_container);

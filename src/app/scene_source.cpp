@@ -8,10 +8,11 @@ namespace discreel::app {
 std::string_view builtin_demo_yaml() { return discreel_configs::demo_yaml; }
 
 scene::LoadResult load_scene_or_demo(const std::optional<std::string>& path,
-                                     const scene::Limits& limits) {
-    if (path) return scene::load_scene_file(*path, limits);
+                                     const scene::Limits& limits,
+                                     std::optional<double> clip_duration) {
+    if (path) return scene::load_scene_file(*path, limits, clip_duration);
     scene::LoadResult result =
-        scene::load_scene_text(builtin_demo_yaml(), "<built-in demo>", limits);
+        scene::load_scene_text(builtin_demo_yaml(), "<built-in demo>", limits, clip_duration);
     result.scene.name = "demo";
     return result;
 }

@@ -10,9 +10,11 @@ namespace discreel::app {
 
 std::string_view builtin_demo_yaml();
 
-// Loads `path`, or the built-in demo when no path is given.
+// Loads `path`, or the built-in demo when no path is given. `clip_duration`: --duration, which
+// the scene's respawns must cover (scene::load_scene_file).
 scene::LoadResult load_scene_or_demo(const std::optional<std::string>& path,
-                                     const scene::Limits& limits);
+                                     const scene::Limits& limits,
+                                     std::optional<double> clip_duration = std::nullopt);
 
 // Overrides from the command line, applied after loading. Returns the problems, in words.
 struct VideoOverrides {

@@ -20,7 +20,7 @@ std::string count_of(std::size_t n, const char* singular, const char* plural) {
 
 int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = std::chrono::steady_clock::now();
-    scene::LoadResult loaded = scene::load_scene_file(o.scene_path, o.limits);
+    scene::LoadResult loaded = scene::load_scene_file(o.scene_path, o.limits, o.duration);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
     VideoOverrides overrides;

@@ -383,9 +383,14 @@ void draw_respawns(Loader& loader, std::vector<PendingRespawns>& pending) {
             fixed.push_back({body.position, body.radius, true});
     }
     std::size_t total = loader.scene.discs.size();
+    // A clip length the caller will refuse (beyond the limit) draws only the file's respawns.
+    const auto& given = loader.clip_duration;
+    const double clip = given && *given > 0 && *given <= loader.limits.duration
+                            ? *given
+                            : loader.scene.video.duration;
     for (PendingRespawns& g : pending) {
         const Value& item = g.item;
-        for (double k = 1; k * g.every < loader.scene.video.duration; ++k) {
+        for (double k = 1; k * g.every < clip; ++k) {
             const double at = k * g.every;
             total += g.spec.placement.count;
             if (total > loader.limits.discs) {

@@ -379,7 +379,7 @@ Location location_at(std::string_view text, std::size_t offset) {
 }  // namespace
 
 LoadResult load_scene_text(std::string_view original_text, std::string_view display_name,
-                           const Limits& limits) {
+                           const Limits& limits, std::optional<double> clip_duration) {
     if (original_text.size() > limits.file_bytes)
         return whole_file_problem(display_name, too_large(original_text.size(), limits));
     std::string normalised = with_line_feeds(original_text);
@@ -430,7 +430,8 @@ LoadResult load_scene_text(std::string_view original_text, std::string_view disp
                 d.error(root.where, "a scene is a mapping of keys like 'version: 1' and 'discs:', "
                                     "got " + detail::describe(root.node));
             } else {
-                detail::Loader loader{d, result.scene, {}, true, false, true, {}, {}, limits};
+                detail::Loader loader{d, result.scene, {}, true, false, true, {}, {}, limits,
+                                      clip_duration};
                 read_scene(root, loader);
             }
         }
@@ -450,7 +451,8 @@ LoadResult load_scene_text(std::string_view original_text, std::string_view disp
     return result;
 }
 
-LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limits) {
+LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limits,
+                           std::optional<double> clip_duration) {
     const std::string display = path.string();
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
@@ -468,7 +470,7 @@ LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limi
                                                " bytes, the limit (raise it with "
                                                "--max-scene-bytes)");
     }
-    return load_scene_text(read->bytes, display, limits);
+    return load_scene_text(read->bytes, display, limits, clip_duration);
 }
 
 }  // namespace discreel::scene

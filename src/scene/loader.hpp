@@ -41,6 +41,7 @@ struct Loader {
     std::optional<Value> camera_follow;  // read with the camera, resolved once discs are known
     std::vector<ThrowSource> throw_sources;  // parallel to scene.throws, filled by read_throws
     Limits limits;
+    std::optional<double> clip_duration;   // seconds, when the caller overrides video.duration
 };
 
 void read_video(Loader& loader, const Value& value);

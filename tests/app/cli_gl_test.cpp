@@ -326,6 +326,34 @@ bodies:
     }
 }
 
+// --duration beyond the file's: the respawns go on to the end of the longer clip, and the trace
+// follows them (a new draw, a new bounding radius, at 1 s and at 2 s).
+TEST(CliTest, RespawnsLastAsLongAsTheDurationGivenOnTheCommandLine) {
+    TempDir dir;
+    testing::write_file(dir / "respawn.yaml", R"(version: 1
+video: {fps: 10, duration: 1.5}
+bodies:
+  - random_polygons: {count: 1, region: [[0, 0], [4, 4]], size: [0.2, 0.5], respawn_every: 1}
+)");
+    const auto run = run_command(
+        {bin, "simulate", dir / "respawn.yaml", "--duration", "2.5", "--trace", dir / "t.csv"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::istringstream trace(read_file(dir / "t.csv"));
+    std::string row;
+    std::getline(trace, row);   // the header
+    std::vector<std::string> radii;   // each new value of the radius column, in order
+    int rows = 0;
+    while (std::getline(trace, row)) {
+        ++rows;
+        const std::size_t end = row.rfind(','), mass = row.rfind(',', end - 1);
+        const std::size_t radius = row.rfind(',', mass - 1);
+        const std::string value = row.substr(radius + 1, mass - radius - 1);
+        if (radii.empty() || radii.back() != value) radii.push_back(value);
+    }
+    EXPECT_EQ(rows, 25);
+    EXPECT_EQ(radii.size(), 3u);
+}
+
 // The trajectory depends on the physics rate only: at 30 and 60 fps, frames at the same time
 // show bit-identical states.
 TEST(CliTest, TraceAgreesAcrossFrameRates) {

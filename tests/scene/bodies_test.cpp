@@ -320,6 +320,33 @@ bodies:
                   "967 or more (docs/physics.md, Limits)"}));
 }
 
+// A clip the caller makes longer than video.duration (--duration) gets its respawns to the
+// end; one beyond the limit on duration, which the caller refuses, only the file's.
+TEST(Bodies, RespawnsCoverTheClipLengthTheCallerGives) {
+    const std::string yaml = R"(
+version: 1
+video: {duration: 4}
+bodies:
+  - random_polygons: {count: 2, region: [[0, 0], [5, 5]], size: 0.3, respawn_every: 3}
+)";
+    const auto times = [](const LoadResult& r) {
+        std::vector<double> at;
+        for (const Respawn& respawn : r.scene.respawns) at.push_back(respawn.at);
+        return at;
+    };
+    const LoadResult file = load_scene_text(yaml, "s.yaml");
+    const LoadResult longer = load_scene_text(yaml, "s.yaml", {}, 10.0);
+    const LoadResult refused = load_scene_text(yaml, "s.yaml", {}, 1e9);
+    ASSERT_TRUE(file.ok() && longer.ok() && refused.ok());
+    EXPECT_EQ(times(file), (std::vector<double>{3}));
+    EXPECT_EQ(times(longer), (std::vector<double>{3, 6, 9}));
+    EXPECT_EQ(longer.scene.video.duration, 4.0);   // the caller sets it
+    EXPECT_EQ(times(refused), (std::vector<double>{3}));
+    // The same draws: the first respawn does not depend on the clip's length.
+    EXPECT_EQ(longer.scene.respawns[0].bodies[1].position,
+              file.scene.respawns[0].bodies[1].position);
+}
+
 TEST(Bodies, ThrowsNameBodiesWithBodyOrDisc) {
     const Scene s = load_ok(R"(
 version: 1

@@ -197,9 +197,14 @@ struct LoadResult {
 };
 
 // `display_name` is what diagnostics print as the file (usually the path as the user typed it).
+// `clip_duration`: the length the clip will have when the caller sets it instead of
+// video.duration (a command-line override, checked by the caller); respawns are drawn up to it,
+// as they must exist for the whole clip. video.duration itself stays the file's.
 LoadResult load_scene_text(std::string_view text, std::string_view display_name,
-                           const Limits& limits = {});
-LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limits = {});
+                           const Limits& limits = {},
+                           std::optional<double> clip_duration = std::nullopt);
+LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limits = {},
+                           std::optional<double> clip_duration = std::nullopt);
 
 // The work a scene asks for against `limits`: more frames than max_frames, or more physics
 // substeps than limits.substeps. The problem in words, naming the option that raises the limit;
