@@ -2,6 +2,7 @@
 // Whatever the input, load_scene_text must return (no crash, no hang, no unbounded memory,
 // no sanitizer report) and its result must be self-consistent; a violation aborts so that
 // libFuzzer records the input. Built only by DISCREEL_FUZZ=ON (see tests/fuzz/run.sh).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -28,6 +29,9 @@ void check_scene(const discreel::scene::Scene& scene) {
         if (disc.shape) require(!disc.shape->vertices.empty() && disc.shape->vertices.size() <= 8);
     }
     for (const Respawn& r : scene.respawns) require(r.first + r.bodies.size() <= scene.discs.size());
+    // Physics applies respawns in list order.
+    require(std::is_sorted(scene.respawns.begin(), scene.respawns.end(),
+                           [](const Respawn& a, const Respawn& b) { return a.at < b.at; }));
     for (const Throw& t : scene.throws) {
         require(t.disc < scene.discs.size());
         require(t.velocity.has_value() != !t.path.empty());
