@@ -81,6 +81,68 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
     std::sort(pairs_.begin(), pairs_.end());
 }
 
+std::uint32_t BodySolver::root(std::uint32_t i) {
+    while (parent_[i] != i) {
+        parent_[i] = parent_[parent_[i]];
+        i = parent_[i];
+    }
+    return i;
+}
+
+void BodySolver::find_direct_islands(const std::vector<RigidBody>& bodies) {
+    const std::size_t n = bodies.size();
+    parent_.resize(n);
+    lightest_.resize(n);
+    heaviest_.resize(n);
+    points_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        parent_[i] = static_cast<std::uint32_t>(i);
+        // By inverse mass: what the solver uses (a body's `mass` may be left unset).
+        lightest_[i] = heaviest_[i] = bodies[i].inv_mass;
+    }
+    const auto moves = [&](std::uint32_t i) { return bodies[i].inv_mass > 0; };
+    // The lower index roots the merged island, so the grouping depends only on the contacts.
+    for (const PairContact& pc : fresh_) {
+        if (!moves(pc.a) || !moves(pc.b)) continue;
+        const std::uint32_t ra = root(pc.a), rb = root(pc.b);
+        if (ra == rb) continue;
+        const std::uint32_t low = std::min(ra, rb), high = std::max(ra, rb);
+        parent_[high] = low;
+        lightest_[low] = std::max(lightest_[low], lightest_[high]);
+        heaviest_[low] = std::min(heaviest_[low], heaviest_[high]);
+    }
+    const auto island_of = [&](const PairContact& pc) { return root(moves(pc.a) ? pc.a : pc.b); };
+    for (const PairContact& pc : fresh_) points_[island_of(pc)] += pc.contact.count;
+    direct_.assign(fresh_.size(), 0);
+    // Counting sort of the direct contacts by island root (island_start_ is per body first).
+    island_start_.assign(n + 1, 0);
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+        const std::uint32_t r = island_of(fresh_[i]);
+        if (lightest_[r] < def_.direct_mass_ratio * heaviest_[r] || points_[r] > def_.direct_points) {
+            continue;
+        }
+        direct_[i] = 1;
+        ++island_start_[r + 1];
+    }
+    for (std::size_t i = 0; i < n; ++i) island_start_[i + 1] += island_start_[i];
+    islands_.resize(island_start_[n]);
+    std::vector<std::size_t>& fill = island_fill_;
+    fill.assign(island_start_.begin(), island_start_.end() - 1);
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+        if (!direct_[i]) continue;
+        PairContact& pc = fresh_[i];
+        islands_[fill[island_of(pc)]++] =
+            IslandContact{pc.a, pc.b, &pc.contact, static_cast<std::uint32_t>(i)};
+    }
+    // Keep only the islands' bounds: their starts, ascending, then the end.
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (island_start_[i + 1] > island_start_[i]) island_start_[kept++] = island_start_[i];
+    }
+    island_start_[kept] = islands_.size();
+    island_start_.resize(kept + 1);
+}
+
 void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
     for (RigidBody& b : bodies) {
         if (b.bound < 0) b.bound = bounding_radius(b.shape);
@@ -138,10 +200,23 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         fresh_.push_back(pc);
     }
 
-    // Warm start, then the velocity iterations, body states carried between contacts.
+    // The islands solved directly first (their bodies have no other contacts), then warm
+    // start and the velocity iterations of the rest, body states carried between contacts.
+    find_direct_islands(bodies);
     state_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) state_[i] = velocity_of(bodies[i]);
-    for (PairContact& pc : fresh_) {
+    for (std::size_t k = 0; k + 1 < island_start_.size(); ++k) {
+        const std::span<const IslandContact> island(islands_.data() + island_start_[k],
+                                                    island_start_[k + 1] - island_start_[k]);
+        if (direct_solver_.velocities(island, state_)) continue;
+        // Not settled within its pivots (never seen): the island iterates like the others.
+        for (const IslandContact& ic : island) {
+            direct_[ic.pair] = 0;
+        }
+    }
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+        PairContact& pc = fresh_[i];
+        if (direct_[i]) continue;
         prepare_block(pc.contact, state_[pc.a], state_[pc.b]);
         const V2 tangent = -perp(pc.contact.normal);
         for (int k = 0; k < pc.contact.count; ++k) {
@@ -151,7 +226,9 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         }
     }
     for (int it = 0; it < def_.iterations; ++it) {
-        for (PairContact& pc : fresh_) solve_block(pc.contact, state_[pc.a], state_[pc.b]);
+        for (std::size_t i = 0; i < fresh_.size(); ++i) {
+            if (!direct_[i]) solve_block(fresh_[i].contact, state_[fresh_[i].a], state_[fresh_[i].b]);
+        }
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 
@@ -172,7 +249,8 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
     // flat landing). Velocities only, frictionless, from the impulses already applied. The
     // bodies have moved: each point is taken midway between where its two anchors are now,
     // so that both bodies feel the impulse at one place and angular momentum is kept.
-    for (PairContact& pc : fresh_) {
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+        PairContact& pc = fresh_[i];
         BlockContact& c = pc.contact;
         bool bounce = false;
         for (int k = 0; k < c.count; ++k) {
@@ -181,7 +259,7 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
             c.points[k].target = hit ? -pc.restitution * vn : 0;
             bounce = bounce || (hit && pc.restitution > 0);
         }
-        if (!bounce) continue;
+        if (!bounce && !direct_[i]) continue;
         for (int k = 0; k < c.count; ++k) {
             BlockPoint& p = c.points[k];
             const V2 ra = rotate(p.ra, turned[pc.a]), rb = rotate(p.rb, turned[pc.b]);
@@ -189,11 +267,38 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
             p.ra = point - bodies[pc.a].x;
             p.rb = point - bodies[pc.b].x;
         }
+        if (direct_[i]) continue;   // below, with its island
         prepare_block(c, state_[pc.a], state_[pc.b]);
         const double friction = c.friction;
         c.friction = 0;
         solve_block(c, state_[pc.a], state_[pc.b]);
         c.friction = friction;
+    }
+    // A direct island bounces by Poisson's rule: its points still closing are first stopped
+    // together (the speculative solve let them close up to their gap), then each hit point gets
+    // e times all the impulse that stopped it. Asking every point to leave at e times its
+    // approach speed (Newton's rule, above) over-constrains a body struck at two places and
+    // can add energy.
+    for (std::size_t k = 0; k + 1 < island_start_.size(); ++k) {
+        const std::span<const IslandContact> island(islands_.data() + island_start_[k],
+                                                    island_start_[k + 1] - island_start_[k]);
+        const auto hit = [](const BlockPoint& p) { return p.target > 0; };   // and e > 0
+        bool bounce = false;
+        for (const IslandContact& ic : island) {
+            for (int q = 0; q < ic.contact->count; ++q) bounce = bounce || hit(ic.contact->points[q]);
+        }
+        if (!bounce || !direct_solver_.stop(island, state_, push_)) continue;
+        std::size_t point = 0;
+        for (const IslandContact& ic : island) {
+            const PairContact& pc = *pair_of(ic);
+            for (int q = 0; q < ic.contact->count; ++q, ++point) {
+                BlockPoint& p = ic.contact->points[q];
+                double impulse = push_[point];
+                if (hit(p)) impulse += pc.restitution * (p.normal_impulse + push_[point]);
+                apply_impulse(state_[pc.a], state_[pc.b], p, impulse * ic.contact->normal);
+                p.normal_impulse += impulse;
+            }
+        }
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 
@@ -207,40 +312,79 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         const auto [c, s] = spin_[i];
         return V2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
     };
+    // The separation of point k of pc now, and its anchors' offsets now.
+    const auto separation_now = [&](const PairContact& pc, int k, V2& ra, V2& rb) {
+        const Anchor& an = pc.anchors[static_cast<std::size_t>(k)];
+        ra = rotate_by(an.ra, pc.a);
+        rb = rotate_by(an.rb, pc.b);
+        const V2 drift = (moved[pc.b] + rb - an.rb) - (moved[pc.a] + ra - an.ra);
+        return an.separation + pc.contact.normal.dot(drift);
+    };
+    // Moves a and b apart by `amount` (kg m) of positional impulse along n at offsets ra, rb.
+    const auto push_apart = [&](const PairContact& pc, const V2& ra, const V2& rb,
+                                double amount) {
+        RigidBody& a = bodies[pc.a];
+        RigidBody& b = bodies[pc.b];
+        const V2 impulse = amount * pc.contact.normal;
+        const V2 da = a.inv_mass * impulse, db = b.inv_mass * impulse;
+        const double ta = a.inv_inertia * cross(ra, impulse);
+        const double tb = b.inv_inertia * cross(rb, impulse);
+        a.x -= da;
+        a.angle -= ta;
+        b.x += db;
+        b.angle += tb;
+        moved[pc.a] -= da;
+        turned[pc.a] -= ta;
+        moved[pc.b] += db;
+        turned[pc.b] += tb;
+        spin_[pc.a] = {std::cos(turned[pc.a]), std::sin(turned[pc.a])};
+        spin_[pc.b] = {std::cos(turned[pc.b]), std::sin(turned[pc.b])};
+    };
+    // A direct island: every point to within the slop at once, through the same matrix.
+    for (std::size_t k = 0; k + 1 < island_start_.size(); ++k) {
+        const std::span<const IslandContact> island(islands_.data() + island_start_[k],
+                                                    island_start_[k + 1] - island_start_[k]);
+        separation_.clear();
+        bool overlaps = false;
+        for (const IslandContact& ic : island) {
+            const PairContact& pc = *pair_of(ic);
+            for (int q = 0; q < pc.contact.count; ++q) {
+                BlockPoint& p = ic.contact->points[q];
+                // The slop, as below: pushing a body out raises it, and energy with it.
+                separation_.push_back(separation_now(pc, q, p.ra, p.rb) + def_.slop);
+                overlaps = overlaps || separation_.back() < 0;
+            }
+        }
+        if (!overlaps || !direct_solver_.positions(island, state_, separation_, push_)) continue;
+        std::size_t point = 0;
+        for (const IslandContact& ic : island) {
+            const PairContact& pc = *pair_of(ic);
+            for (int q = 0; q < pc.contact.count; ++q, ++point) {
+                const BlockPoint& p = pc.contact.points[q];
+                if (push_[point] > 0) push_apart(pc, p.ra, p.rb, push_[point]);
+            }
+        }
+    }
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
-        for (const PairContact& pc : fresh_) {
-            RigidBody& a = bodies[pc.a];
-            RigidBody& b = bodies[pc.b];
+        for (std::size_t i = 0; i < fresh_.size(); ++i) {
+            if (direct_[i]) continue;
+            const PairContact& pc = fresh_[i];
+            const RigidBody& a = bodies[pc.a];
+            const RigidBody& b = bodies[pc.b];
             const V2& n = pc.contact.normal;
             for (int k = 0; k < pc.contact.count; ++k) {
-                const Anchor& an = pc.anchors[k];
-                const V2 ra = rotate_by(an.ra, pc.a), rb = rotate_by(an.rb, pc.b);
-                const V2 drift = (moved[pc.b] + rb - an.rb) - (moved[pc.a] + ra - an.ra);
-                const double overlap = an.separation + n.dot(drift) + def_.slop;
+                V2 ra, rb;
+                const double overlap = separation_now(pc, k, ra, rb) + def_.slop;
                 if (overlap >= 0) continue;
                 const double push = std::min(-overlap, def_.max_correction);
                 const double rna = cross(ra, n), rnb = cross(rb, n);
                 const double k_n = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna +
                                    b.inv_inertia * rnb * rnb;
                 if (k_n <= 0) continue;
-                const V2 impulse = (push / k_n) * n;
-                const V2 da = a.inv_mass * impulse, db = b.inv_mass * impulse;
-                const double ta = a.inv_inertia * cross(ra, impulse);
-                const double tb = b.inv_inertia * cross(rb, impulse);
-                a.x -= da;
-                a.angle -= ta;
-                b.x += db;
-                b.angle += tb;
-                moved[pc.a] -= da;
-                turned[pc.a] -= ta;
-                moved[pc.b] += db;
-                turned[pc.b] += tb;
-                spin_[pc.a] = {std::cos(turned[pc.a]), std::sin(turned[pc.a])};
-                spin_[pc.b] = {std::cos(turned[pc.b]), std::sin(turned[pc.b])};
+                push_apart(pc, ra, rb, push / k_n);
             }
         }
     }
-
     touches_.clear();
     for (PairContact& pc : fresh_) {
         double impulse = 0;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "block_solver.hpp"
+#include "island.hpp"
 #include "manifold.hpp"
 #include "shape.hpp"
 
@@ -40,6 +41,11 @@ struct BodySolverDef {
     double speculative = 0.02;     // metres: points this far apart are already contacts
     double slop = 5e-4;            // metres of overlap left alone (resting contact jitters less)
     double max_correction = 0.02;  // metres pushed out per point and sweep at most
+    // An island (bodies that contacts between moving bodies connect) whose moving bodies'
+    // masses differ by this factor or more is solved directly (island.hpp) when it has at most
+    // `direct_points` contact points; the others iterate (docs/physics.md, "Limits").
+    double direct_mass_ratio = 10;
+    int direct_points = 16;
 };
 
 // A pair of bodies that touched (exchanged a normal impulse) during the step.
@@ -80,6 +86,12 @@ private:
         bool touched = false;
     };
     void find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall);
+    // Groups the contacts of the islands to solve directly into islands_ (island_start_
+    // delimits them) and marks them in direct_.
+    void find_direct_islands(const std::vector<RigidBody>& bodies);
+    std::uint32_t root(std::uint32_t i);
+    // The pair an island contact's manifold belongs to.
+    PairContact* pair_of(const IslandContact& ic) { return &fresh_[ic.pair]; }
 
     BodySolverDef def_;
     std::vector<PairContact> contacts_;     // the last step's, in (a, b) order
@@ -94,6 +106,18 @@ private:
     std::vector<double> turned_;            // scratch: radians each body turned
     std::vector<std::pair<double, double>> spin_;   // scratch: cos and sin of turned_
     std::vector<PairTouch> touches_;
+    // The direct islands of the step: union-find parents per body, each root's lightest and
+    // heaviest body's inverse mass (1/kg) and point count, and per contact of fresh_ whether
+    // it is in one.
+    std::vector<std::uint32_t> parent_;
+    std::vector<double> lightest_, heaviest_;
+    std::vector<int> points_;
+    std::vector<unsigned char> direct_;
+    std::vector<IslandContact> islands_;    // grouped by island, each in fresh_'s order
+    std::vector<std::size_t> island_start_;
+    std::vector<std::size_t> island_fill_;    // scratch
+    DirectSolver direct_solver_;
+    std::vector<double> separation_, push_;   // scratch, per point of an island
 };
 
 }  // namespace discreel::physics::detail

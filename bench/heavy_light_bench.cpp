@@ -1,0 +1,130 @@
+// heavy_light_bench: heavy against light, per solver and mass ratio, on the scenes Box2D v3
+// is measured on (../shared/FIELD_NOTES.md, "Mass ratios and fast bodies"), all r = 0.5 m,
+// 480 Hz:
+//   rest     a heavy disc resting on a light one on the floor, 3 s: deepest overlap, % of r;
+//   squeeze  a light disc between two heavy ones closing at 6 m/s, e = 0, no gravity, 1 s:
+//            deepest overlap, % of r;
+//   pile     64 discs (r = 0.4), every other one heavy, thrown at 2 m/s in a 10 m box
+//            (tests/physics/extremes_test.cpp), 2 s: deepest overlap (% of r) and the fastest
+//            disc at the end (m/s; about 2 when it holds).
+// "disc" is the disc solver (plain discs), "manifold" the manifold solver (circle shapes),
+// whose small islands are solved directly. Appends to bench/results/heavy_light_bench.csv.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "bench_results.hpp"
+#include "discreel/physics.hpp"
+#include "discreel/shapes.hpp"
+
+namespace {
+
+using namespace discreel;
+using namespace discreel::physics;
+
+DiscDef disc(Vec2 position, Vec2 velocity, double radius, double mass, bool manifold,
+             double restitution = 0.0, double friction = 0.5) {
+    DiscDef d;
+    d.position = position;
+    d.velocity = velocity;
+    d.radius = radius;
+    d.mass = mass;
+    d.restitution = restitution;
+    d.friction = friction;
+    if (manifold) d.shape = circle_shape(radius);
+    return d;
+}
+
+WallDef box(Vec2 lo, Vec2 hi, double restitution) {
+    WallDef w;
+    w.shape = WallDef::Shape::box;
+    w.a = lo;
+    w.b = hi;
+    w.restitution = restitution;
+    w.friction = 0.5;
+    return w;
+}
+
+double deepest(World& world, double seconds) {
+    double depth = 0;
+    for (int k = 0; k < static_cast<int>(seconds * world.rate()); ++k) {
+        world.step();
+        depth = std::max(depth, world.stats().max_overlap);
+    }
+    return depth;
+}
+
+double rest(double ratio, bool manifold) {
+    WorldDef def;
+    def.walls.push_back(box({-5, 0}, {5, 10}, 0.0));
+    def.discs.push_back(disc({0, 0.5}, {}, 0.5, 1, manifold));
+    def.discs.push_back(disc({0, 1.5}, {}, 0.5, ratio, manifold));
+    World world(def);
+    return 100 * deepest(world, 3) / 0.5;
+}
+
+double squeeze(double ratio, bool manifold) {
+    WorldDef def;
+    def.gravity = {0, 0};
+    def.discs.push_back(disc({-1.5, 0}, {3, 0}, 0.5, ratio, manifold, 0, 0));
+    def.discs.push_back(disc({0, 0}, {}, 0.5, 1, manifold, 0, 0));
+    def.discs.push_back(disc({1.5, 0}, {-3, 0}, 0.5, ratio, manifold, 0, 0));
+    World world(def);
+    return 100 * deepest(world, 1) / 0.5;
+}
+
+struct Pile {
+    double overlap_pct = 0;
+    double fastest = 0;   // m/s
+};
+
+Pile pile(double ratio, bool manifold) {
+    WorldDef def;
+    def.walls.push_back(box({0, 0}, {10, 10}, 0.5));
+    std::uint64_t state = 7;
+    const auto uniform = [&](double lo, double hi) {   // splitmix64, as tests/physics/scenes.hpp
+        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        z ^= z >> 31;
+        return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
+    };
+    for (int k = 0; k < 64; ++k) {
+        const double angle = uniform(0, 2 * 3.141592653589793);
+        def.discs.push_back(disc({(1 + k % 8) * 1.1, (1 + k / 8) * 1.1},
+                                 {2 * std::cos(angle), 2 * std::sin(angle)}, 0.4,
+                                 k % 2 ? ratio : 1.0, manifold, 0.5, 0.5));
+    }
+    World world(def);
+    Pile p;
+    p.overlap_pct = 100 * deepest(world, 2) / 0.4;
+    for (const DiscState& s : world.discs()) {
+        p.fastest = std::max(p.fastest, std::hypot(s.velocity.x, s.velocity.y));
+    }
+    if (world.failure()) p.fastest = HUGE_VAL;
+    return p;
+}
+
+}  // namespace
+
+int main() {
+    bench::ResultsFile results("heavy_light_bench",
+                               {"solver", "mass_ratio", "rest_overlap_pct", "squeeze_overlap_pct",
+                                "pile_overlap_pct", "pile_fastest_m_s"});
+    std::printf("%-9s %9s %10s %10s %10s %14s\n", "solver", "ratio", "rest %", "squeeze %",
+                "pile %", "pile fastest");
+    for (const bool manifold : {false, true}) {
+        for (const double ratio : {10.0, 1e2, 1e3, 1e4, 1e5, 1e6}) {
+            const std::string solver = manifold ? "manifold" : "disc";
+            const double r = rest(ratio, manifold), s = squeeze(ratio, manifold);
+            const Pile p = pile(ratio, manifold);
+            std::printf("%-9s %9.0e %10.3f %10.3f %10.3f %14.3g\n", solver.c_str(), ratio, r, s,
+                        p.overlap_pct, p.fastest);
+            results.append({solver, bench::csv_number(ratio, 0), bench::csv_number(r, 4),
+                            bench::csv_number(s, 4), bench::csv_number(p.overlap_pct, 4),
+                            bench::csv_number(p.fastest, 3)});
+        }
+    }
+    if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());
+}
