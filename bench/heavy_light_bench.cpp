@@ -92,7 +92,8 @@ Pile pile(double ratio, bool manifold) {
     };
     for (int k = 0; k < 64; ++k) {
         const double angle = uniform(0, 2 * 3.141592653589793);
-        def.discs.push_back(disc({(1 + k % 8) * 1.1, (1 + k / 8) * 1.1},
+        const int column = k % 8, row = k / 8;
+        def.discs.push_back(disc({(1 + column) * 1.1, (1 + row) * 1.1},
                                  {2 * std::cos(angle), 2 * std::sin(angle)}, 0.4,
                                  k % 2 ? ratio : 1.0, manifold, 0.5, 0.5));
     }

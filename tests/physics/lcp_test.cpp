@@ -23,26 +23,25 @@ struct Problem {
 
 // A = G G^T + a little identity: positive definite, of rank-deficient-looking spread when
 // `spread` scales the rows by up to that factor (a mass ratio's effect on the effective mass).
-Problem random_problem(testing::Rng& rng, int n, double spread) {
+Problem random_problem(testing::Rng& rng, int rows, double spread) {
     Problem p;
-    p.n = n;
-    std::vector<double> g(static_cast<std::size_t>(n * n));
-    for (int i = 0; i < n; ++i) {
+    p.n = rows;
+    const auto n = static_cast<std::size_t>(rows);
+    std::vector<double> g(n * n);
+    for (std::size_t i = 0; i < n; ++i) {
         const double scale = std::pow(spread, rng.uniform(0, 1));
-        for (int j = 0; j < n; ++j) g[static_cast<std::size_t>(i * n + j)] = scale * rng.uniform(-1, 1);
+        for (std::size_t j = 0; j < n; ++j) g[i * n + j] = scale * rng.uniform(-1, 1);
     }
-    p.a.assign(static_cast<std::size_t>(n * n), 0.0);
-    for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
+    p.a.assign(n * n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < n; ++j) {
             double s = i == j ? 1e-3 : 0.0;
-            for (int k = 0; k < n; ++k) {
-                s += g[static_cast<std::size_t>(i * n + k)] * g[static_cast<std::size_t>(j * n + k)];
-            }
-            p.a[static_cast<std::size_t>(i * n + j)] = s;
+            for (std::size_t k = 0; k < n; ++k) s += g[i * n + k] * g[j * n + k];
+            p.a[i * n + j] = s;
         }
     }
-    for (int i = 0; i < n; ++i) {
-        p.b.push_back(rng.uniform(-1, 1) * p.a[static_cast<std::size_t>(i * (n + 1))]);
+    for (std::size_t i = 0; i < n; ++i) {
+        p.b.push_back(rng.uniform(-1, 1) * p.a[i * (n + 1)]);
         // Every kind of row: a floor only (a normal impulse), a box (friction), both at zero.
         const int kind = static_cast<int>(rng.uniform(0, 3));
         const double half = rng.uniform(0, 1);
@@ -54,19 +53,18 @@ Problem random_problem(testing::Rng& rng, int n, double spread) {
 
 // How far x is from meeting the conditions, relative to the problem's scale.
 double violation(const Problem& p, const std::vector<double>& x) {
+    const auto n = static_cast<std::size_t>(p.n);
     double worst = 0;
-    for (int i = 0; i < p.n; ++i) {
-        const auto row = static_cast<std::size_t>(i);
+    for (std::size_t row = 0; row < n; ++row) {
         double w = p.b[row], scale = std::abs(p.b[row]);
-        for (int j = 0; j < p.n; ++j) {
-            const double term = p.a[row * static_cast<std::size_t>(p.n) + static_cast<std::size_t>(j)] *
-                                x[static_cast<std::size_t>(j)];
+        for (std::size_t j = 0; j < n; ++j) {
+            const double term = p.a[row * n + j] * x[j];
             w += term;
             scale += std::abs(term);
         }
         const double xi = x[row];
-        EXPECT_GE(xi, p.lo[row]) << "row " << i;
-        EXPECT_LE(xi, p.hi[row]) << "row " << i;
+        EXPECT_GE(xi, p.lo[row]) << "row " << row;
+        EXPECT_LE(xi, p.hi[row]) << "row " << row;
         const double rel = std::abs(w) / scale;
         if (p.lo[row] == p.hi[row]) continue;
         if (xi == p.lo[row]) worst = std::max(worst, w < 0 ? rel : 0.0);
