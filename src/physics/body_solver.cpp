@@ -81,6 +81,15 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
     std::sort(pairs_.begin(), pairs_.end());
 }
 
+void BodySolver::apply_totals(const PairContact& pc, double sign) {
+    const V2 tangent = -perp(pc.contact.normal);
+    for (int k = 0; k < pc.contact.count; ++k) {
+        const BlockPoint& p = pc.contact.points[k];
+        apply_impulse(state_[pc.a], state_[pc.b], p,
+                      sign * (p.normal_impulse * pc.contact.normal + p.tangent_impulse * tangent));
+    }
+}
+
 std::uint32_t BodySolver::root(std::uint32_t i) {
     while (parent_[i] != i) {
         parent_[i] = parent_[parent_[i]];
@@ -114,33 +123,54 @@ void BodySolver::find_direct_islands(const std::vector<RigidBody>& bodies) {
     const auto island_of = [&](const PairContact& pc) { return root(moves(pc.a) ? pc.a : pc.b); };
     for (const PairContact& pc : fresh_) points_[island_of(pc)] += pc.contact.count;
     direct_.assign(fresh_.size(), 0);
-    // Counting sort of the direct contacts by island root (island_start_ is per body first).
-    island_start_.assign(n + 1, 0);
+    blocked_.assign(fresh_.size(), 0);
+    group_key_.resize(fresh_.size());
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
-        const std::uint32_t r = island_of(fresh_[i]);
-        if (lightest_[r] < def_.direct_mass_ratio * heaviest_[r] || points_[r] > def_.direct_points) {
+        const PairContact& pc = fresh_[i];
+        const std::uint32_t r = island_of(pc);
+        if (lightest_[r] < def_.direct_mass_ratio * heaviest_[r]) continue;
+        if (points_[r] <= def_.direct_points) {
+            direct_[i] = 1;
+            group_key_[i] = r;
             continue;
         }
-        direct_[i] = 1;
-        ++island_start_[r + 1];
+        // Too large to solve whole: beyond block_mass_ratio the contact joins the block of its
+        // lighter body; below it the island iterates like an even one.
+        if (lightest_[r] < def_.block_mass_ratio * heaviest_[r]) continue;
+        blocked_[i] = 1;
+        const bool a_lighter =
+            !moves(pc.b) || (moves(pc.a) && bodies[pc.a].inv_mass >= bodies[pc.b].inv_mass);
+        group_key_[i] = a_lighter ? pc.a : pc.b;
     }
-    for (std::size_t i = 0; i < n; ++i) island_start_[i + 1] += island_start_[i];
-    islands_.resize(island_start_[n]);
-    std::vector<std::size_t>& fill = island_fill_;
-    fill.assign(island_start_.begin(), island_start_.end() - 1);
+    group(direct_, islands_, island_start_);
+    group(blocked_, blocks_, block_start_);
+}
+
+void BodySolver::group(const std::vector<unsigned char>& selected,
+                       std::vector<IslandContact>& grouped, std::vector<std::size_t>& starts) {
+    // Counting sort of the selected contacts by key (a body index), each group in fresh_'s
+    // order; starts first counts per key, then keeps only the groups' bounds.
+    const std::size_t n = parent_.size();
+    starts.assign(n + 1, 0);
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
-        if (!direct_[i]) continue;
+        if (selected[i]) ++starts[group_key_[i] + 1];
+    }
+    for (std::size_t i = 0; i < n; ++i) starts[i + 1] += starts[i];
+    grouped.resize(starts[n]);
+    std::vector<std::size_t>& fill = island_fill_;
+    fill.assign(starts.begin(), starts.end() - 1);
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+        if (!selected[i]) continue;
         PairContact& pc = fresh_[i];
-        islands_[fill[island_of(pc)]++] =
+        grouped[fill[group_key_[i]]++] =
             IslandContact{pc.a, pc.b, &pc.contact, static_cast<std::uint32_t>(i)};
     }
-    // Keep only the islands' bounds: their starts, ascending, then the end.
     std::size_t kept = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        if (island_start_[i + 1] > island_start_[i]) island_start_[kept++] = island_start_[i];
+        if (starts[i + 1] > starts[i]) starts[kept++] = starts[i];
     }
-    island_start_[kept] = islands_.size();
-    island_start_.resize(kept + 1);
+    starts[kept] = grouped.size();
+    starts.resize(kept + 1);
 }
 
 void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
@@ -218,16 +248,20 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         PairContact& pc = fresh_[i];
         if (direct_[i]) continue;
         prepare_block(pc.contact, state_[pc.a], state_[pc.b]);
-        const V2 tangent = -perp(pc.contact.normal);
-        for (int k = 0; k < pc.contact.count; ++k) {
-            const BlockPoint& p = pc.contact.points[k];
-            apply_impulse(state_[pc.a], state_[pc.b], p,
-                          p.normal_impulse * pc.contact.normal + p.tangent_impulse * tangent);
-        }
+        apply_totals(pc, 1);
     }
     for (int it = 0; it < def_.iterations; ++it) {
         for (std::size_t i = 0; i < fresh_.size(); ++i) {
-            if (!direct_[i]) solve_block(fresh_[i].contact, state_[fresh_[i].a], state_[fresh_[i].b]);
+            if (direct_[i] || blocked_[i]) continue;
+            solve_block(fresh_[i].contact, state_[fresh_[i].a], state_[fresh_[i].b]);
+        }
+        // A block's impulses are taken back out and solved again, together.
+        for (std::size_t k = 0; k + 1 < block_start_.size(); ++k) {
+            const std::span<const IslandContact> block(blocks_.data() + block_start_[k],
+                                                       block_start_[k + 1] - block_start_[k]);
+            for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
+            if (direct_solver_.velocities(block, state_)) continue;
+            for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
         }
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
@@ -255,7 +289,10 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         bool bounce = false;
         for (int k = 0; k < c.count; ++k) {
             const double vn = pc.approach[static_cast<std::size_t>(k)];
-            const bool hit = vn < -settle && c.points[k].normal_impulse > 0;
+            // A larger island of masses far apart does not bounce: its block iterations leave
+            // light bodies rattling between heavy ones, and bouncing them by either rule pumps
+            // energy in (heavy_light_bench's box; docs/tried.md).
+            const bool hit = vn < -settle && c.points[k].normal_impulse > 0 && !blocked_[i];
             c.points[k].target = hit ? -pc.restitution * vn : 0;
             bounce = bounce || (hit && pc.restitution > 0);
         }
@@ -279,15 +316,13 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
     // e times all the impulse that stopped it. Asking every point to leave at e times its
     // approach speed (Newton's rule, above) over-constrains a body struck at two places and
     // can add energy.
-    for (std::size_t k = 0; k + 1 < island_start_.size(); ++k) {
-        const std::span<const IslandContact> island(islands_.data() + island_start_[k],
-                                                    island_start_[k + 1] - island_start_[k]);
+    const auto bounce_together = [&](std::span<const IslandContact> island) {
         const auto hit = [](const BlockPoint& p) { return p.target > 0; };   // and e > 0
         bool bounce = false;
         for (const IslandContact& ic : island) {
             for (int q = 0; q < ic.contact->count; ++q) bounce = bounce || hit(ic.contact->points[q]);
         }
-        if (!bounce || !direct_solver_.stop(island, state_, push_)) continue;
+        if (!bounce || !direct_solver_.stop(island, state_, push_)) return;
         std::size_t point = 0;
         for (const IslandContact& ic : island) {
             const PairContact& pc = *pair_of(ic);
@@ -299,7 +334,8 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
                 p.normal_impulse += impulse;
             }
         }
-    }
+    };
+    for_each_group(islands_, island_start_, bounce_together);
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 
     // Whatever overlap is left beyond the slop is pushed out, point by point: positions only,
@@ -340,10 +376,9 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         spin_[pc.a] = {std::cos(turned[pc.a]), std::sin(turned[pc.a])};
         spin_[pc.b] = {std::cos(turned[pc.b]), std::sin(turned[pc.b])};
     };
-    // A direct island: every point to within the slop at once, through the same matrix.
-    for (std::size_t k = 0; k + 1 < island_start_.size(); ++k) {
-        const std::span<const IslandContact> island(islands_.data() + island_start_[k],
-                                                    island_start_[k + 1] - island_start_[k]);
+    // A direct island: every point to within the slop at once, through the same matrix; the
+    // blocks of larger islands the same way, one after the other, in sweeps.
+    const auto push_out_together = [&](std::span<const IslandContact> island) {
         separation_.clear();
         bool overlaps = false;
         for (const IslandContact& ic : island) {
@@ -355,7 +390,7 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
                 overlaps = overlaps || separation_.back() < 0;
             }
         }
-        if (!overlaps || !direct_solver_.positions(island, state_, separation_, push_)) continue;
+        if (!overlaps || !direct_solver_.positions(island, state_, separation_, push_)) return;
         std::size_t point = 0;
         for (const IslandContact& ic : island) {
             const PairContact& pc = *pair_of(ic);
@@ -364,10 +399,14 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
                 if (push_[point] > 0) push_apart(pc, p.ra, p.rb, push_[point]);
             }
         }
+    };
+    for_each_group(islands_, island_start_, push_out_together);
+    for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
+        for_each_group(blocks_, block_start_, push_out_together);
     }
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
         for (std::size_t i = 0; i < fresh_.size(); ++i) {
-            if (direct_[i]) continue;
+            if (direct_[i] || blocked_[i]) continue;
             const PairContact& pc = fresh_[i];
             const RigidBody& a = bodies[pc.a];
             const RigidBody& b = bodies[pc.b];

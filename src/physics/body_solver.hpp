@@ -46,6 +46,9 @@ struct BodySolverDef {
     // `direct_points` contact points; the others iterate (docs/physics.md, "Limits").
     double direct_mass_ratio = 10;
     int direct_points = 16;
+    // A larger island whose masses differ by this factor or more iterates by blocks: each
+    // contact with the others of its lighter body, solved together; it does not bounce.
+    double block_mass_ratio = 100;
 };
 
 // A pair of bodies that touched (exchanged a normal impulse) during the step.
@@ -90,6 +93,20 @@ private:
     // delimits them) and marks them in direct_.
     void find_direct_islands(const std::vector<RigidBody>& bodies);
     std::uint32_t root(std::uint32_t i);
+    // Groups the contacts selected (per contact of fresh_) by group_key_ into `grouped`, the
+    // groups delimited by `starts`.
+    void group(const std::vector<unsigned char>& selected, std::vector<IslandContact>& grouped,
+               std::vector<std::size_t>& starts);
+    // Calls f with each group of `grouped` that `starts` delimits.
+    template <class F>
+    static void for_each_group(std::span<const IslandContact> grouped,
+                               std::span<const std::size_t> starts, F&& f) {
+        for (std::size_t k = 0; k + 1 < starts.size(); ++k) {
+            f(grouped.subspan(starts[k], starts[k + 1] - starts[k]));
+        }
+    }
+    // Applies sign times a contact's accumulated impulses to state_.
+    void apply_totals(const PairContact& pc, double sign);
     // The pair an island contact's manifold belongs to.
     PairContact* pair_of(const IslandContact& ic) { return &fresh_[ic.pair]; }
 
@@ -116,6 +133,12 @@ private:
     std::vector<IslandContact> islands_;    // grouped by island, each in fresh_'s order
     std::vector<std::size_t> island_start_;
     std::vector<std::size_t> island_fill_;    // scratch
+    // The contacts of larger islands of masses block_mass_ratio apart, grouped by block
+    // (blocked_: per contact of fresh_).
+    std::vector<unsigned char> blocked_;
+    std::vector<IslandContact> blocks_;
+    std::vector<std::size_t> block_start_;
+    std::vector<std::uint32_t> group_key_;    // per contact: its island root or block's body
     DirectSolver direct_solver_;
     std::vector<double> separation_, push_;   // scratch, per point of an island
 };
