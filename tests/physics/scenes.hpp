@@ -1,7 +1,10 @@
 #pragma once
 // Scene builders shared by the physics tests.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "discreel/physics.hpp"
@@ -114,6 +117,27 @@ inline WorldDef pile(const PileDef& p) {
 inline void run_for(World& world, double seconds) {
     const auto steps = static_cast<std::int64_t>(std::llround(seconds * world.rate()));
     for (std::int64_t k = 0; k < steps; ++k) world.step();
+}
+
+// Steps `world` for at most 2 s while body i, dropped flat, lands and comes back down: the
+// highest its bottom (centre minus half_height, m) gets once it first moves up, or nothing if it
+// never does. `each`, if set, sees the body after every step.
+inline std::optional<double> rebound_height(
+    World& world, std::size_t i, double half_height,
+    const std::function<void(const DiscState&)>& each = {}) {
+    bool landed = false;
+    double top = 0;
+    for (int k = 0; k < 2 * world.rate(); ++k) {
+        world.step();
+        const DiscState& s = world.discs()[i];
+        const double bottom = s.position.y - half_height;
+        if (!landed && s.velocity.y > 0) landed = true;
+        if (landed) top = std::max(top, bottom);
+        if (landed && s.velocity.y < 0 && bottom < 0.01) break;
+        if (each) each(s);
+    }
+    if (!landed) return std::nullopt;
+    return top;
 }
 
 }  // namespace discreel::physics::testing
