@@ -98,7 +98,7 @@ std::uint32_t BodySolver::root(std::uint32_t i) {
     return i;
 }
 
-void BodySolver::find_direct_islands(const std::vector<RigidBody>& bodies) {
+void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
     const std::size_t n = bodies.size();
     parent_.resize(n);
     lightest_.resize(n);
@@ -232,18 +232,14 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
 
     // The islands solved directly first (their bodies have no other contacts), then warm
     // start and the velocity iterations of the rest, body states carried between contacts.
-    find_direct_islands(bodies);
+    find_islands(bodies);
     state_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) state_[i] = velocity_of(bodies[i]);
-    for (std::size_t k = 0; k + 1 < island_start_.size(); ++k) {
-        const std::span<const IslandContact> island(islands_.data() + island_start_[k],
-                                                    island_start_[k + 1] - island_start_[k]);
-        if (direct_solver_.velocities(island, state_)) continue;
+    for_each_group(islands_, island_start_, [&](std::span<const IslandContact> island) {
+        if (direct_solver_.velocities(island, state_)) return;
         // Not settled within its pivots (never seen): the island iterates like the others.
-        for (const IslandContact& ic : island) {
-            direct_[ic.pair] = 0;
-        }
-    }
+        for (const IslandContact& ic : island) direct_[ic.pair] = 0;
+    });
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         PairContact& pc = fresh_[i];
         if (direct_[i]) continue;
@@ -256,13 +252,11 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
             solve_block(fresh_[i].contact, state_[fresh_[i].a], state_[fresh_[i].b]);
         }
         // A block's impulses are taken back out and solved again, together.
-        for (std::size_t k = 0; k + 1 < block_start_.size(); ++k) {
-            const std::span<const IslandContact> block(blocks_.data() + block_start_[k],
-                                                       block_start_[k + 1] - block_start_[k]);
+        for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
-            if (direct_solver_.velocities(block, state_)) continue;
+            if (direct_solver_.velocities(block, state_)) return;
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
-        }
+        });
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 

@@ -90,8 +90,9 @@ private:
     };
     void find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall);
     // Groups the contacts of the islands to solve directly into islands_ (island_start_
-    // delimits them) and marks them in direct_.
-    void find_direct_islands(const std::vector<RigidBody>& bodies);
+    // delimits them, direct_ marks them) and those of larger islands of masses far apart by
+    // block into blocks_ (block_start_, blocked_).
+    void find_islands(const std::vector<RigidBody>& bodies);
     std::uint32_t root(std::uint32_t i);
     // Groups the contacts selected (per contact of fresh_) by group_key_ into `grouped`, the
     // groups delimited by `starts`.
@@ -123,9 +124,9 @@ private:
     std::vector<double> turned_;            // scratch: radians each body turned
     std::vector<std::pair<double, double>> spin_;   // scratch: cos and sin of turned_
     std::vector<PairTouch> touches_;
-    // The direct islands of the step: union-find parents per body, each root's lightest and
-    // heaviest body's inverse mass (1/kg) and point count, and per contact of fresh_ whether
-    // it is in one.
+    // The islands of the step: union-find parents per body, each root's lightest and heaviest
+    // body's inverse mass (1/kg) and point count, and per contact of fresh_ whether it is in a
+    // direct one.
     std::vector<std::uint32_t> parent_;
     std::vector<double> lightest_, heaviest_;
     std::vector<int> points_;

@@ -22,11 +22,8 @@ void DirectSolver::build(std::span<const IslandContact> island, std::span<const 
         const BlockContact& c = *ic.contact;
         const V2 tangent = -perp(c.normal);
         for (int k = 0; k < c.count; ++k) {
-            const BlockPoint& p = c.points[k];
-            rows_.push_back({ic.a, ic.b, c.normal, cross(p.ra, c.normal), cross(p.rb, c.normal)});
-            if (friction) {
-                rows_.push_back({ic.a, ic.b, tangent, cross(p.ra, tangent), cross(p.rb, tangent)});
-            }
+            rows_.push_back(row(ic, c.points[k], c.normal));
+            if (friction) rows_.push_back(row(ic, c.points[k], tangent));
         }
     }
     fill_matrix(bodies);
@@ -56,6 +53,11 @@ void DirectSolver::fill_matrix(std::span<const BlockBody> bodies) {
             a_[j * n + i] = k;
         }
     }
+}
+
+DirectSolver::Row DirectSolver::row(const IslandContact& ic, const BlockPoint& p,
+                                     const V2& direction) {
+    return {ic.a, ic.b, direction, cross(p.ra, direction), cross(p.rb, direction)};
 }
 
 double DirectSolver::velocity(const Row& r, std::span<const BlockBody> bodies) const {
@@ -138,7 +140,7 @@ bool DirectSolver::stop(std::span<const IslandContact> island, std::span<const B
         for (int k = 0; k < c.count; ++k, ++point) {
             const BlockPoint& p = c.points[k];
             if (p.normal_impulse <= 0) continue;
-            rows_.push_back({ic.a, ic.b, c.normal, cross(p.ra, c.normal), cross(p.rb, c.normal)});
+            rows_.push_back(row(ic, p, c.normal));
             point_of_row_.push_back(point);
         }
     }

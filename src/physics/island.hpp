@@ -52,6 +52,8 @@ private:
     void build(std::span<const IslandContact> island, std::span<const BlockBody> bodies,
                bool friction);
     void fill_matrix(std::span<const BlockBody> bodies);
+    // Point p's row along `direction` (unit).
+    static Row row(const IslandContact& ic, const BlockPoint& p, const V2& direction);
     double velocity(const Row& r, std::span<const BlockBody> bodies) const;
     void apply(const Row& r, double impulse, std::span<BlockBody> bodies) const;
 
