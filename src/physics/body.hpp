@@ -41,8 +41,7 @@ struct Body {
     V2 shift = V2::Zero();         // metres
     double turn = 0.0;             // radians
     double t_last = 0.0;           // seconds into the substep of its latest impulse
-    int changed_pass = -1;         // last impulsive pass that changed its velocity
-    int struck_pass = -1;          // last impulsive pass that applied an impact to it
+    std::uint32_t strikes = 0;     // impacts applied to it in this substep
 
     bool moves() const { return motion != Motion::fixed; }
     bool falls() const { return motion == Motion::dynamic; }

@@ -3,14 +3,15 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <utility>
 
 #include "discreel/physics.hpp"
 
 namespace discreel::physics::detail {
 namespace {
 
-// How far a body can travel in one step from its current velocity. Velocity gained from an
-// impact inside the step is not covered: such a disc is caught from the next step on.
+// How far a body can travel in one step from its current velocity (see widen_threatened for
+// the velocity an impact can give it).
 double reach(const Body& b, double dt, double gravity) {
     if (!b.moves()) return 0.0;
     const double fall = b.falls() ? 0.5 * gravity * dt * dt : 0.0;
@@ -98,22 +99,38 @@ void sort_pair_keys(std::vector<std::uint64_t>& keys, std::size_t body_count,
     for (std::uint64_t& key : keys) key = ((key >> bits) << 32) | (key & low);
 }
 
-void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count,
-                         const std::vector<Feature>& features, double dt, double gravity,
-                         std::vector<Contact>& contacts) {
-    built_ = true;
-    hashed_ = false;
-    anchor_.resize(disc_count);
-    margin_.resize(disc_count);
-    double fat_sum = 0.0;
-    for (std::size_t i = 0; i < disc_count; ++i) {
-        anchor_[i] = bodies[i].x;
-        // Four steps' travel: a falling crowd would otherwise rebuild every few steps, and the
-        // substep's own reach test keeps the extra pairs out of the solver stages.
-        margin_[i] = base_margin(bodies[i]) + 4.0 * reach(bodies[i], dt, gravity);
-        fat_sum += bodies[i].radius + margin_[i];
+bool BroadPhase::widen_threatened(const std::vector<Body>& bodies, double dt, double gravity) {
+    // A disc struck by a faster one leaves at up to its own speed plus 2 m_o / (m_o + m) times
+    // the other's (the normal part of its velocity is mixed with the other's, e <= 1): its
+    // margin covers a step at that speed, so that what it can reach after the impact is listed
+    // for the rest of the step. (Impacts within one step that chain through several discs are
+    // caught from the next step on.)
+    bool widened = false;
+    for (const std::uint64_t key : pairs_) {
+        const auto i = static_cast<std::uint32_t>(key >> 32);
+        const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
+        for (const auto& [struck, other] : {std::pair{i, j}, std::pair{j, i}}) {
+            const Body& s = bodies[struck];
+            const Body& o = bodies[other];
+            if (!s.moves() || s.inv_mass == 0.0) continue;
+            const double share = o.inv_mass == 0.0 ? 1.0 : s.inv_mass / (s.inv_mass + o.inv_mass);
+            const double speed = s.v.norm() + 2.0 * share * o.v.norm();
+            const double fall = s.falls() ? 0.5 * gravity * dt * dt : 0.0;
+            const double needed = base_margin(s) + speed * dt + fall;
+            if (needed > margin_[struck]) {
+                margin_[struck] = needed;
+                widened = true;
+            }
+        }
     }
+    return widened;
+}
+
+void BroadPhase::find_disc_pairs(const std::vector<Body>& bodies, std::size_t disc_count) {
+    hashed_ = false;
     pairs_.clear();
+    double fat_sum = 0.0;
+    for (std::size_t i = 0; i < disc_count; ++i) fat_sum += bodies[i].radius + margin_[i];
 
     // Discs much larger (or faster) than the typical one would force huge cells on everyone;
     // they are paired by a plain scan instead.
@@ -224,6 +241,23 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
             consider(o, j);
         }
     }
+}
+
+void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count,
+                         const std::vector<Feature>& features, double dt, double gravity,
+                         std::vector<Contact>& contacts) {
+    built_ = true;
+    anchor_.resize(disc_count);
+    margin_.resize(disc_count);
+    for (std::size_t i = 0; i < disc_count; ++i) {
+        anchor_[i] = bodies[i].x;
+        // Four steps' travel: a falling crowd would otherwise rebuild every few steps, and the
+        // substep's own reach test keeps the extra pairs out of the solver stages.
+        margin_[i] = base_margin(bodies[i]) + 4.0 * reach(bodies[i], dt, gravity);
+    }
+    find_disc_pairs(bodies, disc_count);
+    if (widen_threatened(bodies, dt, gravity)) find_disc_pairs(bodies, disc_count);
+
     for (std::size_t i = 0; i < disc_count; ++i) {
         const Body& b = bodies[i];
         if (!b.moves()) continue;

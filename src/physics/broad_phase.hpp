@@ -55,6 +55,11 @@ public:
 private:
     bool still_valid(const std::vector<Body>& bodies, std::size_t disc_count, double dt,
                      double gravity) const;
+    // The pairs of discs whose fattened discs (radius + margin_) overlap, into pairs_.
+    void find_disc_pairs(const std::vector<Body>& bodies, std::size_t disc_count);
+    // Widens the margins of discs in pairs_ that a faster disc could strike to a speed their
+    // margin does not cover; true if any was.
+    bool widen_threatened(const std::vector<Body>& bodies, double dt, double gravity);
     void rebuild(const std::vector<Body>& bodies, std::size_t disc_count,
                  const std::vector<Feature>& features, double dt, double gravity,
                  std::vector<Contact>& contacts);

@@ -3,8 +3,10 @@
 // gets the impulse j = -(1 + e) v_n / (1/m_a + 1/m_b) from its approach speed at the time of
 // impact, with Coulomb friction. The bodies keep their pre-impact velocity up to that time,
 // which Body::shift accounts for, so an isolated bounce is exact: no energy is gained or lost
-// to the time discretisation. Impacts are swept pair by pair until none approaches, which lets
-// a hit travel down a row of touching discs (Newton's cradle) instead of being shared out.
+// to the time discretisation. Impacts happen one at a time in time order (ties by pair), each
+// re-predicting only its two bodies' pairs, which lets a hit travel down a row of touching discs
+// (Newton's cradle) instead of being shared out, and never lets a body meet a later impact
+// before an earlier one.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -15,22 +17,23 @@
 namespace discreel::physics::detail {
 namespace {
 
-// Sweeps per substep. A hit travelling along a row of touching discs listed against its
-// direction needs one sweep per disc; a dense heap of colliding discs would ping-pong for long.
-// Whatever still approaches afterwards is handled by the resting stage (bounce of at most e).
-constexpr int max_passes = 8;
-constexpr int max_sweeps = 4096;
+// Predictions per substep, in units of the active pairs (at least 64): a few discs ping-ponging
+// fast (a light disc between a heavy one and a wall needs about pi sqrt(M/m) bounces) get
+// many events, while a dense heap colliding everywhere at once would ping-pong for long.
+// Whatever still approaches once they are spent is handled by the resting stage (bounce of at
+// most e), as a pile's squeezes are.
+constexpr std::size_t max_passes = 32;
 
 // Approach speeds below this are rounding noise, not impacts. Approaches slower than what
 // gravity adds in one substep are resting contact too: the resting stage handles them, still
 // with a bounce of up to e times the approach speed, only without the time-of-impact timing.
-// Left here, a pile would cost dozens of sweeps of micro-impacts per substep.
+// Left here, a pile would cost thousands of micro-impacts per substep.
 constexpr double min_approach_speed = 1e-9;  // m/s
 
 // Such a pair is timed only if its bounce would be worth it: leaving fast enough (e times its
 // approach speed) to rise `visible_bounce` radii against gravity ((e v)^2 / 2|g| = f r), or
 // approaching fast enough to close `closing_step` radii within the substep. A landing heap has
-// hundreds of slower squeezes per substep, each fanning out over several sweeps; the resting
+// hundreds of slower squeezes per substep, each fanning out over its neighbours; the resting
 // stage stops them instead and lets them leave at most e times as fast, untimed (Box2D times
 // nothing and gives no bounce at all under 1 m/s). The bounce is judged by the speed the pair
 // leaves with, not the one it approaches with, so every elastic row stays timed while a heap of
@@ -49,7 +52,7 @@ Trajectory trajectory(const Substep& s, const Body& b) {
 
 // The impact of contact c in this substep, if its pair approaches faster than `slow` then,
 // for a pair that surely_no_impact did not rule out. Kept out of line so that the cheap tests
-// before it are inlined into the sweeps (a settled pile never gets here).
+// before it are inlined into the callers (a settled pile never gets here).
 [[gnu::noinline]] std::optional<Impact> swept_impact(const Substep& s, const Contact& c,
                                                      double slow) {
     const Body& a = s.bodies[c.a];
@@ -105,9 +108,12 @@ void ImpactResolver::begin(const Substep& s) {
     screened_.clear();
     // Per body, because the threshold grows with the radius: a pair's is its smaller disc's.
     // Radii, gravity and the substep's length never change within a world.
+    if (reach_.size() != s.bodies.size()) {
+        reach_.assign(s.bodies.size(), 0.0);
+        reach_listing_.assign(s.bodies.size(), never);
+    }
     if (settle_.size() != s.disc_count || settle_h_ != s.h) {
         settle_h_ = s.h;
-        next_impact_.assign(s.bodies.size(), s.h);
         settle_.resize(s.disc_count);
         for (std::size_t i = 0; i < s.disc_count; ++i) {
             const double r = s.bodies[i].radius;
@@ -117,157 +123,112 @@ void ImpactResolver::begin(const Substep& s) {
     }
 }
 
+bool ImpactResolver::apply(Substep& s, const Event& e) {
+    Contact& c = s.contacts[s.active[e.k]];
+    Body& a = s.bodies[c.a];
+    Body& b = s.bodies[c.b];
+    if (a.strikes != e.strikes_a || b.strikes != e.strikes_b) return false;
+    const Impact& hit = e.hit;
+    const V2& n = hit.normal;
+    const V2 va = a.v + s.gravity_on(a) * hit.t;
+    const V2 vb = b.v + s.gravity_on(b) * hit.t;
+    const double vn = n.dot(va - vb);
+    const double jn = -(1.0 + c.restitution) * vn / normal_mass_inverse(a, b);
+    const double vt = perp(n).dot(va - vb) - a.radius * a.omega - b.radius * b.omega;
+    const double limit = c.friction * jn;
+    const double jt = std::clamp(-vt / tangent_mass_inverse(a, b), -limit, limit);
+
+    const V2 va0 = a.v, vb0 = b.v;
+    const double wa0 = a.omega, wb0 = b.omega;
+    apply_impulse(a, b, n, n * jn + perp(n) * jt);
+    a.shift -= (a.v - va0) * hit.t;
+    b.shift -= (b.v - vb0) * hit.t;
+    a.turn -= (a.omega - wa0) * hit.t;
+    b.turn -= (b.omega - wb0) * hit.t;
+    // Walls, pegs and held discs keep their motion, so they carry no impact history.
+    for (Body* body : {&a, &b}) {
+        if (body->inv_mass == 0.0) continue;
+        body->t_last = std::max(body->t_last, hit.t);
+        ++body->strikes;
+    }
+    c.step_impulse += jn;
+    return true;
+}
+
+void ImpactResolver::widen_reach(Substep& s, std::uint32_t i, double t) {
+    const auto reach_of = [&](std::uint32_t j) {
+        return reach_listing_[j] == listing_ ? reach_[j] : s.reach[j];
+    };
+    const Body& body = s.bodies[i];
+    // Travelled by time t, then at most its speed for the rest of the substep; gravity's part
+    // of both is within the fall over the whole substep.
+    const double fall = body.falls() ? 0.5 * s.gravity.norm() * s.h * s.h : 0.0;
+    const double widest = (body.shift + body.v * t).norm() +
+                          (body.v + s.gravity_on(body) * t).norm() * (s.h - t) + fall;
+    const double before = reach_of(i);
+    if (widest <= before) return;
+    reach_[i] = widest;
+    reach_listing_[i] = listing_;
+    for (std::uint32_t e = contacts_of_start_[i]; e < contacts_of_start_[i + 1]; ++e) {
+        const std::uint32_t index = contacts_of_[e];
+        std::uint32_t k;
+        if (active_position(index, k)) continue;
+        const Contact& c = s.contacts[index];
+        if (s.bodies[c.a].inv_mass + s.bodies[c.b].inv_mass == 0.0) continue;
+        if (c.gap > reach_of(c.a) + reach_of(c.b)) continue;
+        // Not in the resting stage's rows (they were built when the substep began); the
+        // projection stage sees it through s.active.
+        position_[index] = (listing_ << 32) | static_cast<std::uint64_t>(s.active.size());
+        s.active.push_back(index);
+        if (predicted_.size() < s.active.size()) predicted_.resize(s.active.size(), never);
+    }
+}
+
+void ImpactResolver::predict_pairs_of(const Substep& s, std::uint32_t i, double slow,
+                                      std::size_t& spent) {
+    for (std::uint32_t e = contacts_of_start_[i]; e < contacts_of_start_[i + 1]; ++e) {
+        std::uint32_t k;
+        if (!active_position(contacts_of_[e], k) || predicted_[k] == events_done_) continue;
+        predicted_[k] = events_done_;
+        ++spent;
+        if (const std::optional<Impact> hit = find_impact(s, s.contacts[s.active[k]], slow)) {
+            push(s, k, *hit);
+        }
+    }
+}
+
 void ImpactResolver::resolve(Substep& s) {
     const double slow = slow_;
-    const std::size_t count = s.active.size();
-    changed_.clear();
-    // Each sweep after the first visits only the pairs of discs struck in the one before, so a
-    // few discs ping-ponging fast (a light disc between a heavy one and a wall needs about
-    // pi sqrt(M/m) bounces) get many sweeps, while a heap colliding everywhere at once stops
-    // after max_passes full sweeps' worth of work.
-    const std::size_t budget = static_cast<std::size_t>(max_passes) * std::max<std::size_t>(count, 64);
-    std::size_t spent = 0;
-    // found_ and queued_ are stamped with sweep numbers that never repeat, so that no sweep
-    // resets them: a landing heap has impacts in almost every substep, and clearing a record
-    // per active contact in each of them would be a pass over all the contacts.
-    const std::uint64_t first_sweep = sweeps_done_;
-    if (found_.size() < count) {
-        found_.resize(count);
-        queued_.resize(count, never);
+    const std::size_t budget = max_passes * std::max<std::size_t>(s.active.size(), 64);
+    // Predictions, counted against the budget; the first ones cover every active pair.
+    std::size_t spent = s.active.size();
+    events_.clear();
+    // No body has changed since screen() passed these pairs.
+    for (const std::uint32_t k : screened_) {
+        const Contact& c = s.contacts[s.active[k]];
+        if (const std::optional<Impact> hit = swept_impact(s, c, slowest_impact(s, c, slow))) {
+            events_.push_back(Event{*hit, k, 0, 0});
+        }
     }
-    for (int pass = 0; spent < budget && pass < max_sweeps; ++pass) {
-        const std::uint64_t sweep = first_sweep + static_cast<std::uint64_t>(pass);
-        sweeps_done_ = sweep + 1;
-        // This sweep's pairs, in active order: those that screen() did not rule out first, then
-        // those of bodies changed in the previous sweep.
-        candidates_.clear();
-        if (pass == 0) {
-            candidates_.swap(screened_);
-        } else {
-            for (const std::uint32_t body : changed_) {
-                for (std::uint32_t e = contacts_of_start_[body]; e < contacts_of_start_[body + 1];
-                     ++e) {
-                    std::uint32_t k;
-                    if (!active_position(contacts_of_[e], k) || queued_[k] == sweep) continue;
-                    queued_[k] = sweep;
-                    candidates_.push_back(k);
-                }
-            }
-            std::sort(candidates_.begin(), candidates_.end());
+    // A settled pile has no impacts at all.
+    if (events_.empty()) return;
+    std::make_heap(events_.begin(), events_.end(), later);
+    if (predicted_.size() < s.active.size()) predicted_.resize(s.active.size(), never);
+    while (!events_.empty()) {
+        std::pop_heap(events_.begin(), events_.end(), later);
+        const Event e = events_.back();
+        events_.pop_back();
+        if (!apply(s, e)) continue;
+        // Once the budget is spent, the pairs still approaching are left to the resting stage.
+        if (spent >= budget) break;
+        ++events_done_;
+        const Contact& c = s.contacts[s.active[e.k]];
+        for (const std::uint32_t i : {c.a, c.b}) {
+            if (s.bodies[i].inv_mass != 0.0) widen_reach(s, i, e.hit.t);
         }
-        changed_.clear();
-        spent += pass == 0 ? count : candidates_.size();
-
-        // A body's impacts must happen in time order, or a later one computed first would move
-        // it through the earlier one's wall: find each body's earliest impact first.
-        lowered_.clear();
-        for (const std::uint32_t k : candidates_) {
-            const Contact& c = s.contacts[s.active[k]];
-            // No body has changed since screen() passed the first sweep's pairs.
-            const std::optional<Impact> hit = pass == 0
-                                                  ? swept_impact(s, c, slowest_impact(s, c, slow))
-                                                  : find_impact(s, c, slow);
-            // The first sweep answers for every active pair, so only its hits are recorded:
-            // the others, tested or ruled out by screen(), have none (see `known` below).
-            if (pass > 0 || hit) found_[k] = FoundImpact{sweep, hit};
-            if (!hit) continue;
-            for (const std::uint32_t i : {c.a, c.b}) {
-                if (next_impact_[i] == s.h) lowered_.push_back(i);
-                next_impact_[i] = std::min(next_impact_[i], hit->t);
-            }
+        for (const std::uint32_t i : {c.a, c.b}) {
+            if (s.bodies[i].inv_mass != 0.0) predict_pairs_of(s, i, slow, spent);
         }
-
-        // A settled pile has no impacts at all.
-        if (pass == 0) {
-            if (lowered_.empty()) break;
-            // The pairs ruled out are listed too when an impact of this sweep changes a body.
-            for (const std::uint32_t k : candidates_) queued_[k] = sweep;
-        }
-
-        // Visited in active order; a body changed during this sweep adds its later pairs to it
-        // (a hit travelling down a row of touching discs listed in order), kept in a min-heap
-        // merged with the sorted candidates.
-        queue_.clear();
-        auto mark_changed = [&](std::uint32_t i, std::uint32_t after) {
-            Body& body = s.bodies[i];
-            if (body.inv_mass == 0.0 || body.changed_pass == pass) return;
-            // Changed in the previous sweep: all its pairs are listed.
-            const bool already_queued = pass > 0 && body.changed_pass == pass - 1;
-            body.changed_pass = pass;
-            changed_.push_back(i);
-            if (already_queued) return;
-            for (std::uint32_t e = contacts_of_start_[i]; e < contacts_of_start_[i + 1]; ++e) {
-                std::uint32_t k;
-                if (!active_position(contacts_of_[e], k) || k <= after || queued_[k] == sweep) {
-                    continue;
-                }
-                queued_[k] = sweep;
-                queue_.push_back(k);
-                std::push_heap(queue_.begin(), queue_.end(), std::greater<>());
-            }
-        };
-        bool any = false;
-        std::size_t next_candidate = 0;
-        while (next_candidate < candidates_.size() || !queue_.empty()) {
-            std::uint32_t k;
-            if (queue_.empty() ||
-                (next_candidate < candidates_.size() && candidates_[next_candidate] < queue_[0])) {
-                k = candidates_[next_candidate++];
-            } else {
-                std::pop_heap(queue_.begin(), queue_.end(), std::greater<>());
-                k = queue_.back();
-                queue_.pop_back();
-            }
-            Contact& c = s.contacts[s.active[k]];
-            Body& a = s.bodies[c.a];
-            Body& b = s.bodies[c.b];
-            // The answer found above still holds unless an impact of this sweep moved a or b.
-            const FoundImpact& found = found_[k];
-            const bool recorded = found.sweep == sweep;
-            const bool known = recorded || pass == 0;
-            const std::optional<Impact> hit =
-                known && a.struck_pass != pass && b.struck_pass != pass
-                    ? (recorded ? found.hit : std::nullopt)
-                    : find_impact(s, c, slow);
-            if (!hit) continue;
-            any = true;
-            // An impact set off by another one in this sweep (a row of touching discs) happens
-            // at that one's time, which is then this body's earliest; later ones wait a pass.
-            if (hit->t > std::max(next_impact_[c.a], a.t_last) ||
-                hit->t > std::max(next_impact_[c.b], b.t_last)) {
-                // Make the next sweep look at this pair again.
-                mark_changed(c.a, k);
-                mark_changed(c.b, k);
-                continue;
-            }
-            const V2& n = hit->normal;
-            const V2 va = a.v + s.gravity_on(a) * hit->t;
-            const V2 vb = b.v + s.gravity_on(b) * hit->t;
-            const double vn = n.dot(va - vb);
-            const double jn = -(1.0 + c.restitution) * vn / normal_mass_inverse(a, b);
-            const double vt = perp(n).dot(va - vb) - a.radius * a.omega - b.radius * b.omega;
-            const double limit = c.friction * jn;
-            const double jt = std::clamp(-vt / tangent_mass_inverse(a, b), -limit, limit);
-
-            const V2 va0 = a.v, vb0 = b.v;
-            const double wa0 = a.omega, wb0 = b.omega;
-            apply_impulse(a, b, n, n * jn + perp(n) * jt);
-            a.shift -= (a.v - va0) * hit->t;
-            b.shift -= (b.v - vb0) * hit->t;
-            a.turn -= (a.omega - wa0) * hit->t;
-            b.turn -= (b.omega - wb0) * hit->t;
-            // Walls, pegs and held discs keep their motion, so they carry no impact history.
-            for (Body* body : {&a, &b}) {
-                if (body->inv_mass == 0.0) continue;
-                body->t_last = std::max(body->t_last, hit->t);
-                body->struck_pass = pass;
-            }
-            mark_changed(c.a, k);
-            mark_changed(c.b, k);
-            c.step_impulse += jn;
-        }
-        for (const std::uint32_t i : lowered_) next_impact_[i] = s.h;
-        if (!any) break;
     }
 }
 

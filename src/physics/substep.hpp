@@ -23,7 +23,10 @@ struct Substep {
     std::vector<Contact>& contacts;
     std::uint64_t contacts_version;            // changes whenever contact indices do
     std::uint64_t bodies_version;              // changes whenever a body's mass may have
-    const std::vector<std::uint32_t>& active;  // indices into contacts, in pair order
+    // Indices into contacts: those listed at the start of the substep, in pair order, then
+    // those the impact stage adds when an impact speeds a body up (see ImpactResolver).
+    std::vector<std::uint32_t>& active;
+    const std::vector<double>& reach;          // metres per body: its travel bound when listed
     V2 gravity;                                // m/s^2
     double h;                                  // seconds
 
@@ -59,7 +62,7 @@ public:
     void begin(const Substep& s);
     // The active contacts of a block as they are listed (listed: their indices into
     // s.contacts; first: the first one's position in s.active), while they are in cache: the
-    // first sweep visits only those that the cheap tests do not rule out.
+    // first predictions cover only those that the cheap tests do not rule out.
     void screen(const Substep& s, std::span<const std::uint32_t> listed, std::size_t first) {
         const Contact* const contacts = s.contacts.data();
         std::uint64_t* const position = position_.data();
@@ -77,13 +80,19 @@ private:
     // A pair already touching at the start of the substep (gap under this fraction of the
     // smaller radius) is part of a heap or a row, not a flight ending in a collision.
     static constexpr double touching_gap = 0.005;
-    static constexpr std::uint64_t never = ~std::uint64_t{0};  // a sweep number none has
-    // The swept test's answer for an active contact in a sweep, reused while neither body has
-    // been struck since (the test is the costly part).
-    struct FoundImpact {
-        std::uint64_t sweep = never;  // the sweep it was computed in (see sweeps_done_)
-        std::optional<Impact> hit;
+    static constexpr std::uint64_t never = ~std::uint64_t{0};  // a stamp none has
+    // A predicted impact of active contact k, valid while neither body has been struck since
+    // the prediction (their strike counts then).
+    struct Event {
+        Impact hit;
+        std::uint32_t k = 0;
+        std::uint32_t strikes_a = 0, strikes_b = 0;
     };
+    // Heap order: the earliest impact first, ties by contact position (pair order), so that
+    // the order of events never depends on the order of predictions.
+    static bool later(const Event& x, const Event& y) {
+        return x.hit.t > y.hit.t || (x.hit.t == y.hit.t && x.k > y.k);
+    }
     void list_contacts_of_bodies(const Substep& s);
     // Contact k's position in s.active, if it is active in this substep.
     bool active_position(std::uint32_t contact, std::uint32_t& k) const {
@@ -124,10 +133,23 @@ private:
     }
     // The impact of contact c in this substep, if it approaches faster than slowest_impact.
     std::optional<Impact> find_impact(const Substep& s, const Contact& c, double slow) const;
+    // Applies event e's impulse at its time; false if it no longer holds (one of its bodies
+    // was struck since it was predicted).
+    bool apply(Substep& s, const Event& e);
+    // After body i was struck at time t: its reach over the substep, grown to what its new
+    // velocity can travel, lists its pairs of the broad phase that are now within reach.
+    void widen_reach(Substep& s, std::uint32_t i, double t);
+    // Predicts the impacts of body i's active pairs (each once per event) into the heap.
+    void predict_pairs_of(const Substep& s, std::uint32_t i, double slow, std::size_t& spent);
+    void push(const Substep& s, std::uint32_t k, const Impact& hit) {
+        const Contact& c = s.contacts[s.active[k]];
+        events_.push_back(Event{hit, k, s.bodies[c.a].strikes, s.bodies[c.b].strikes});
+        std::push_heap(events_.begin(), events_.end(), later);
+    }
 
     double slow_ = 0.0;                            // m/s, slower approaches are resting contact
     double gravity_step_ = 0.0;                    // m/s, |g| h
-    std::vector<std::uint32_t> screened_;          // the first sweep's pairs, from screen()
+    std::vector<std::uint32_t> screened_;          // the first predictions' pairs, from screen()
     // Per disc, what a touching pair's slowest timed approach is made of (see impacts.cpp).
     struct Settle {
         double bounce = 0.0;   // m/s, leaving this fast it rises visible_bounce radii
@@ -135,27 +157,24 @@ private:
     };
     std::vector<Settle> settle_;
     double settle_h_ = 0.0;                        // s, the substep settle_ is for
-    std::vector<FoundImpact> found_;               // per active contact
-    std::vector<std::uint64_t> queued_;            // per active contact: last sweep listing it
-    std::uint64_t sweeps_done_ = 0;                // over all substeps, numbering the sweeps
-    // Which contacts of the broad phase's list each body is in, rebuilt with the list, so a
-    // sweep after the first visits only the pairs whose velocities just changed.
+    // Which contacts of the broad phase's list each body is in, rebuilt with the list, so that
+    // an impact re-predicts only its bodies' pairs.
     std::vector<std::uint32_t> contacts_of_start_;  // per body, into contacts_of_
     std::vector<std::uint32_t> contacts_of_;       // indices into s.contacts, grouped by body
     std::uint64_t listed_version_ = ~std::uint64_t{0};  // the contact list contacts_of_ is for
-    // Per contact: (listing_ << 32) | its position in s.active, for the contacts screened in
+    // Per contact: (listing_ << 32) | its position in s.active, for the contacts listed in
     // the listing numbered listing_ (one per substep); older entries are stale.
     std::vector<std::uint64_t> position_;
     std::uint64_t listing_ = 0;
     std::vector<std::uint32_t> fill_;
-    std::vector<std::uint32_t> changed_;           // bodies changed in the current sweep
-    // Per body: its earliest impact found at the start of a sweep (seconds), or h. Only the
-    // bodies of a sweep's impacts are lowered, and they are put back after it (lowered_), so
-    // it is filled once per world rather than in every substep.
-    std::vector<double> next_impact_;
-    std::vector<std::uint32_t> lowered_;           // bodies whose next_impact_ was set
-    std::vector<std::uint32_t> candidates_;        // this sweep's pairs, sorted
-    std::vector<std::uint32_t> queue_;             // min-heap of pairs still to visit
+    std::vector<Event> events_;                    // min-heap by later()
+    // Per active contact: the event whose re-predictions last covered it, numbered over all
+    // substeps so that no substep has to reset it.
+    std::vector<std::uint64_t> predicted_;
+    std::uint64_t events_done_ = 0;
+    // Per body: its reach (m) grown by impacts, valid where reach_listing_ is listing_.
+    std::vector<double> reach_;
+    std::vector<std::uint64_t> reach_listing_;
 };
 
 // The resting stage's colouring (contact_solver.cpp): greedy, in list order, each contact

@@ -170,8 +170,7 @@ void World::Impl::substep(double h, bool last) {
         b.shift = V2::Zero();
         b.turn = 0.0;
         b.t_last = 0.0;
-        b.changed_pass = -1;
-        b.struck_pass = -1;
+        b.strikes = 0;
     };
     for (std::size_t i = 0; i < discs; ++i) {
         begin_substep(i);
@@ -179,7 +178,7 @@ void World::Impl::substep(double h, bool last) {
     }
     for (std::size_t i = discs; i < body_count; ++i) begin_substep(i);
     detail::Substep s{bodies, disc_count, features, contacts, contacts_version, bodies_version,
-                      active, gravity, h};
+                      active, reach, gravity, h};
     impact_resolver.begin(s);
     contact_solver.begin(s);
     active.clear();
