@@ -17,12 +17,15 @@
 namespace discreel::physics::detail {
 namespace {
 
-// Predictions per substep, in units of the active pairs (at least 64): a few discs ping-ponging
-// fast (a light disc between a heavy one and a wall needs about pi sqrt(M/m) bounces) get
-// many events, while a dense heap colliding everywhere at once would ping-pong for long.
-// Whatever still approaches once they are spent is handled by the resting stage (bounce of at
-// most e), as a pile's squeezes are.
-constexpr std::size_t max_passes = 32;
+// Predictions per substep, per disc (at least 64 discs' worth): a few discs ping-ponging fast
+// (a light disc between a heavy one and a wall needs about pi sqrt(M/m) bounces; a crowd at 10
+// radii per step meets several discs and walls per step, each impact re-predicting its bodies'
+// pairs) get every event, while a heap colliding everywhere at once, or a light disc squeezed
+// between heavy ones that would bounce forever, costs at most about 20 us per disc and
+// substep. Whatever still approaches once they are spent is handled by the resting stage
+// (bounce of at most e), as a pile's squeezes are. docs/physics.md ("Limits") has what they
+// cover.
+constexpr std::size_t per_disc = 512;
 
 // Approach speeds below this are rounding noise, not impacts. Approaches slower than what
 // gravity adds in one substep are resting contact too: the resting stage handles them, still
@@ -199,7 +202,7 @@ void ImpactResolver::predict_pairs_of(const Substep& s, std::uint32_t i, double 
 
 void ImpactResolver::resolve(Substep& s) {
     const double slow = slow_;
-    const std::size_t budget = max_passes * std::max<std::size_t>(s.active.size(), 64);
+    const std::size_t budget = per_disc * std::max<std::size_t>(s.disc_count, 64);
     // Predictions, counted against the budget; the first ones cover every active pair.
     std::size_t spent = s.active.size();
     events_.clear();

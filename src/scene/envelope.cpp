@@ -98,7 +98,8 @@ void check_respawns(Loader& loader) {
                                   " (docs/physics.md, Limits)");
             return;
         }
-        const double radii_per_step = physics::envelope.radii_per_step(ratio);
+        // A scene with respawns is always the manifold solver's.
+        const double radii_per_step = physics::envelope.radii_per_step(ratio, true);
         const double limit = radii_per_step * alive.smallest_radius() * scene.physics.rate;
         const auto [speed, slot] = alive.fastest();
         if (speed > limit) {
@@ -145,7 +146,12 @@ void check_envelope(Loader& loader) {
     }
 
     const double smallest = scene.discs[extremes->smallest].radius;
-    const double radii_per_step = physics::envelope.radii_per_step(ratio);
+    // The manifold solver takes every scene with a shaped body or a respawning generator.
+    const bool manifold =
+        !scene.respawns.empty() ||
+        std::any_of(scene.discs.begin(), scene.discs.end(),
+                    [](const Disc& disc) { return disc.shape.has_value(); });
+    const double radii_per_step = physics::envelope.radii_per_step(ratio, manifold);
     const double rate = scene.physics.rate;
     const double limit = radii_per_step * smallest * rate;   // m/s
     const auto check = [&](double speed, const Location& where, const std::string& path) {

@@ -64,18 +64,26 @@ struct ThrowDef {
     std::optional<Vec2> release;   // m/s; release velocity of a grab (default: path's)
 };
 
-// The range of masses and speeds the solver is measured to hold (docs/physics.md, "Limits";
-// tests/physics/extremes_test.cpp): inside it discs stay apart and energy does not rise beyond
-// rounding. Walls hold at any mass ratio and speed; beyond it a heavy disc sinks into light
-// ones, and fast light discs squeezed between heavy ones gain energy. Scenes check against it.
+// The range of masses and speeds the solvers are measured to hold (docs/physics.md, "Limits";
+// bench/limits_bench.cpp, tests/physics/extremes_test.cpp): inside it bodies stay apart and
+// energy does not rise beyond rounding. Walls hold at any mass ratio and speed; beyond it a
+// heavy body sinks into light ones, and fast bodies pass through each other. Scenes check
+// against it.
 struct Envelope {
-    double max_mass_ratio = 1000;                // heaviest / lightest moving disc
-    double radii_per_step_at_equal_mass = 2;     // of the smallest moving disc, per step
+    double max_mass_ratio = 1000;             // heaviest / lightest moving body
+    // Radii of the smallest moving body per step at equal masses: the disc solver times every
+    // impact between moving discs; the manifold solver (any body with a shape) only sees
+    // contacts that are near at the start of a step.
+    double disc_radii_per_step = 10;
+    double body_radii_per_step = 2;
 
-    // Radii of the smallest moving disc a body may travel per physics step when the moving
-    // discs' masses differ by `mass_ratio`: 2 / sqrt(ratio).
-    double radii_per_step(double mass_ratio) const {
-        return radii_per_step_at_equal_mass / std::sqrt(mass_ratio);
+    // Radii of the smallest moving body a body may travel per physics step when the moving
+    // bodies' masses differ by `mass_ratio`: 10 / ratio^(2/3) for discs alone (a light disc
+    // between heavy ones needs about pi sqrt(ratio) impacts per squeeze, out of the impact
+    // stage's budget), 2 / sqrt(ratio) for the manifold solver.
+    double radii_per_step(double mass_ratio, bool manifold) const {
+        return manifold ? body_radii_per_step / std::sqrt(mass_ratio)
+                        : disc_radii_per_step / std::cbrt(mass_ratio * mass_ratio);
     }
 };
 
