@@ -134,14 +134,19 @@ void check_envelope(Loader& loader) {
     const double max_mass_ratio = physics::envelope.max_mass_ratio;
     if (ratio > max_mass_ratio) {
         const DiscSource& source = loader.sources[extremes->heaviest];
+        // A body of `bodies:` (a shape) is a body to its author, not a disc.
+        const auto noun = [](const Disc& body) { return body.shape ? "body" : "disc"; };
+        const bool discs = !heavy.shape && !light.shape;
         d.error(source.entry,
-                source.where + ": disc '" + heavy.id + "' (" + format_number(heavy.mass) +
-                    " kg) is " + format_short(ratio) + " times as heavy as disc '" + light.id +
-                    "' (" + format_number(light.mass) + " kg, line " +
+                source.where + ": " + noun(heavy) + " '" + heavy.id + "' (" +
+                    format_short(heavy.mass) + " kg) is " + format_short(ratio) +
+                    " times as heavy as " + noun(light) + " '" + light.id + "' (" +
+                    format_short(light.mass) + " kg, line " +
                     std::to_string(loader.sources[extremes->lightest].entry.line) +
-                    "); moving discs of one scene may differ in mass by a factor of at most " +
-                    format_number(max_mass_ratio) +
-                    ", beyond which heavy discs sink into light ones (docs/physics.md, Limits)");
+                    "); moving " + (discs ? "discs" : "bodies") +
+                    " of one scene may differ in mass by a factor of at most " +
+                    format_number(max_mass_ratio) + ", beyond which heavy " +
+                    (discs ? "discs" : "bodies") + " sink into light ones (docs/physics.md, Limits)");
         return;   // the speed limit below depends on the ratio
     }
 
