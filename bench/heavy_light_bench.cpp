@@ -17,6 +17,7 @@
 #include "bench_results.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/shapes.hpp"
+#include "scenes.hpp"
 
 namespace {
 
@@ -82,16 +83,9 @@ struct Pile {
 Pile pile(double ratio, bool manifold) {
     WorldDef def;
     def.walls.push_back(box({0, 0}, {10, 10}, 0.5));
-    std::uint64_t state = 7;
-    const auto uniform = [&](double lo, double hi) {   // splitmix64, as tests/physics/scenes.hpp
-        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        z ^= z >> 31;
-        return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-    };
+    testing::Rng rng(7);  // the scenes' generator, as in tests/physics/extremes_test.cpp
     for (int k = 0; k < 64; ++k) {
-        const double angle = uniform(0, 2 * 3.141592653589793);
+        const double angle = rng.uniform(0, 2 * 3.141592653589793);
         const int column = k % 8, row = k / 8;
         def.discs.push_back(disc({(1 + column) * 1.1, (1 + row) * 1.1},
                                  {2 * std::cos(angle), 2 * std::sin(angle)}, 0.4,

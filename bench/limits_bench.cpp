@@ -15,6 +15,7 @@
 #include "bench_results.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/shapes.hpp"
+#include "scenes.hpp"
 
 namespace {
 
@@ -40,17 +41,10 @@ Case run(bool boxes, double ratio, double radii_per_step) {
     wall.restitution = 0.5;
     wall.friction = 0.5;
     def.walls.push_back(wall);
-    std::uint64_t state = 7;
-    const auto uniform = [&](double lo, double hi) {   // splitmix64, as tests/physics/scenes.hpp
-        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        z ^= z >> 31;
-        return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-    };
+    testing::Rng rng(7);  // the scenes' generator, as in tests/physics/extremes_test.cpp
     const double speed = radii_per_step * r * rate;
     for (int k = 0; k < 64; ++k) {
-        const double angle = uniform(0, 2 * 3.141592653589793);
+        const double angle = rng.uniform(0, 2 * 3.141592653589793);
         DiscDef d;
         d.position = {(1 + k % 8) * 1.1, (1 + k / 8) * 1.1};
         d.velocity = {speed * std::cos(angle), speed * std::sin(angle)};
