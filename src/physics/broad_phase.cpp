@@ -112,11 +112,10 @@ bool BroadPhase::widen_threatened(const std::vector<Body>& bodies, double dt, do
         for (const auto& [struck, other] : {std::pair{i, j}, std::pair{j, i}}) {
             const Body& s = bodies[struck];
             const Body& o = bodies[other];
-            if (!s.moves() || s.inv_mass == 0.0) continue;
+            if (s.inv_mass == 0.0) continue;  // fixed or held: no impact moves it
             const double share = o.inv_mass == 0.0 ? 1.0 : s.inv_mass / (s.inv_mass + o.inv_mass);
-            const double speed = s.v.norm() + 2.0 * share * o.v.norm();
-            const double fall = s.falls() ? 0.5 * gravity * dt * dt : 0.0;
-            const double needed = base_margin(s) + speed * dt + fall;
+            const double needed =
+                base_margin(s) + reach(s, dt, gravity) + 2.0 * share * o.v.norm() * dt;
             if (needed > margin_[struck]) {
                 margin_[struck] = needed;
                 widened = true;

@@ -9,7 +9,6 @@
 // before an earlier one.
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <optional>
 
 #include "substep.hpp"
@@ -165,7 +164,7 @@ void ImpactResolver::widen_reach(Substep& s, std::uint32_t i, double t) {
     const Body& body = s.bodies[i];
     // Travelled by time t, then at most its speed for the rest of the substep; gravity's part
     // of both is within the fall over the whole substep.
-    const double fall = body.falls() ? 0.5 * s.gravity.norm() * s.h * s.h : 0.0;
+    const double fall = body.falls() ? 0.5 * gravity_step_ * s.h : 0.0;
     const double widest = (body.shift + body.v * t).norm() +
                           (body.v + s.gravity_on(body) * t).norm() * (s.h - t) + fall;
     const double before = reach_of(i);

@@ -44,7 +44,8 @@ RigidBody make_fixed(const Polygon& shape, const V2& at, double angle, const Wal
 
 bool ShapeWorld::wanted(const WorldDef& def) {
     const auto shaped = [](const DiscDef& d) { return d.shape.has_value(); };
-    return !def.respawns.empty() || std::any_of(def.discs.begin(), def.discs.end(), shaped);
+    return uses_manifold_solver(std::any_of(def.discs.begin(), def.discs.end(), shaped),
+                                !def.respawns.empty());
 }
 
 ShapeWorld::ShapeWorld(const WorldDef& def, int substeps)

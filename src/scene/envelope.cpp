@@ -98,8 +98,8 @@ void check_respawns(Loader& loader) {
                                   " (docs/physics.md, Limits)");
             return;
         }
-        // A scene with respawns is always the manifold solver's.
-        const double radii_per_step = physics::envelope.radii_per_step(ratio, true);
+        const double radii_per_step = physics::envelope.radii_per_step(
+            ratio, physics::uses_manifold_solver(false, true));
         const double limit = radii_per_step * alive.smallest_radius() * scene.physics.rate;
         const auto [speed, slot] = alive.fastest();
         if (speed > limit) {
@@ -151,11 +151,10 @@ void check_envelope(Loader& loader) {
     }
 
     const double smallest = scene.discs[extremes->smallest].radius;
-    // The manifold solver takes every scene with a shaped body or a respawning generator.
-    const bool manifold =
-        !scene.respawns.empty() ||
+    const bool manifold = physics::uses_manifold_solver(
         std::any_of(scene.discs.begin(), scene.discs.end(),
-                    [](const Disc& disc) { return disc.shape.has_value(); });
+                    [](const Disc& disc) { return disc.shape.has_value(); }),
+        !scene.respawns.empty());
     const double radii_per_step = physics::envelope.radii_per_step(ratio, manifold);
     const double rate = scene.physics.rate;
     const double limit = radii_per_step * smallest * rate;   // m/s

@@ -89,6 +89,13 @@ struct Envelope {
 
 inline constexpr Envelope envelope{};
 
+// Which solver steps a world: the manifold solver once any body has a shape or a generator
+// respawns (its sets may bring shapes at any time), the disc solver otherwise. Scenes ask it to
+// know which of the envelope's speed limits applies.
+inline bool uses_manifold_solver(bool any_shaped_body, bool any_respawn) {
+    return any_shaped_body || any_respawn;
+}
+
 // The moment of inertia about the centroid of a body of this definition's shape and mass,
 // kg m^2 (m r^2 / 2 for a disc).
 double inertia_of(const DiscDef& def);
