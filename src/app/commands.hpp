@@ -51,8 +51,20 @@ struct ValidateOptions {
     scene::Limits limits;
 };
 
+struct ServeOptions {
+    std::string listen = "127.0.0.1:8080";   // ADDRESS:PORT; port 0 picks a free one
+    std::string data_dir = "discreel-data";
+    int workers = 1;
+    std::size_t max_queue = 64;
+    std::optional<std::string> token_file;
+    double job_timeout = 600;                // seconds
+    scene::Limits limits;
+    std::string version;                     // discreel's, part of every job id
+};
+
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
 int run_validate(const ValidateOptions& options, std::ostream& out, std::ostream& err);
 int run_simulate(const SimulateOptions& options, std::ostream& out, std::ostream& err);
+int run_serve(const ServeOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace discreel::app

@@ -297,6 +297,31 @@ static int run_command_line(int argc, char** argv) {
     add_output_files(*simulate_cmd, simulate.files);
     add_limit_options(*simulate_cmd, simulate.limits);
 
+    ServeOptions serve;
+    serve.version = DISCREEL_VERSION;
+    CLI::App* serve_cmd = app.add_subcommand(
+        "serve", "Render scenes sent over HTTP (docs/serve.md): a job queue with warm workers");
+    serve_cmd->add_option("--listen", serve.listen,
+                          "ADDRESS:PORT to listen on; port 0 picks a free one (printed)")
+        ->capture_default_str();
+    serve_cmd->add_option("--data", serve.data_dir, "Directory of the job store and outputs")
+        ->capture_default_str();
+    serve_cmd->add_option("--workers", serve.workers, "Jobs rendered at once")
+        ->check(CLI::Range(1, 64))
+        ->capture_default_str();
+    serve_cmd->add_option("--max-queue", serve.max_queue,
+                          "Jobs waiting for a worker; beyond it 429 with Retry-After")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    serve_cmd->add_option("--token-file", serve.token_file,
+                          "File holding a bearer token every /v1 request must present")
+        ->option_text("FILE");
+    serve_cmd->add_option("--job-timeout", serve.job_timeout,
+                          "Seconds one job may render before it fails")
+        ->check(finite_number(0.001, 1e7))
+        ->capture_default_str();
+    add_limit_options(*serve_cmd, serve.limits);
+
     ValidateOptions validate;
     CLI::App* validate_cmd = app.add_subcommand(
         "validate", "Check scene files and print every problem; exit 2 if any");
@@ -372,6 +397,7 @@ static int run_command_line(int argc, char** argv) {
     if (simulate_cmd->parsed()) code = run_simulate(simulate, std::cout, std::cerr);
     if (validate_cmd->parsed()) code = run_validate(validate, std::cout, std::cerr);
     if (golden_cmd->parsed()) code = run_golden(golden, std::cout, std::cerr);
+    if (serve_cmd->parsed()) code = run_serve(serve, std::cout, std::cerr);
     // What a command printed may still sit in a buffer: a full disk or a closed pipe behind
     // standard output is a failure, not a success with the output silently lost.
     if (code == exit_ok && !standard_output_ok(std::cout, std::cerr)) return exit_runtime_failure;

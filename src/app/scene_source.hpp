@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 
+#include "discreel/render_plan.hpp"
 #include "discreel/scene.hpp"
 
 namespace discreel::app {
@@ -16,14 +17,8 @@ scene::LoadResult load_scene_or_demo(const std::optional<std::string>& path,
                                      const scene::Limits& limits,
                                      std::optional<double> clip_duration = std::nullopt);
 
-// Overrides from the command line, applied after loading. Returns the problems, in words.
-struct VideoOverrides {
-    std::optional<int> width, height;   // pixels
-    std::optional<int> fps;
-    std::optional<double> duration;     // seconds
-};
-// `limits` bound --duration as they bound video.duration in the file.
-std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverrides& o,
-                                           const scene::Limits& limits);
+// The command line's --size, --fps and --duration: the job layer's overrides.
+using job::VideoOverrides;
+using job::apply_overrides;
 
 }  // namespace discreel::app

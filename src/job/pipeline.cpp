@@ -27,13 +27,25 @@ std::size_t frame_bytes(const render::RendererDef& def) {
            static_cast<std::size_t>(def.height);
 }
 
+// The caller's warm renderer, or a new one kept in `own`.
+Expected<render::Renderer*> renderer_for(const PipelineDef& def,
+                                         std::optional<render::Renderer>& own) {
+    if (def.warm_renderer != nullptr) return def.warm_renderer;
+    auto made = render::Renderer::create(def.renderer);
+    if (!made) return made.error();
+    own = std::move(*made);
+    return &*own;
+}
+
 PipelineResult run_on_one_thread(const PipelineDef& def, const PipelineStages& stages) {
     PipelineResult result;
-    auto renderer = render::Renderer::create(def.renderer);
-    if (!renderer) {
-        result.status = renderer.error();
+    std::optional<render::Renderer> own;
+    auto found = renderer_for(def, own);
+    if (!found) {
+        result.status = found.error();
         return result;
     }
+    render::Renderer* renderer = *found;
     result.renderer_info = renderer->renderer_info();
     std::vector<std::uint8_t> pixels(frame_bytes(def.renderer));
     int encoded = 0;
@@ -129,8 +141,10 @@ private:
 
     void render_stage() {
         if (def_.encoder_first) yield_to_other_threads();
-        auto renderer = render::Renderer::create(def_.renderer);
-        if (!renderer) return fail(renderer.error());
+        std::optional<render::Renderer> own;
+        auto found = renderer_for(def_, own);
+        if (!found) return fail(found.error());
+        render::Renderer* renderer = *found;
         result_.renderer_info = renderer->renderer_info();
         double busy = 0;
         while (const std::optional<int> index = drawable_.pop()) {

@@ -18,6 +18,9 @@ namespace discreel::job {
 struct PipelineDef {
     int frame_count = 0;             // simulate() is called for frames 0 .. frame_count - 1
     render::RendererDef renderer;
+    // A renderer of that size to draw with instead of creating one (its context is made
+    // current on the drawing thread); it must not be drawing elsewhere meanwhile.
+    render::Renderer* warm_renderer = nullptr;
     bool threaded = true;            // false: every stage on the calling thread, frame by frame
     int slots = 3;                   // frames in flight when threaded: one per stage
     // Threaded only: the simulate and render threads run at the lowest priority (nice 19), so

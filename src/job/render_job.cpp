@@ -49,6 +49,10 @@ Expected<RenderSummary> render(const RenderDef& def) {
         return Error{"frames " + std::to_string(range.first) + ".." + std::to_string(range.last) +
                      " are not in the clip, which has " + std::to_string(count) + " frames"};
     }
+    if (def.renderer != nullptr && (def.renderer->def().width != scene.video.width ||
+                                    def.renderer->def().height != scene.video.height)) {
+        return Error{"the warm renderer draws another size than the scene's video"};
+    }
     // The encoder's threads keep most of the cores busy; llvmpipe's rasterizer threads would
     // compete with them and cost more CPU than they save, so the render stage draws on its own
     // thread (docs/performance.md). Set before any thread starts; LP_NUM_THREADS in the
@@ -99,6 +103,7 @@ Expected<RenderSummary> render(const RenderDef& def) {
     const PipelineResult run = run_pipeline(
         {.frame_count = range.last + 1,
          .renderer = {.width = scene.video.width, .height = scene.video.height},
+         .warm_renderer = def.renderer,
          .threaded = def.threaded,
          .slots = slots_for(scene.video.width, scene.video.height),
          .encoder_first = true},

@@ -269,4 +269,6 @@ Expected<ImageView> Renderer::draw_into(const FrameScene& frame, std::span<std::
 
 std::string Renderer::renderer_info() const { return impl_->info; }
 
+RendererDef Renderer::def() const { return {.width = impl_->width, .height = impl_->height}; }
+
 }  // namespace discreel::render

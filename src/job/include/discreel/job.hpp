@@ -79,6 +79,10 @@ struct RenderDef {
     std::optional<std::string> trace;        // CSV path, one row per disc per frame
     std::optional<std::string> events;       // CSV path, one row per new contact
     bool threaded = true;                    // false: one thread, same bytes, slower
+    // A renderer of the scene's video size to draw with, kept warm between jobs by a caller
+    // that renders many (its context and compiled shaders are reused); nullptr: the job
+    // creates its own. Used by one job at a time. The bytes are the same either way.
+    render::Renderer* renderer = nullptr;
     std::function<void(const Progress&)> on_progress;   // after each encoded frame
     std::function<bool()> should_stop;       // polled per frame; true cancels, nothing written
 };

@@ -124,6 +124,7 @@ public:
     Expected<ImageView> draw_into(const FrameScene& frame, std::span<std::uint8_t> out);
 
     std::string renderer_info() const;   // GL_RENDERER and GL_VERSION, for golden metadata
+    RendererDef def() const;             // the size it draws
 
 private:
     struct Impl;

@@ -1,0 +1,60 @@
+#pragma once
+// What a render asks for besides its scene, resolved into a job: the `render` command's options
+// and a service request go through the same plan, so the same request gives the same bytes
+// from either front end.
+//     auto plan = job::plan_render(std::move(loaded.scene), request, limits);
+//     job::RenderDef def{.scene = std::move(plan->scene), .output = plan->sink,
+//                        .frames = plan->frames};
+#include <optional>
+#include <string>
+
+#include "discreel/encode.hpp"
+#include "discreel/expected.hpp"
+#include "discreel/job.hpp"
+#include "discreel/scene.hpp"
+
+namespace discreel::job {
+
+// Changes to the scene's video settings, applied after loading.
+struct VideoOverrides {
+    std::optional<int> width, height;   // pixels
+    std::optional<int> fps;
+    std::optional<double> duration;     // seconds
+};
+
+// Applies `o` to `scene`; `limits` bound the duration and the work as they bound the file's.
+// Returns the problem, in words, or nullopt.
+std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverrides& o,
+                                           const scene::Limits& limits);
+
+struct RenderRequest {
+    std::string output;                      // path: its extension picks the format; "-": stdout
+    std::optional<int> frame;                // a .png still; negative counts from the end
+    std::optional<double> at;                // seconds, a .png still
+    std::optional<std::string> frames;       // "A-B" or "A-": a range of frames, any format
+    std::optional<std::string> quality;      // low, medium, high, 4k: size, fps and crf
+    VideoOverrides video;
+    std::optional<int> crf;                  // none: the codec's default (or the quality's)
+    std::string preset;                      // x264 preset; empty: veryfast
+    std::string codec;                       // empty: the container's default
+    std::string pixel_format;                // empty: yuv420p
+    bool lossless = false;                   // FFV1 in Matroska
+    std::string stream_container;            // -o -: "mkv" (empty) or "mp4" (fragmented)
+};
+
+struct RenderPlan {
+    scene::Scene scene;                      // the overrides applied
+    encode::OutputDescription output;        // the format the output's name picks
+    encode::SinkDef sink;                    // checked settings
+    FrameRange frames;                       // resolved: first..last, inclusive
+    std::optional<int> gif_fps_from;         // the frame rate a GIF could not show, if lowered
+    bool drawn_opaque = false;               // a transparent background the format cannot keep
+};
+
+// Resolves `request` against `scene`: the format, the quality preset, the overrides, the GIF
+// frame rate, the frames to draw and the encoder settings. The error says what to change, in
+// the command line's terms (--size, --frame, ...).
+Expected<RenderPlan> plan_render(scene::Scene scene, const RenderRequest& request,
+                                 const scene::Limits& limits);
+
+}  // namespace discreel::job

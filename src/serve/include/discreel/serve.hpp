@@ -1,0 +1,50 @@
+#pragma once
+// discreel serve: the render-job layer behind HTTP. Requests become jobs in a durable store,
+// workers with warm GL contexts render them through job::render (the bytes `discreel render`
+// writes for the same scene and options), outputs are kept by content.
+//     auto server = serve::Server::open({.data_dir = "data", .workers = 2});
+//     server->run();            // blocks until stop(), from another thread or a signal
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "discreel/expected.hpp"
+#include "discreel/scene.hpp"
+
+namespace discreel::serve {
+
+struct ServeDef {
+    std::string host = "127.0.0.1";          // an address, not a name
+    int port = 8080;                         // 0: any free port (see Server::port())
+    std::string data_dir = "discreel-data";  // the job store and the outputs
+    int workers = 1;                         // jobs rendered at once, each with a warm context
+    std::size_t max_queue = 64;              // jobs waiting; beyond it 429 with Retry-After
+    std::optional<std::string> token;        // if set, every /v1 request must bear it
+    scene::Limits limits;                    // bound every scene, as on the command line
+    double job_timeout = 600;                // seconds one job may render before it fails
+    std::string version;                     // discreel's, part of every job id
+    bool log_requests = true;                // one JSON line per request and job transition
+};
+
+class Server {
+public:
+    // Opens (or creates) the store in def.data_dir, binds the address, and queues again every
+    // job that was accepted and not finished when the last server on that store stopped.
+    static Expected<Server> open(const ServeDef& def);
+    ~Server();
+    Server(Server&&) noexcept;
+    Server& operator=(Server&&) noexcept;
+
+    int port() const;               // the bound port
+    Status run();                   // serves until stop(); then finishes nothing new
+    void stop();                    // safe from any thread; running jobs stay queued in the store
+
+private:
+    struct Impl;
+    explicit Server(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace discreel::serve

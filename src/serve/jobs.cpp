@@ -1,0 +1,414 @@
+#include "jobs.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <ctime>
+#include <iostream>
+
+#include "digest.hpp"
+#include "discreel/job.hpp"
+#include "discreel/printable.hpp"
+#include "discreel/render.hpp"
+
+namespace discreel::serve {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+std::string utc_now() {
+    const auto now = std::chrono::system_clock::now();
+    const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                        now.time_since_epoch()).count() % 1000;
+    std::tm utc{};
+    gmtime_r(&seconds, &utc);
+    char text[64];
+    std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900,
+                  utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec,
+                  static_cast<int>(ms));
+    return text;
+}
+
+// The directory entry of a renamed file is durable only once its directory is synced.
+void sync_directory(const std::filesystem::path& dir) {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    (void)fsync(fd);
+    ::close(fd);
+}
+
+// A job's error must not show the server's own paths: the temporary output is "the output".
+std::string without_path(std::string message, const std::string& path) {
+    for (std::size_t at = 0; (at = message.find(path, at)) != std::string::npos;) {
+        message.replace(at, path.size(), "the output");
+    }
+    return message;
+}
+
+Submission answer(Submitted what, json job) {
+    Submission submission;
+    submission.what = what;
+    submission.job = std::move(job);
+    return submission;
+}
+
+}  // namespace
+
+json job_json(const Job& job) {
+    json output = nullptr;
+    if (job.status == JobStatus::succeeded && job.output) {
+        output = {{"url", "/v1/renders/" + job.id + "/output"},
+                  {"bytes", job.output->bytes},
+                  {"sha256", job.output->sha256},
+                  {"content_type", content_type_of(job.output->extension)}};
+    }
+    json error = nullptr;
+    if (job.error) error = {{"message", *job.error}};
+    return {{"id", job.id},
+            {"status", to_string(job.status)},
+            {"progress", {{"frames_done", job.frames_done}, {"frames_total", job.frames_total}}},
+            {"error", error},
+            {"output", output}};
+}
+
+void log_line(const std::string& event, json fields) {
+    static std::mutex mutex;
+    json line = {{"time", utc_now()}, {"event", event}};
+    line.update(fields);
+    const std::string text = line.dump(-1, ' ', false, json::error_handler_t::replace) + '\n';
+    std::lock_guard lock(mutex);
+    std::cerr << text << std::flush;
+}
+
+Jobs::Jobs(const ServeDef& def, Metrics& metrics, Store store)
+    : def_(def), metrics_(metrics), store_(std::move(store)),
+      outputs_(std::filesystem::path(def.data_dir) / "outputs"),
+      tmp_(std::filesystem::path(def.data_dir) / "tmp") {}
+
+Jobs::~Jobs() { stop(); }
+
+Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics) {
+    const std::filesystem::path data(def.data_dir);
+    std::error_code failed;
+    for (const char* sub : {"outputs", "tmp"}) {
+        std::filesystem::create_directories(data / sub, failed);
+        if (failed) {
+            return Error{"cannot create '" + (data / sub).string() + "': " + failed.message()};
+        }
+    }
+    // What a killed server was writing is rendered again from the start.
+    for (const auto& entry : std::filesystem::directory_iterator(data / "tmp", failed)) {
+        std::filesystem::remove_all(entry.path(), failed);
+    }
+    auto store = Store::open((data / "jobs.sqlite3").string());
+    if (!store) return store.error();
+    auto loaded = store->load();
+    if (!loaded) return loaded.error();
+    std::unique_ptr<Jobs> jobs(new Jobs(def, metrics, std::move(*store)));
+    for (StoredJob& stored : *loaded) {
+        Job job{.id = stored.id,
+                .status = stored.status,
+                .frames_done = stored.status == JobStatus::succeeded ? stored.frames_total : 0,
+                .frames_total = stored.frames_total,
+                .error = std::move(stored.error),
+                .output = std::move(stored.output)};
+        if (!is_final(job.status)) {
+            job.status = JobStatus::queued;
+            jobs->queue_.push_back(job.id);
+        }
+        jobs->jobs_.emplace(job.id, std::move(job));
+    }
+    if (!jobs->queue_.empty()) {
+        log_line("resume", {{"queued", jobs->queue_.size()}});
+    }
+    return jobs;
+}
+
+void Jobs::start_workers() {
+    for (int i = 0; i < std::max(1, def_.workers); ++i) {
+        workers_.emplace_back([this] { worker_loop(); });
+    }
+}
+
+void Jobs::stop() {
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+        for (auto& [id, job] : jobs_) job.cancel->store(true);
+    }
+    work_ready_.notify_all();
+    changed_.notify_all();
+    for (std::thread& worker : workers_) worker.join();
+    workers_.clear();
+}
+
+void Jobs::changed(Job& job) {
+    ++job.version;
+    changed_.notify_all();
+}
+
+std::size_t Jobs::queued() const {
+    std::lock_guard lock(mutex_);
+    return queue_.size();
+}
+
+std::size_t Jobs::running() const {
+    std::lock_guard lock(mutex_);
+    return running_;
+}
+
+Submission Jobs::submit(const JobRequest& request, int frames_total) {
+    std::unique_lock lock(mutex_);
+    const auto found = jobs_.find(request.id);
+    if (found != jobs_.end()) {
+        Job& job = found->second;
+        if (job.status == JobStatus::queued || job.status == JobStatus::running) {
+            return answer(Submitted::existing, job_json(job));
+        }
+        if (job.status == JobStatus::succeeded && job.output &&
+            std::filesystem::exists(outputs_ / (job.output->sha256 + "." + job.output->extension))) {
+            metrics_.cache_hit();
+            return answer(Submitted::cached, job_json(job));
+        }
+        // Failed, cancelled, or its output gone: the same request runs again.
+    }
+    if (queue_.size() >= def_.max_queue) {
+        metrics_.rejected_busy();
+        const double wait = mean_seconds_ * static_cast<double>(queue_.size()) /
+                            std::max(1, def_.workers);
+        Submission busy = answer(Submitted::busy, nullptr);
+        busy.retry_after = static_cast<int>(std::clamp(std::ceil(wait), 1.0, 3600.0));
+        return busy;
+    }
+    // Durable before the answer: a 202 promises the job will finish.
+    if (Status stored = store_.accept(request.id, request.stored(), frames_total); !stored) {
+        Submission failed = answer(Submitted::store_failed, nullptr);
+        failed.error = stored.error().message;
+        return failed;
+    }
+    Job& job = jobs_[request.id];
+    job.id = request.id;
+    job.status = JobStatus::queued;
+    job.frames_done = 0;
+    job.frames_total = frames_total;
+    job.error.reset();
+    job.output.reset();
+    job.cancel = std::make_shared<std::atomic<bool>>(stopping_.load());
+    changed(job);
+    queue_.push_back(request.id);
+    metrics_.accepted();
+    log_line("job", {{"id", job.id}, {"status", "queued"}});
+    json accepted = job_json(job);
+    lock.unlock();
+    work_ready_.notify_one();
+    return answer(Submitted::accepted, std::move(accepted));
+}
+
+std::optional<json> Jobs::get(const std::string& id) {
+    std::lock_guard lock(mutex_);
+    const auto found = jobs_.find(id);
+    if (found == jobs_.end()) return std::nullopt;
+    return job_json(found->second);
+}
+
+std::optional<Jobs::Output> Jobs::output(const std::string& id) {
+    std::lock_guard lock(mutex_);
+    const auto found = jobs_.find(id);
+    if (found == jobs_.end() || found->second.status != JobStatus::succeeded ||
+        !found->second.output) {
+        return std::nullopt;
+    }
+    const OutputInfo& info = *found->second.output;
+    return Output{outputs_ / (info.sha256 + "." + info.extension), info};
+}
+
+std::pair<int, json> Jobs::cancel(const std::string& id) {
+    std::unique_lock lock(mutex_);
+    auto found = jobs_.find(id);
+    if (found == jobs_.end()) return {404, {{"error", {{"message", "no job " + id}}}}};
+    Job& job = found->second;
+    if (is_final(job.status)) {
+        return {409, {{"error", {{"message", std::string("the job has ") +
+                                                 (job.status == JobStatus::succeeded
+                                                      ? "succeeded"
+                                                      : job.status == JobStatus::failed
+                                                            ? "failed"
+                                                            : "been cancelled") +
+                                                 "; there is nothing to cancel"}}}}};
+    }
+    if (job.status == JobStatus::queued) {
+        queue_.erase(std::remove(queue_.begin(), queue_.end(), id), queue_.end());
+        if (Status stored = store_.set_ended(id, JobStatus::cancelled, "cancelled"); !stored) {
+            return {503, {{"error", {{"message", stored.error().message}}}}};
+        }
+        job.status = JobStatus::cancelled;
+        job.error = "cancelled";
+        metrics_.ended("cancelled", 0);
+        log_line("job", {{"id", id}, {"status", "cancelled"}});
+        changed(job);
+        return {200, job_json(job)};
+    }
+    job.cancel->store(true);
+    // The worker stops within a frame; a long frame is waited for, but not for ever.
+    changed_.wait_for(lock, std::chrono::seconds(10),
+                      [&] { return is_final(jobs_.at(id).status) || stopping_; });
+    return {is_final(jobs_.at(id).status) ? 200 : 202, job_json(jobs_.at(id))};
+}
+
+std::optional<Jobs::Snapshot> Jobs::wait_change(const std::string& id, std::uint64_t seen,
+                                                std::chrono::milliseconds timeout) {
+    std::unique_lock lock(mutex_);
+    auto found = jobs_.find(id);
+    if (found == jobs_.end()) return std::nullopt;
+    if (seen != 0) {
+        changed_.wait_for(lock, timeout,
+                          [&] { return jobs_.at(id).version != seen || stopping_; });
+    }
+    const Job& job = jobs_.at(id);
+    return Snapshot{job_json(job), job.version, is_final(job.status)};
+}
+
+void Jobs::worker_loop() {
+    // Kept from job to job: the context, its compiled shaders and llvmpipe's JIT output.
+    std::optional<render::Renderer> warm;
+    for (;;) {
+        std::string id;
+        {
+            std::unique_lock lock(mutex_);
+            work_ready_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+            if (stopping_) return;
+            id = queue_.front();
+            queue_.pop_front();
+            Job& job = jobs_.at(id);
+            job.status = JobStatus::running;
+            ++running_;
+            changed(job);
+        }
+        if (Status stored = store_.set_running(id); !stored) {
+            log_line("store_error", {{"id", id}, {"message", stored.error().message}});
+        }
+        log_line("job", {{"id", id}, {"status", "running"}});
+        run_job(id, warm);
+        std::lock_guard lock(mutex_);
+        --running_;
+    }
+}
+
+Expected<OutputInfo> Jobs::keep_output(const std::string& tmp, const std::string& extension) {
+    auto sha = sha256_hex_of_file(tmp);
+    if (!sha) return sha.error();
+    std::error_code failed;
+    const auto bytes = std::filesystem::file_size(tmp, failed);
+    if (failed) return Error{"cannot read the output: " + failed.message()};
+    // Content-addressed: the same bytes are kept once, whichever job made them.
+    const std::filesystem::path target = outputs_ / (*sha + "." + extension);
+    std::filesystem::rename(tmp, target, failed);
+    if (failed) return Error{"cannot keep the output: " + failed.message()};
+    sync_directory(outputs_);
+    return OutputInfo{.sha256 = *sha, .bytes = static_cast<std::int64_t>(bytes),
+                      .extension = extension};
+}
+
+void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm) {
+    const auto started = Clock::now();
+    std::shared_ptr<std::atomic<bool>> cancel;
+    {
+        std::lock_guard lock(mutex_);
+        cancel = jobs_.at(id).cancel;
+    }
+    const std::string tmp = (tmp_ / id).string();
+    bool timed_out = false;
+    std::optional<std::string> extension;
+    const auto outcome = [&]() -> Expected<OutputInfo> {
+        auto text = store_.request(id);
+        if (!text) return text.error();
+        auto parsed = parse_job_request(*text, def_.limits, def_.version);
+        if (auto* refused = std::get_if<Refusal>(&parsed)) {
+            return Error{refused->body["error"]["message"].get<std::string>()};
+        }
+        const JobRequest& request = std::get<JobRequest>(parsed);
+        auto planned = plan_job(request, def_.limits);
+        if (auto* refused = std::get_if<Refusal>(&planned)) {
+            return Error{refused->body["errors"][0]["message"].get<std::string>()};
+        }
+        job::RenderPlan& plan = std::get<job::RenderPlan>(planned);
+        extension = request.format;
+        const render::RendererDef size{.width = plan.scene.video.width,
+                                       .height = plan.scene.video.height};
+        if (!warm || warm->def().width != size.width || warm->def().height != size.height) {
+            warm.reset();
+            auto made = render::Renderer::create(size);
+            if (!made) return made.error();
+            warm = std::move(*made);
+        }
+        const auto deadline = started + std::chrono::duration_cast<Clock::duration>(
+                                            std::chrono::duration<double>(def_.job_timeout));
+        job::RenderDef def;
+        def.scene = std::move(plan.scene);
+        def.output = plan.sink;
+        def.output.path = tmp + "." + request.format;
+        def.frames = plan.frames;
+        def.renderer = &*warm;
+        def.on_progress = [&](const job::Progress& p) {
+            std::lock_guard lock(mutex_);
+            Job& job = jobs_.at(id);
+            job.frames_done = p.frames_done;
+            job.frames_total = p.frames_total;
+            changed(job);
+        };
+        def.should_stop = [&] {
+            if (Clock::now() > deadline) timed_out = true;
+            return cancel->load() || timed_out;
+        };
+        auto rendered = job::render(def);
+        if (!rendered) return rendered.error();
+        return keep_output(def.output.path, request.format);
+    }();
+    const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+    std::error_code ignored;
+    if (extension) std::filesystem::remove(tmp + "." + *extension, ignored);
+
+    std::lock_guard lock(mutex_);
+    Job& job = jobs_.at(id);
+    if (stopping_ && !outcome) {
+        // Shutting down: the store still says running, so the next server renders it again.
+        job.status = JobStatus::queued;
+        changed(job);
+        return;
+    }
+    Status stored;
+    if (outcome) {
+        job.status = JobStatus::succeeded;
+        job.output = *outcome;
+        job.frames_done = job.frames_total;
+        stored = store_.set_succeeded(id, *outcome);
+        mean_seconds_ = 0.8 * mean_seconds_ + 0.2 * seconds;
+    } else {
+        const bool cancelled = cancel->load() && !timed_out;
+        job.status = cancelled ? JobStatus::cancelled : JobStatus::failed;
+        std::string message = without_path(outcome.error().message, tmp);
+        if (timed_out) {
+            std::string limit;
+            append_number(limit, def_.job_timeout);
+            message = "the render took longer than the limit of " + limit +
+                      " s (--job-timeout); nothing was kept";
+        }
+        if (cancelled) message = "cancelled";
+        job.error = message;
+        stored = store_.set_ended(id, job.status, message);
+    }
+    if (!stored) log_line("store_error", {{"id", id}, {"message", stored.error().message}});
+    metrics_.ended(to_string(job.status), seconds);
+    json fields = {{"id", id}, {"status", to_string(job.status)}, {"seconds", seconds}};
+    if (job.error) fields["error"] = *job.error;
+    log_line("job", std::move(fields));
+    changed(job);
+}
+
+}  // namespace discreel::serve

@@ -1,0 +1,107 @@
+#pragma once
+// The jobs a server knows: their state in memory (the store holds what must survive), the
+// queue, and the workers that render them, each with a warm GL context.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "discreel/serve.hpp"
+#include "metrics.hpp"
+#include "request.hpp"
+#include "store.hpp"
+
+namespace discreel::serve {
+
+struct Job {
+    std::string id;
+    JobStatus status = JobStatus::queued;
+    int frames_done = 0;
+    int frames_total = 0;
+    std::optional<std::string> error;
+    std::optional<OutputInfo> output;
+    std::uint64_t version = 0;                         // bumped on every change
+    std::shared_ptr<std::atomic<bool>> cancel = std::make_shared<std::atomic<bool>>(false);
+};
+
+nlohmann::json job_json(const Job& job);   // the body GET /v1/renders/<id> answers
+
+// One JSON line on standard error: {"time": ..., "event": ..., fields...}.
+void log_line(const std::string& event, nlohmann::json fields);
+
+// What POST /v1/renders did with a request.
+enum class Submitted { accepted, existing, cached, busy, store_failed };
+
+struct Submission {
+    Submitted what = Submitted::accepted;
+    nlohmann::json job;          // the job, for accepted, existing and cached
+    int retry_after = 1;         // seconds, for busy
+    std::string error;           // store_failed
+};
+
+class Jobs {
+public:
+    // Loads the store; every job accepted and not finished is queued again, in its order.
+    static Expected<std::unique_ptr<Jobs>> open(const ServeDef& def, Metrics& metrics);
+    ~Jobs();
+
+    void start_workers();
+    void stop();                 // workers end; a job being rendered stays queued in the store
+
+    Submission submit(const JobRequest& request, int frames_total);
+    std::optional<nlohmann::json> get(const std::string& id);
+    // The file of a succeeded job, with its facts; nullopt while there is none.
+    struct Output {
+        std::filesystem::path path;
+        OutputInfo info;
+    };
+    std::optional<Output> output(const std::string& id);
+    // DELETE: 404 unknown, 409 finished, otherwise cancelled (waits for a running job to stop).
+    std::pair<int, nlohmann::json> cancel(const std::string& id);
+    // Waits up to `timeout` for the job to change after `seen` (0: answers at once); the job,
+    // its version and whether it is final, or nullopt for an unknown id. Ends early on stop().
+    struct Snapshot {
+        nlohmann::json job;
+        std::uint64_t version = 0;
+        bool final = false;
+    };
+    std::optional<Snapshot> wait_change(const std::string& id, std::uint64_t seen,
+                                        std::chrono::milliseconds timeout);
+    bool stopping() const { return stopping_; }
+    std::size_t queued() const;
+    std::size_t running() const;
+
+private:
+    Jobs(const ServeDef& def, Metrics& metrics, Store store);
+    void worker_loop();
+    void run_job(const std::string& id, std::optional<render::Renderer>& warm);
+    void changed(Job& job);      // with mutex_ held
+    Expected<OutputInfo> keep_output(const std::string& tmp, const std::string& extension);
+
+    ServeDef def_;
+    Metrics& metrics_;
+    Store store_;
+    std::filesystem::path outputs_, tmp_;
+    mutable std::mutex mutex_;   // guards what follows
+    std::condition_variable work_ready_, changed_;
+    std::map<std::string, Job> jobs_;
+    std::deque<std::string> queue_;
+    std::size_t running_ = 0;
+    double mean_seconds_ = 1;    // of recent jobs, for Retry-After
+    std::atomic<bool> stopping_{false};
+    std::vector<std::thread> workers_;
+};
+
+}  // namespace discreel::serve

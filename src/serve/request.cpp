@@ -1,0 +1,182 @@
+#include "request.hpp"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "digest.hpp"
+
+namespace discreel::serve {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::array<const char*, 5> formats{"mp4", "webm", "mkv", "gif", "png"};
+
+// A body is one flat object; anything nested deeper is refused while parsing, before it is
+// built, so no body can make the parser or the value's destructor recurse deeply.
+constexpr int max_depth = 2;
+
+struct TooDeep {};
+
+std::optional<std::string> type_problem(const std::string& key, const json& value) {
+    const auto must_be = [&](const char* what) {
+        return "field '" + key + "' must be " + what;
+    };
+    if (key == "scene" || key == "output" || key == "size" || key == "preset") {
+        if (!value.is_string()) return must_be("a string");
+    } else if (key == "frame" || key == "fps" || key == "crf") {
+        if (!value.is_number_integer()) return must_be("an integer");
+    } else if (key == "at" || key == "duration") {
+        if (!value.is_number()) return must_be("a number");
+    }
+    return std::nullopt;
+}
+
+bool known_field(const std::string& key) {
+    for (const char* name : {"scene", "output", "frame", "at", "size", "fps", "duration", "crf",
+                             "preset"}) {
+        if (key == name) return true;
+    }
+    return false;
+}
+
+// "1280x720"; nullopt when it is not two whole numbers around an x.
+std::optional<std::pair<int, int>> parse_size(const std::string& text) {
+    const auto x = text.find('x');
+    if (x == std::string::npos) return std::nullopt;
+    int w = 0, h = 0;
+    const char* end = text.data() + text.size();
+    const auto [pw, ew] = std::from_chars(text.data(), text.data() + x, w);
+    const auto [ph, eh] = std::from_chars(text.data() + x + 1, end, h);
+    if (ew != std::errc() || eh != std::errc() || pw != text.data() + x || ph != end) {
+        return std::nullopt;
+    }
+    return std::pair{w, h};
+}
+
+// An integer field within int's range.
+std::optional<int> small_int(const json& value) {
+    if (value.is_number_unsigned()) {
+        const auto v = value.get<std::uint64_t>();
+        if (v > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) return std::nullopt;
+        return static_cast<int>(v);
+    }
+    const auto v = value.get<std::int64_t>();
+    if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
+        return std::nullopt;
+    }
+    return static_cast<int>(v);
+}
+
+json one_error(const json& line, const json& column, const std::string& message) {
+    return json{{"line", line}, {"column", column}, {"message", message}};
+}
+
+}  // namespace
+
+Refusal refusal(int status, const std::string& message) {
+    return Refusal{status, json{{"error", {{"message", message}}}}};
+}
+
+std::string JobRequest::stored() const {
+    json all = options;
+    all["scene"] = scene;
+    return all.dump();
+}
+
+const char* content_type_of(const std::string& format) {
+    if (format == "mp4") return "video/mp4";
+    if (format == "webm") return "video/webm";
+    if (format == "mkv") return "video/x-matroska";
+    if (format == "gif") return "image/gif";
+    return "image/png";
+}
+
+std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
+                                                    const scene::Limits& limits,
+                                                    const std::string& version) {
+    json parsed;
+    try {
+        parsed = json::parse(body, [](int depth, json::parse_event_t, json&) {
+            if (depth > max_depth) throw TooDeep{};
+            return true;
+        });
+    } catch (const json::parse_error& e) {
+        return refusal(400, std::string("the body is not JSON: ") + e.what());
+    } catch (const TooDeep&) {
+        return refusal(400, "the body must be one JSON object of strings and numbers");
+    }
+    if (!parsed.is_object()) return refusal(400, "the body must be a JSON object");
+    for (const auto& [key, value] : parsed.items()) {
+        if (!known_field(key)) {
+            return refusal(400, "unknown field '" + key + "'; the fields are scene, output, "
+                                "frame, at, size, fps, duration, crf and preset");
+        }
+        if (auto problem = type_problem(key, value)) return refusal(400, *problem);
+    }
+    if (!parsed.contains("scene")) return refusal(400, "field 'scene' (the scene's YAML) is required");
+    JobRequest request;
+    request.scene = parsed["scene"].get<std::string>();
+    if (request.scene.size() > limits.file_bytes) {
+        return refusal(413, "the scene is " + std::to_string(request.scene.size()) +
+                                " bytes, over the limit of " + std::to_string(limits.file_bytes));
+    }
+    request.format = parsed.value("output", "mp4");
+    bool known_format = false;
+    for (const char* format : formats) known_format = known_format || request.format == format;
+    if (!known_format) {
+        return refusal(400, "field 'output' must be one of mp4, webm, mkv, gif, png");
+    }
+    parsed.erase("scene");
+    parsed["output"] = request.format;
+    job::RenderRequest& render = request.render;
+    render.output = "render." + request.format;
+    for (const char* key : {"frame", "fps", "crf"}) {
+        if (!parsed.contains(key)) continue;
+        const auto value = small_int(parsed[key]);
+        if (!value) return refusal(400, std::string("field '") + key + "' is out of range");
+        if (std::string_view(key) == "frame") render.frame = *value;
+        if (std::string_view(key) == "fps") render.video.fps = *value;
+        if (std::string_view(key) == "crf") render.crf = *value;
+    }
+    if (parsed.contains("at")) render.at = parsed["at"].get<double>();
+    if (parsed.contains("duration")) render.video.duration = parsed["duration"].get<double>();
+    if (parsed.contains("preset")) render.preset = parsed["preset"].get<std::string>();
+    if (parsed.contains("size")) {
+        const auto size = parse_size(parsed["size"].get<std::string>());
+        if (!size) return refusal(400, "field 'size' must be WIDTHxHEIGHT, e.g. \"320x180\"");
+        render.video.width = size->first;
+        render.video.height = size->second;
+    }
+    request.options = std::move(parsed);
+    // The same request is the same job: discreel's version, the options (object keys sorted by
+    // nlohmann::json, numbers printed exactly) and the scene's bytes.
+    request.id = sha256_hex("discreel " + version + "\n" + request.options.dump() + "\n" +
+                            request.scene)
+                     .substr(0, 32);
+    return request;
+}
+
+std::variant<job::RenderPlan, Refusal> plan_job(const JobRequest& request,
+                                                const scene::Limits& limits) {
+    scene::LoadResult loaded =
+        scene::load_scene_text(request.scene, "scene", limits, request.render.video.duration);
+    if (!loaded.ok()) {
+        json errors = json::array();
+        for (const scene::Diagnostic& d : loaded.diagnostics) {
+            errors.push_back(one_error(d.line, d.column, d.message));
+        }
+        return Refusal{422, json{{"errors", std::move(errors)}}};
+    }
+    auto plan = job::plan_render(std::move(loaded.scene), request.render, limits);
+    if (!plan) {
+        return Refusal{422, json{{"errors", json::array({one_error(nullptr, nullptr,
+                                                                   plan.error().message)})}}};
+    }
+    return std::move(*plan);
+}
+
+}  // namespace discreel::serve

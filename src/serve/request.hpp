@@ -1,0 +1,45 @@
+#pragma once
+// A render request's JSON body: checked field by field, turned into the render-job layer's
+// request, and named by an id derived from discreel's version, the scene and the options.
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include <nlohmann/json.hpp>
+
+#include "discreel/render_plan.hpp"
+#include "discreel/scene.hpp"
+
+namespace discreel::serve {
+
+// An answer other than success: the status code and the JSON body.
+struct Refusal {
+    int status = 400;
+    nlohmann::json body;
+};
+
+Refusal refusal(int status, const std::string& message);   // {"error": {"message": ...}}
+
+struct JobRequest {
+    std::string scene;               // YAML text
+    std::string format;              // "mp4", "webm", "mkv", "gif", "png"
+    nlohmann::json options;          // every field but the scene, output included: canonical
+    job::RenderRequest render;       // .output is a bare "render.<format>", set by the worker
+    std::string id;                  // 32 hex digits
+    std::string stored() const;      // the JSON kept in the store: options plus the scene
+};
+
+// Parses a request body (POST /v1/renders and /v1/validate). 400 for malformed JSON, unknown
+// fields and wrong types; 413 for a scene over limits.file_bytes.
+std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
+                                                    const scene::Limits& limits,
+                                                    const std::string& version);
+
+// A job's scene loaded and its options planned: what the job will render, or 422 with
+// {"errors": [{"line", "column", "message"}, ...]} (line and column null for the options).
+std::variant<job::RenderPlan, Refusal> plan_job(const JobRequest& request,
+                                                const scene::Limits& limits);
+
+const char* content_type_of(const std::string& format);
+
+}  // namespace discreel::serve

@@ -1,0 +1,196 @@
+#include "store.hpp"
+
+#include <sqlite3.h>
+
+#include <utility>
+
+namespace discreel::serve {
+namespace {
+
+struct StatementCloser {
+    void operator()(sqlite3_stmt* statement) const { sqlite3_finalize(statement); }
+};
+using Statement = std::unique_ptr<sqlite3_stmt, StatementCloser>;
+
+Error sqlite_error(sqlite3* db, const std::string& doing) {
+    return Error{"cannot " + doing + ": " + sqlite3_errmsg(db)};
+}
+
+Expected<Statement> prepare(sqlite3* db, const char* sql) {
+    sqlite3_stmt* statement = nullptr;
+    if (sqlite3_prepare_v2(db, sql, -1, &statement, nullptr) != SQLITE_OK) {
+        return sqlite_error(db, "prepare a query of the job store");
+    }
+    return Statement(statement);
+}
+
+std::string column_text(sqlite3_stmt* statement, int column) {
+    const auto* text = sqlite3_column_text(statement, column);
+    return text == nullptr ? std::string() : reinterpret_cast<const char*>(text);
+}
+
+std::optional<std::string> optional_text(sqlite3_stmt* statement, int column) {
+    if (sqlite3_column_type(statement, column) == SQLITE_NULL) return std::nullopt;
+    return column_text(statement, column);
+}
+
+JobStatus status_of(const std::string& text) {
+    if (text == "running") return JobStatus::running;
+    if (text == "succeeded") return JobStatus::succeeded;
+    if (text == "failed") return JobStatus::failed;
+    if (text == "cancelled") return JobStatus::cancelled;
+    return JobStatus::queued;
+}
+
+// seq keeps the order of first acceptance, which is the order jobs are queued again after a
+// restart.
+constexpr const char* schema = R"sql(
+CREATE TABLE IF NOT EXISTS jobs (
+    seq INTEGER PRIMARY KEY AUTOINCREMENT,
+    id TEXT NOT NULL UNIQUE,
+    request TEXT NOT NULL,
+    status TEXT NOT NULL,
+    frames_total INTEGER NOT NULL,
+    error TEXT,
+    sha256 TEXT,
+    bytes INTEGER,
+    extension TEXT
+);
+)sql";
+
+}  // namespace
+
+const char* to_string(JobStatus status) {
+    switch (status) {
+        case JobStatus::queued: return "queued";
+        case JobStatus::running: return "running";
+        case JobStatus::succeeded: return "succeeded";
+        case JobStatus::failed: return "failed";
+        case JobStatus::cancelled: return "cancelled";
+    }
+    return "queued";
+}
+
+bool is_final(JobStatus status) {
+    return status == JobStatus::succeeded || status == JobStatus::failed ||
+           status == JobStatus::cancelled;
+}
+
+void Store::Closer::operator()(sqlite3* db) const { sqlite3_close(db); }
+
+Store::Store(sqlite3* db) : db_(db) {}
+Store::~Store() = default;
+Store::Store(Store&&) noexcept = default;
+Store& Store::operator=(Store&&) noexcept = default;
+
+Expected<Store> Store::open(const std::string& path) {
+    sqlite3* db = nullptr;
+    const int opened = sqlite3_open_v2(path.c_str(), &db,
+                                       SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE |
+                                           SQLITE_OPEN_FULLMUTEX, nullptr);
+    Store store(db);   // closes db on every path, also when opening failed
+    if (opened != SQLITE_OK) return sqlite_error(db, "open the job store '" + path + "'");
+    sqlite3_busy_timeout(db, 5000);
+    // WAL with synchronous=FULL: a commit is on disk when it returns, readers never block the
+    // writer. A small autocheckpoint keeps the log short (it is rewritten from its start after
+    // each checkpoint), which also bounds what a nearly full disk must hold.
+    for (const char* sql : {"PRAGMA journal_mode=WAL;", "PRAGMA synchronous=FULL;",
+                            "PRAGMA wal_autocheckpoint=64;", schema}) {
+        if (Status done = store.exec(sql); !done) return done.error();
+    }
+    return store;
+}
+
+Status Store::exec(const char* sql) {
+    char* message = nullptr;
+    if (sqlite3_exec(db_.get(), sql, nullptr, nullptr, &message) != SQLITE_OK) {
+        Error error{std::string("cannot set up the job store: ") +
+                    (message != nullptr ? message : "unknown error")};
+        sqlite3_free(message);
+        return error;
+    }
+    return {};
+}
+
+// Binds text parameters 1..n (NULL for nullopt), then the numbers after them, and steps.
+Status Store::update(const char* sql, const std::vector<std::optional<std::string>>& text,
+                     const std::vector<std::int64_t>& numbers) {
+    auto statement = prepare(db_.get(), sql);
+    if (!statement) return statement.error();
+    int index = 1;
+    for (const auto& value : text) {
+        if (value) {
+            sqlite3_bind_text(statement->get(), index, value->data(),
+                              static_cast<int>(value->size()), SQLITE_TRANSIENT);
+        } else {
+            sqlite3_bind_null(statement->get(), index);
+        }
+        ++index;
+    }
+    for (const std::int64_t value : numbers) sqlite3_bind_int64(statement->get(), index++, value);
+    if (sqlite3_step(statement->get()) != SQLITE_DONE) {
+        return sqlite_error(db_.get(), "write to the job store");
+    }
+    return {};
+}
+
+Expected<std::vector<StoredJob>> Store::load() {
+    auto statement = prepare(db_.get(),
+                             "SELECT id, status, frames_total, error, sha256, bytes, extension "
+                             "FROM jobs ORDER BY seq");
+    if (!statement) return statement.error();
+    std::vector<StoredJob> jobs;
+    int step = SQLITE_ROW;
+    while ((step = sqlite3_step(statement->get())) == SQLITE_ROW) {
+        sqlite3_stmt* row = statement->get();
+        StoredJob job;
+        job.id = column_text(row, 0);
+        job.status = status_of(column_text(row, 1));
+        job.frames_total = sqlite3_column_int(row, 2);
+        job.error = optional_text(row, 3);
+        if (auto sha = optional_text(row, 4)) {
+            job.output = OutputInfo{.sha256 = *sha,
+                                    .bytes = sqlite3_column_int64(row, 5),
+                                    .extension = column_text(row, 6)};
+        }
+        jobs.push_back(std::move(job));
+    }
+    if (step != SQLITE_DONE) return sqlite_error(db_.get(), "read the job store");
+    return jobs;
+}
+
+Expected<std::string> Store::request(const std::string& id) {
+    auto statement = prepare(db_.get(), "SELECT request FROM jobs WHERE id = ?1");
+    if (!statement) return statement.error();
+    sqlite3_bind_text(statement->get(), 1, id.data(), static_cast<int>(id.size()),
+                      SQLITE_TRANSIENT);
+    if (sqlite3_step(statement->get()) != SQLITE_ROW) {
+        return sqlite_error(db_.get(), "read job " + id + " from the job store");
+    }
+    return column_text(statement->get(), 0);
+}
+
+Status Store::accept(const std::string& id, const std::string& request, int frames_total) {
+    return update("INSERT INTO jobs (id, request, status, frames_total) "
+                  "VALUES (?1, ?2, 'queued', ?3) "
+                  "ON CONFLICT(id) DO UPDATE SET status = 'queued', error = NULL, "
+                  "sha256 = NULL, bytes = NULL, extension = NULL",
+                  {id, request}, {frames_total});
+}
+
+Status Store::set_running(const std::string& id) {
+    return update("UPDATE jobs SET status = 'running' WHERE id = ?1", {id}, {});
+}
+
+Status Store::set_succeeded(const std::string& id, const OutputInfo& output) {
+    return update("UPDATE jobs SET status = 'succeeded', error = NULL, sha256 = ?2, "
+                  "extension = ?3, bytes = ?4 WHERE id = ?1",
+                  {id, output.sha256, output.extension}, {output.bytes});
+}
+
+Status Store::set_ended(const std::string& id, JobStatus status, const std::string& error) {
+    return update("UPDATE jobs SET status = ?2, error = ?3 WHERE id = ?1",
+                  {id, std::string(to_string(status)), error}, {});
+}
+
+}  // namespace discreel::serve

@@ -1,0 +1,493 @@
+// discreel serve end to end: a real server process on 127.0.0.1 with a temporary --data,
+// driven over HTTP. Every wait is bounded in time and every loop in count; every server is
+// stopped by pid. GL: the server renders.
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <atomic>
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "serve_process.hpp"
+#include "test_support.hpp"
+
+namespace discreel {
+namespace {
+
+using nlohmann::json;
+using testing::read_file;
+using testing::run_command;
+using testing::ServeProcess;
+using testing::TempDir;
+using Clock = std::chrono::steady_clock;
+
+const std::string bin = DISCREEL_BIN;
+
+// A small scene; `seed` changes the job id (a comment is part of the scene's text) and, through
+// the physics seed, nothing else that a still at frame 0 shows.
+std::string scene_text(int seed = 1, double duration = 1.0) {
+    return "# seed " + std::to_string(seed) +
+           "\nversion: 1\nvideo:\n  size: [320, 180]\n  fps: 30\n  duration: " +
+           std::to_string(duration) +
+           "\nphysics:\n  restitution: 0.7\nwalls:\n  - box: [[0, 0], [3.2, 1.8]]\n"
+           "discs:\n  - random:\n      count: 40\n      region: [[0.2, 0.2], [3.0, 1.6]]\n"
+           "      radius: [0.05, 0.12]\n      speed: [0, 3]\n";
+}
+
+httplib::Client client_for(int port) {
+    httplib::Client client("127.0.0.1", port);
+    client.set_connection_timeout(5);
+    client.set_read_timeout(30);
+    client.set_write_timeout(5);
+    return client;
+}
+
+httplib::Result post(httplib::Client& client, const std::string& path, const json& body,
+                     const httplib::Headers& headers = {}) {
+    return client.Post(path, headers, body.dump(), "application/json");
+}
+
+// Polls the job until it is final, at most `seconds`; the last answer.
+json wait_final(httplib::Client& client, const std::string& id, double seconds = 60,
+                const httplib::Headers& headers = {}) {
+    const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
+    json job;
+    while (Clock::now() < deadline) {
+        auto got = client.Get("/v1/renders/" + id, headers);
+        if (got && got->status == 200) {
+            job = json::parse(got->body);
+            const std::string status = job["status"];
+            if (status == "succeeded" || status == "failed" || status == "cancelled") return job;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return job;
+}
+
+// What `discreel render` writes for the same scene and options.
+std::string cli_render(const TempDir& dir, const std::string& scene,
+                       const std::vector<std::string>& options, const std::string& name) {
+    testing::write_file(dir / "cli.yaml", scene);
+    std::vector<std::string> argv{bin, "render", dir / "cli.yaml", "-o", dir / name, "-q"};
+    argv.insert(argv.end(), options.begin(), options.end());
+    const auto run = run_command(argv);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return read_file(dir / name);
+}
+
+std::string metric(const std::string& text, const std::string& name) {
+    const auto at = text.find("\n" + name + " ");
+    if (at == std::string::npos) return "";
+    const auto start = at + name.size() + 2;
+    return text.substr(start, text.find('\n', start) - start);
+}
+
+class ServeGLTest : public ::testing::Test {
+protected:
+    TempDir dir;
+    std::string log = dir / "serve.log";
+};
+
+TEST_F(ServeGLTest, AStillIsTheCliBytesAndTheSameRequestIsACacheHit) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    const json request{{"scene", scene_text()}, {"output", "png"}, {"frame", 3},
+                       {"size", "160x90"}};
+    auto accepted = post(client, "/v1/renders", request);
+    ASSERT_TRUE(accepted);
+    ASSERT_EQ(accepted->status, 202) << accepted->body;
+    const json job = json::parse(accepted->body);
+    const std::string id = job["id"];
+    EXPECT_EQ(accepted->get_header_value("Location"), "/v1/renders/" + id);
+    EXPECT_EQ(job["status"], "queued");
+    EXPECT_EQ(job["progress"]["frames_total"], 1);
+
+    const json done = wait_final(client, id);
+    ASSERT_EQ(done["status"], "succeeded") << done.dump();
+    EXPECT_EQ(done["error"], nullptr);
+    EXPECT_EQ(done["output"]["content_type"], "image/png");
+    EXPECT_EQ(done["output"]["url"], "/v1/renders/" + id + "/output");
+
+    auto output = client.Get("/v1/renders/" + id + "/output");
+    ASSERT_TRUE(output);
+    ASSERT_EQ(output->status, 200);
+    EXPECT_EQ(output->get_header_value("Content-Type"), "image/png");
+    const std::string cli = cli_render(dir, scene_text(), {"--frame", "3", "--size", "160x90"},
+                                       "cli.png");
+    EXPECT_EQ(output->body, cli) << "the service's still differs from discreel render's";
+    EXPECT_EQ(done["output"]["bytes"], cli.size());
+    const std::string etag = output->get_header_value("ETag");
+    std::string quoted_sha = done["output"]["sha256"].get<std::string>();
+    quoted_sha.insert(quoted_sha.begin(), '"');
+    quoted_sha.push_back('"');
+    EXPECT_EQ(etag, quoted_sha);
+
+    // The same request: answered from the store at once, no new job.
+    auto again = post(client, "/v1/renders", request);
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again->status, 200);
+    EXPECT_EQ(json::parse(again->body)["status"], "succeeded");
+    // Key order and spacing are not part of the request's identity.
+    std::string reordered_body =
+        "{ \"size\": \"160x90\", \"frame\": 3, \"output\": \"png\", \"scene\": ";
+    reordered_body += json(scene_text()).dump();
+    reordered_body += " }";
+    auto reordered = client.Post("/v1/renders", reordered_body, "application/json");
+    ASSERT_TRUE(reordered);
+    EXPECT_EQ(reordered->status, 200);
+    EXPECT_EQ(json::parse(reordered->body)["id"], id);
+
+    // Conditional and partial requests.
+    auto unchanged = client.Get("/v1/renders/" + id + "/output", {{"If-None-Match", etag}});
+    ASSERT_TRUE(unchanged);
+    EXPECT_EQ(unchanged->status, 304);
+    EXPECT_TRUE(unchanged->body.empty());
+    auto part = client.Get("/v1/renders/" + id + "/output", {{"Range", "bytes=8-23"}});
+    ASSERT_TRUE(part);
+    EXPECT_EQ(part->status, 206);
+    EXPECT_EQ(part->body, cli.substr(8, 16));
+    EXPECT_EQ(part->get_header_value("Content-Range"),
+              "bytes 8-23/" + std::to_string(cli.size()));
+
+    auto metrics = client.Get("/metrics");
+    ASSERT_TRUE(metrics);
+    EXPECT_EQ(metrics->status, 200);
+    EXPECT_EQ(metric(metrics->body, "discreel_jobs_accepted_total"), "1");
+    EXPECT_EQ(metric(metrics->body, "discreel_jobs_cache_hits_total"), "2");
+    EXPECT_EQ(metric(metrics->body, "discreel_jobs_finished_total{status=\"succeeded\"}"), "1");
+    EXPECT_EQ(metric(metrics->body, "discreel_render_seconds_count"), "1");
+    EXPECT_EQ(metric(metrics->body, "discreel_output_bytes_served_total"),
+              std::to_string(cli.size() + 16));
+    // Finished: nothing to cancel.
+    auto cancel = client.Delete("/v1/renders/" + id);
+    ASSERT_TRUE(cancel);
+    EXPECT_EQ(cancel->status, 409);
+}
+
+TEST_F(ServeGLTest, AClipIsTheCliBytesWithProgressEventsToTheEnd) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    const json request{{"scene", scene_text(2)}, {"output", "mp4"}, {"crf", 30},
+                       {"preset", "ultrafast"}, {"fps", 25}};
+    auto accepted = post(client, "/v1/renders", request);
+    ASSERT_TRUE(accepted);
+    ASSERT_EQ(accepted->status, 202) << accepted->body;
+    const std::string id = json::parse(accepted->body)["id"];
+
+    std::string stream;
+    auto events = client.Get("/v1/renders/" + id + "/events",
+                             [&](const char* data, std::size_t size) {
+                                 stream.append(data, size);
+                                 return stream.size() < (1 << 20);
+                             });
+    ASSERT_TRUE(events);
+    EXPECT_EQ(events->status, 200);
+    EXPECT_EQ(events->get_header_value("Content-Type"), "text/event-stream");
+    std::vector<json> jobs;
+    for (std::size_t at = 0; (at = stream.find("data: ", at)) != std::string::npos;) {
+        const auto end = stream.find('\n', at);
+        jobs.push_back(json::parse(stream.substr(at + 6, end - at - 6)));
+        at = end;
+    }
+    ASSERT_FALSE(jobs.empty());
+    EXPECT_EQ(jobs.back()["status"], "succeeded");
+    EXPECT_EQ(jobs.back()["progress"]["frames_done"], 25);
+    for (std::size_t i = 1; i < jobs.size(); ++i) {
+        EXPECT_LE(jobs[i - 1]["progress"]["frames_done"], jobs[i]["progress"]["frames_done"]);
+    }
+
+    auto output = client.Get("/v1/renders/" + id + "/output");
+    ASSERT_TRUE(output);
+    EXPECT_EQ(output->get_header_value("Content-Type"), "video/mp4");
+    EXPECT_EQ(output->body, cli_render(dir, scene_text(2),
+                                       {"--crf", "30", "--preset", "ultrafast", "--fps", "25"},
+                                       "cli.mp4"));
+}
+
+TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
+    ServeProcess server(bin, {"--data", dir / "data", "--max-scene-bytes", "2000"}, log);
+    auto client = client_for(server.port());
+    const auto answer = [&](const std::string& path, const std::string& body) {
+        auto got = client.Post(path, body, "application/json");
+        EXPECT_TRUE(got);
+        return got ? std::pair{got->status, got->body} : std::pair{0, std::string()};
+    };
+    EXPECT_EQ(answer("/v1/validate", json{{"scene", scene_text()}}.dump()),
+              (std::pair{200, std::string("{\"ok\":true}\n")}));
+    // A scene problem: line and column of the value, the message validate prints.
+    const std::string bad = "version: 1\ndiscs:\n  - position: [0, 0]\n    radius: -1\n";
+    for (const char* path : {"/v1/validate", "/v1/renders"}) {
+        const auto [status, body] = answer(path, json{{"scene", bad}}.dump());
+        EXPECT_EQ(status, 422) << path;
+        EXPECT_EQ(json::parse(body),
+                  json::parse(R"({"errors": [{"line": 4, "column": 13, "message":
+                                 "discs[0].radius: must be greater than 0, got -1"}]})"));
+    }
+    // An option problem: no place in the scene.
+    EXPECT_EQ(json::parse(answer("/v1/validate",
+                                 json{{"scene", scene_text()}, {"fps", 500}}.dump()).second),
+              json::parse(R"({"errors": [{"line": null, "column": null,
+                             "message": "--fps must be between 1 and 240"}]})"));
+    EXPECT_EQ(answer("/v1/renders", "{\"scene\": ").first, 400);
+    EXPECT_EQ(answer("/v1/renders", "[1, 2]"),
+              (std::pair{400, std::string(
+                                  "{\"error\":{\"message\":\"the body must be a JSON object\"}}\n")}));
+    EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"colour", "red"}}.dump()).second,
+              "{\"error\":{\"message\":\"unknown field 'colour'; the fields are scene, output, "
+              "frame, at, size, fps, duration, crf and preset\"}}\n");
+    EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"fps", "30"}}.dump()).second,
+              "{\"error\":{\"message\":\"field 'fps' must be an integer\"}}\n");
+    EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"output", "avi"}}.dump()).first,
+              400);
+    EXPECT_EQ(answer("/v1/renders", "{\"scene\": [[[[[[1]]]]]]}").first, 400);
+    // Over the scene limit: 413, from the parsed scene and, far over, before the body is read.
+    EXPECT_EQ(answer("/v1/renders", json{{"scene", std::string(3000, '#')}}.dump()),
+              (std::pair{413, std::string("{\"error\":{\"message\":\"the scene is 3000 bytes, "
+                                          "over the limit of 2000\"}}\n")}));
+    EXPECT_EQ(answer("/v1/renders", json{{"scene", std::string(200000, '#')}}.dump()).first,
+              413);
+    auto unknown = client.Get("/v1/renders/0123456789abcdef0123456789abcdef");
+    ASSERT_TRUE(unknown);
+    EXPECT_EQ(unknown->status, 404);
+    auto not_an_id = client.Get("/v1/renders/..%2F..%2Fjobs.sqlite3/output");
+    ASSERT_TRUE(not_an_id);
+    EXPECT_EQ(not_an_id->status, 404);
+    auto health = client.Get("/healthz");
+    ASSERT_TRUE(health);
+    EXPECT_EQ(health->status, 200);
+    auto page = client.Get("/");
+    ASSERT_TRUE(page);
+    EXPECT_EQ(page->status, 200);
+    EXPECT_NE(page->body.find("<textarea id=\"scene\""), std::string::npos);
+}
+
+TEST_F(ServeGLTest, ATokenGuardsEveryV1Route) {
+    testing::write_file(dir / "token", "s3cret-token\n");
+    ServeProcess server(bin, {"--data", dir / "data", "--token-file", dir / "token"}, log);
+    auto client = client_for(server.port());
+    const json body{{"scene", scene_text()}, {"output", "png"}};
+    for (const httplib::Headers& headers :
+         {httplib::Headers{}, httplib::Headers{{"Authorization", "Bearer s3cret-tokeN"}},
+          httplib::Headers{{"Authorization", "Bearer s3cret-token2"}},
+          httplib::Headers{{"Authorization", "s3cret-token"}}}) {
+        auto refused = post(client, "/v1/validate", body, headers);
+        ASSERT_TRUE(refused);
+        EXPECT_EQ(refused->status, 401);
+        EXPECT_EQ(refused->get_header_value("WWW-Authenticate"), "Bearer");
+        auto get = client.Get("/v1/renders/0123456789abcdef0123456789abcdef", headers);
+        ASSERT_TRUE(get);
+        EXPECT_EQ(get->status, 401);
+    }
+    const httplib::Headers good{{"Authorization", "Bearer s3cret-token"}};
+    auto ok = post(client, "/v1/validate", body, good);
+    ASSERT_TRUE(ok);
+    EXPECT_EQ(ok->status, 200);
+    auto health = client.Get("/healthz");
+    ASSERT_TRUE(health);
+    EXPECT_EQ(health->status, 200);
+}
+
+TEST_F(ServeGLTest, AFloodOf40ClientsGets429WithRetryAfterAndLosesNothing) {
+    ServeProcess server(bin, {"--data", dir / "data", "--workers", "2", "--max-queue", "4"}, log);
+    std::vector<std::thread> clients;
+    std::mutex mutex;
+    std::vector<std::string> accepted;
+    std::atomic<int> busy{0}, other{0};
+    for (int c = 0; c < 40; ++c) {
+        clients.emplace_back([&, c] {
+            auto client = client_for(server.port());
+            auto got = post(client, "/v1/renders",
+                            json{{"scene", scene_text(100 + c)}, {"output", "png"}});
+            if (got && got->status == 202) {
+                std::lock_guard lock(mutex);
+                accepted.push_back(json::parse(got->body)["id"]);
+            } else if (got && got->status == 429 &&
+                       std::stoi(got->get_header_value("Retry-After")) >= 1) {
+                ++busy;
+            } else {
+                ++other;
+                std::lock_guard lock(mutex);
+                ADD_FAILURE() << (got ? std::to_string(got->status) + " " + got->body
+                                      : httplib::to_string(got.error()));
+            }
+        });
+    }
+    for (auto& thread : clients) thread.join();
+    EXPECT_EQ(other.load(), 0);
+    EXPECT_GT(busy.load(), 0);
+    EXPECT_EQ(accepted.size() + static_cast<std::size_t>(busy.load()), 40u);
+    auto client = client_for(server.port());
+    for (const std::string& id : accepted) {
+        EXPECT_EQ(wait_final(client, id)["status"], "succeeded") << id;
+    }
+    auto metrics = client.Get("/metrics");
+    ASSERT_TRUE(metrics);
+    EXPECT_EQ(metric(metrics->body, "discreel_jobs_rejected_total"), std::to_string(busy.load()));
+}
+
+TEST_F(ServeGLTest, EveryAcceptedJobFinishesAfterSigkillAndRestart) {
+    const std::string long_scene = scene_text(7, 6.0);
+    const json clip{{"scene", long_scene}, {"output", "webm"}, {"size", "320x180"}};
+    std::vector<std::string> ids;
+    {
+        ServeProcess server(bin, {"--data", dir / "data"}, log);
+        auto client = client_for(server.port());
+        auto first = post(client, "/v1/renders", clip);
+        ASSERT_TRUE(first);
+        ASSERT_EQ(first->status, 202);
+        ids.push_back(json::parse(first->body)["id"]);
+        for (int i = 0; i < 2; ++i) {
+            auto queued = post(client, "/v1/renders",
+                               json{{"scene", scene_text(20 + i)}, {"output", "png"}});
+            ASSERT_TRUE(queued);
+            ASSERT_EQ(queued->status, 202);
+            ids.push_back(json::parse(queued->body)["id"]);
+        }
+        // Killed while the clip is being rendered.
+        const auto deadline = Clock::now() + std::chrono::seconds(30);
+        while (Clock::now() < deadline) {
+            auto got = client.Get("/v1/renders/" + ids[0]);
+            if (got && json::parse(got->body)["progress"]["frames_done"] > 0) break;
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        const int status = server.stop(SIGKILL);
+        ASSERT_TRUE(WIFSIGNALED(status));
+    }
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    for (const std::string& id : ids) {
+        EXPECT_EQ(wait_final(client, id, 120)["status"], "succeeded") << id;
+    }
+    auto output = client.Get("/v1/renders/" + ids[0] + "/output");
+    ASSERT_TRUE(output);
+    EXPECT_EQ(output->body, cli_render(dir, long_scene, {"--size", "320x180"}, "cli.webm"));
+    // Nothing half-written is left beside the outputs.
+    EXPECT_TRUE(testing::directory_entries(dir.path() / "data" / "tmp").empty());
+}
+
+TEST_F(ServeGLTest, ADiskFullFailsThatJobAndTheServerKeepsServing) {
+    // Writes past 512 kB fail (EFBIG, as ENOSPC on a full disk): the job store's small writes
+    // fit, a 1280x720 clip of 4 s does not.
+    ServeProcess server(bin, {"--data", dir / "data"}, log, {"prlimit", "--fsize=524288"});
+    auto client = client_for(server.port());
+    auto big = post(client, "/v1/renders",
+                    json{{"scene", scene_text(3, 4.0)}, {"output", "mkv"}, {"size", "1280x720"},
+                         {"crf", 0}});
+    ASSERT_TRUE(big);
+    ASSERT_EQ(big->status, 202) << big->body;
+    const json failed = wait_final(client, json::parse(big->body)["id"], 120);
+    EXPECT_EQ(failed["status"], "failed");
+    EXPECT_EQ(failed["output"], nullptr);
+    const std::string message = failed["error"]["message"];
+    EXPECT_NE(message.find("File too large"), std::string::npos) << message;
+    EXPECT_EQ(message.find(dir.path().string()), std::string::npos) << "leaks a path: " << message;
+
+    auto small = post(client, "/v1/renders", json{{"scene", scene_text(4)}, {"output", "png"}});
+    ASSERT_TRUE(small);
+    ASSERT_EQ(small->status, 202);
+    EXPECT_EQ(wait_final(client, json::parse(small->body)["id"])["status"], "succeeded");
+}
+
+TEST_F(ServeGLTest, CancelAndTimeLimitEndJobsWithTheirReason) {
+    ServeProcess server(bin, {"--data", dir / "data", "--job-timeout", "3"}, log);
+    auto client = client_for(server.port());
+    // A long clip runs; a still waits behind it.
+    auto running = post(client, "/v1/renders",
+                        json{{"scene", scene_text(5, 600.0)}, {"output", "mp4"}});
+    auto queued = post(client, "/v1/renders", json{{"scene", scene_text(6)}, {"output", "png"}});
+    ASSERT_TRUE(running && queued);
+    ASSERT_EQ(running->status, 202);
+    ASSERT_EQ(queued->status, 202);
+    const std::string running_id = json::parse(running->body)["id"];
+    const std::string queued_id = json::parse(queued->body)["id"];
+    auto cancelled = client.Delete("/v1/renders/" + queued_id);
+    ASSERT_TRUE(cancelled);
+    EXPECT_EQ(cancelled->status, 200);
+    EXPECT_EQ(json::parse(cancelled->body)["status"], "cancelled");
+    const json timed_out = wait_final(client, running_id, 30);
+    EXPECT_EQ(timed_out["status"], "failed");
+    EXPECT_EQ(timed_out["error"]["message"],
+              "the render took longer than the limit of 3 s (--job-timeout); nothing was kept");
+
+    // A running job cancelled.
+    auto again = post(client, "/v1/renders",
+                      json{{"scene", scene_text(8, 600.0)}, {"output", "mp4"}});
+    ASSERT_TRUE(again);
+    const std::string again_id = json::parse(again->body)["id"];
+    const auto deadline = Clock::now() + std::chrono::seconds(20);
+    while (Clock::now() < deadline &&
+           json::parse(client.Get("/v1/renders/" + again_id)->body)["status"] != "running") {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    auto stop = client.Delete("/v1/renders/" + again_id);
+    ASSERT_TRUE(stop);
+    EXPECT_EQ(stop->status, 200);
+    EXPECT_EQ(json::parse(stop->body)["status"], "cancelled");
+    EXPECT_TRUE(testing::directory_entries(dir.path() / "data" / "tmp").empty());
+}
+
+// Raw sockets: what no well-behaved client sends.
+int connect_to(int port) {
+    const int fd = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(static_cast<std::uint16_t>(port));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    timeval timeout{10, 0};
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) return -1;
+    return fd;
+}
+
+std::string exchange(int fd, const std::string& sent) {
+    (void)send(fd, sent.data(), sent.size(), MSG_NOSIGNAL);
+    std::string got;
+    char buffer[4096];
+    for (int reads = 0; reads < 100; ++reads) {
+        const ssize_t n = recv(fd, buffer, sizeof buffer, 0);
+        if (n <= 0) break;
+        got.append(buffer, static_cast<std::size_t>(n));
+        if (got.find("\r\n\r\n") != std::string::npos) break;   // the status and headers
+    }
+    close(fd);
+    return got;
+}
+
+TEST_F(ServeGLTest, MalformedAndSlowRequestsDoNotHoldTheServer) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    EXPECT_EQ(exchange(connect_to(server.port()), "HELLO THERE\r\n\r\n").rfind("HTTP/1.1 400", 0),
+              0u);
+    EXPECT_EQ(exchange(connect_to(server.port()),
+                       "GET /" + std::string(10000, 'a') + " HTTP/1.1\r\n\r\n")
+                  .rfind("HTTP/1.1 414", 0),
+              0u);
+    EXPECT_EQ(exchange(connect_to(server.port()),
+                       "POST /v1/validate HTTP/1.1\r\nContent-Length: 99999999999\r\n\r\n")
+                  .rfind("HTTP/1.1 413", 0),
+              0u);
+    // A client that stops half-way through its headers: others are served meanwhile, and the
+    // server answers 400 after its read timeout (5 s).
+    const int slow = connect_to(server.port());
+    const auto started = Clock::now();
+    (void)send(slow, "GET /healthz HTTP/1.1\r\nHost: x\r\n", 32, MSG_NOSIGNAL);
+    auto client = client_for(server.port());
+    auto health = client.Get("/healthz");
+    ASSERT_TRUE(health);
+    EXPECT_EQ(health->status, 200);
+    char buffer[256];
+    const ssize_t n = recv(slow, buffer, sizeof buffer, 0);
+    const double waited = std::chrono::duration<double>(Clock::now() - started).count();
+    close(slow);
+    ASSERT_GT(n, 0);
+    EXPECT_EQ(std::string(buffer, static_cast<std::size_t>(n)).rfind("HTTP/1.1 400", 0), 0u);
+    EXPECT_GT(waited, 4.0);
+    EXPECT_LT(waited, 9.0);
+}
+
+}  // namespace
+}  // namespace discreel
