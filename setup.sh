@@ -2,8 +2,8 @@
 # Set up a Debian bookworm machine for discreel, build it, and render the demo or run the tests.
 #
 #   bash setup.sh demo          install packages, build, render the demo to out/demo.mp4
-#   bash setup.sh test [ARGS]   install packages (with the container tools, clang and the
-#                               aarch64 cross compiler and qemu), build, run ctest (the fuzzer
+#   bash setup.sh test [ARGS]   install packages (with the container tools, clang, the
+#                               aarch64 cross compiler and qemu, chromium), build, run ctest (the fuzzer
 #                               for 60 s and the `arch` builds included) and clang-tidy over
 #                               src/; then build again with ASan + UBSan and run the suite once
 #                               more under them.
@@ -27,6 +27,7 @@ readonly BUILD_PACKAGES=(
   libosmesa6-dev libeigen3-dev libyaml-cpp-dev libcli11-dev
   libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libcpp-httplib-dev nlohmann-json3-dev libsqlite3-dev
   ffmpeg
 )
 # Only the container test (ctest label `container`) needs these; see docs/container.md.
@@ -34,6 +35,9 @@ readonly CONTAINER_TEST_PACKAGES=(buildah podman debootstrap debian-archive-keyr
 # The scene fuzzer (ctest label `fuzz`) needs clang and its libFuzzer runtime; see
 # docs/reliability.md.
 readonly CHECK_PACKAGES=(clang libclang-rt-14-dev clang-tidy)
+# The service's browser test (ctest label `browser`) drives chromium over the DevTools protocol
+# from Python; see docs/serve.md. The container test talks to the service with curl.
+readonly BROWSER_TEST_PACKAGES=(chromium python3 python3-websocket curl)
 # The aarch64 test (ctest label `arch`) cross-builds physics and runs it under qemu; see
 # docs/physics.md.
 readonly ARCH_TEST_PACKAGES=(g++-aarch64-linux-gnu qemu-user)
@@ -106,7 +110,7 @@ case "$command" in
     ;;
   test)
     install_packages "${BUILD_PACKAGES[@]}" "${CONTAINER_TEST_PACKAGES[@]}" "${CHECK_PACKAGES[@]}" \
-      "${ARCH_TEST_PACKAGES[@]}"
+      "${ARCH_TEST_PACKAGES[@]}" "${BROWSER_TEST_PACKAGES[@]}"
     build
     log "Running the tests"
     ctest --test-dir "$BUILD_DIR" --output-on-failure --parallel "$JOBS" "$@"

@@ -32,7 +32,7 @@ public:
         av_sha_final(sha_.get(), digest);
         static constexpr char digits[] = "0123456789abcdef";
         std::string text(64, '0');
-        for (int i = 0; i < 32; ++i) {
+        for (std::size_t i = 0; i < 32; ++i) {
             text[2 * i] = digits[digest[i] >> 4];
             text[2 * i + 1] = digits[digest[i] & 15];
         }

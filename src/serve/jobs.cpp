@@ -77,7 +77,7 @@ json job_json(const Job& job) {
             {"output", output}};
 }
 
-void log_line(const std::string& event, json fields) {
+void log_line(const std::string& event, const json& fields) {
     static std::mutex mutex;
     json line = {{"time", utc_now()}, {"event", event}};
     line.update(fields);
@@ -407,7 +407,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
     metrics_.ended(to_string(job.status), seconds);
     json fields = {{"id", id}, {"status", to_string(job.status)}, {"seconds", seconds}};
     if (job.error) fields["error"] = *job.error;
-    log_line("job", std::move(fields));
+    log_line("job", fields);
     changed(job);
 }
 

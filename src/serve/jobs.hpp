@@ -39,11 +39,13 @@ struct Job {
 nlohmann::json job_json(const Job& job);   // the body GET /v1/renders/<id> answers
 
 // One JSON line on standard error: {"time": ..., "event": ..., fields...}.
-void log_line(const std::string& event, nlohmann::json fields);
+void log_line(const std::string& event, const nlohmann::json& fields);
 
 // What POST /v1/renders did with a request.
 enum class Submitted { accepted, existing, cached, busy, store_failed };
 
+// nlohmann::json's move constructor is noexcept; the check follows the assertions inside it.
+// NOLINTNEXTLINE(bugprone-exception-escape)
 struct Submission {
     Submitted what = Submitted::accepted;
     nlohmann::json job;          // the job, for accepted, existing and cached

@@ -20,6 +20,8 @@ struct Refusal {
 
 Refusal refusal(int status, const std::string& message);   // {"error": {"message": ...}}
 
+// nlohmann::json's move constructor is noexcept; the check follows the assertions inside it.
+// NOLINTNEXTLINE(bugprone-exception-escape)
 struct JobRequest {
     std::string scene;               // YAML text
     std::string format;              // "mp4", "webm", "mkv", "gif", "png"

@@ -20,8 +20,9 @@ using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
 constexpr const char* id_pattern = "([0-9a-f]{32})";
-constexpr int max_event_streams = 16;       // each holds one of the pool's threads
-constexpr int http_threads = 32;
+// Each open event stream holds one of the connection threads; the rest stay for other requests.
+constexpr int http_threads = 64;
+constexpr int max_event_streams = 48;
 constexpr auto keep_alive_wait = std::chrono::seconds(15);   // between comments on a quiet stream
 
 void reply(httplib::Response& res, int status, const json& body) {
@@ -204,7 +205,7 @@ void Server::Impl::routes() {
         if (res.body.empty() && res.status != 304) reply(res, res.status, error_body(reason_for(res.status)));
     });
     http.set_exception_handler(
-        [](const httplib::Request&, httplib::Response& res, std::exception_ptr failure) {
+        [](const httplib::Request&, httplib::Response& res, const std::exception_ptr& failure) {
             std::string what = "unknown";
             try {
                 std::rethrow_exception(failure);

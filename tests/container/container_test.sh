@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The container test: build the image from the Dockerfile, render the built-in demo inside it,
-# and check that the clip matches the one the host build renders (ffprobe stream facts).
+# and check that the clip matches the one the host build renders (ffprobe stream facts); then
+# run the image's service and render a still through it over loopback.
 #
 #   container_test.sh SOURCE_DIR WORK_DIR HOST_DISCREEL
 #
@@ -136,6 +137,45 @@ render_on_host() {
   [[ -s $WORK_DIR/host-out/demo.mp4 ]] || fail "the host build wrote no demo.mp4"
 }
 
+# The image's service on loopback: started as the image's user with a volume for /data, checked
+# with the image's own HEALTHCHECK command, sent a scene over HTTP, stopped by pid.
+serve_in_container() {
+  local out="$WORK_DIR/serve-stdout.txt" port="" server_pid discreel_pid id status="" check
+  rm -rf "$WORK_DIR/serve-data" && mkdir -p "$WORK_DIR/serve-data" && chmod 0777 "$WORK_DIR/serve-data"
+  buildah run --isolation chroot --volume "$WORK_DIR/serve-data:/data" "$CONTAINER" -- \
+    discreel serve --listen 127.0.0.1:0 --data /data >"$out" 2>"$WORK_DIR/serve-log.jsonl" &
+  server_pid=$!
+  for _ in $(seq 100); do
+    port="$(sed -n 's|^listening on http://127.0.0.1:\([0-9]*\)$|\1|p' "$out")"
+    [[ -n $port ]] && break
+    sleep 0.2
+  done
+  [[ -n $port ]] || fail "the service in the container did not start"
+  echo "service on port $port"
+  # The HEALTHCHECK line of the Dockerfile, unescaped from JSON, on this port.
+  check="$(grep -o "exec 3<>/dev/tcp[^\"]*" "$SOURCE_DIR/Dockerfile" | sed 's/\\\\/\\/g; s/8080/'"$port"'/')"
+  buildah run --isolation chroot "$CONTAINER" -- bash -c "$check" || fail "the image's health check failed"
+  local scene='version: 1\nvideo:\n  size: [320, 180]\ndiscs:\n  - position: [0, 0]\n    radius: 0.4\n'
+  printf "$scene" >"$WORK_DIR/serve-scene.yaml"
+  id="$(curl -sf -X POST --data "{\"scene\": \"$scene\", \"output\": \"png\"}" \
+    "http://127.0.0.1:$port/v1/renders" | sed -n 's/.*"id":"\([0-9a-f]*\)".*/\1/p')"
+  [[ -n $id ]] || fail "the service did not accept the scene"
+  for _ in $(seq 120); do
+    status="$(curl -sf "http://127.0.0.1:$port/v1/renders/$id" | sed -n 's/.*"status":"\([a-z]*\)".*/\1/p')"
+    [[ $status == succeeded || $status == failed ]] && break
+    sleep 0.5
+  done
+  [[ $status == succeeded ]] || fail "the job ended '$status'"
+  curl -sf -o "$WORK_DIR/container-out/served.png" "http://127.0.0.1:$port/v1/renders/$id/output"
+  discreel_pid="$(pgrep -f -- "discreel serve --listen 127.0.0.1:0 --data /data" | head -n 1)"
+  [[ -n $discreel_pid ]] && kill -TERM "$discreel_pid"
+  wait "$server_pid" || true
+  "$HOST_DISCREEL" render "$WORK_DIR/serve-scene.yaml" -o "$WORK_DIR/host-out/served.png" -q
+  [[ "$(stream_facts "$WORK_DIR/container-out/served.png")" == "$(stream_facts "$WORK_DIR/host-out/served.png")" ]] ||
+    fail "the still the service rendered differs from the host's"
+  echo "rendered $id through the service: $(stat -c %s "$WORK_DIR/container-out/served.png") bytes"
+}
+
 remove_container() {
   buildah rm "$CONTAINER" >/dev/null 2>&1 || true
 }
@@ -158,7 +198,7 @@ compare_clips() {
 }
 
 [[ $EUID -eq 0 ]] || fail "needs root (buildah with chroot isolation); skip it with: ctest -LE container"
-for tool in buildah podman debootstrap ffprobe; do
+for tool in buildah podman debootstrap ffprobe curl; do
   command -v "$tool" >/dev/null ||
     fail "$tool is missing: run 'bash setup.sh test' to install it, or skip this test with: ctest -LE container"
 done
@@ -191,4 +231,5 @@ trap remove_container EXIT
 step container-render render_in_container
 step host-render render_on_host
 step compare compare_clips
+step container-serve serve_in_container
 echo "container test passed in $((SECONDS - total_start)) s"
