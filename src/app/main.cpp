@@ -299,6 +299,8 @@ static int run_command_line(int argc, char** argv) {
 
     ServeOptions serve;
     serve.version = DISCREEL_VERSION;
+    // A service holds many requests at once: its default scene size is smaller than a file's.
+    serve.limits.file_bytes = 4u << 20;
     CLI::App* serve_cmd = app.add_subcommand(
         "serve", "Render scenes sent over HTTP (docs/serve.md): a job queue with warm workers");
     serve_cmd->add_option("--listen", serve.listen,

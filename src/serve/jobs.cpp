@@ -117,7 +117,8 @@ Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics
                 .frames_done = stored.status == JobStatus::succeeded ? stored.frames_total : 0,
                 .frames_total = stored.frames_total,
                 .error = std::move(stored.error),
-                .output = std::move(stored.output)};
+                .output = std::move(stored.output),
+                .version = 1};   // 0 means "none seen yet" to wait_change
         if (!is_final(job.status)) {
             job.status = JobStatus::queued;
             jobs->queue_.push_back(job.id);
@@ -323,7 +324,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         cancel = jobs_.at(id).cancel;
     }
     const std::string tmp = (tmp_ / id).string();
-    bool timed_out = false;
+    std::atomic<bool> timed_out{false};   // set by whichever stage polls should_stop
     std::optional<std::string> extension;
     const auto outcome = [&]() -> Expected<OutputInfo> {
         auto text = store_.request(id);
@@ -364,7 +365,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         };
         def.should_stop = [&] {
             if (Clock::now() > deadline) timed_out = true;
-            return cancel->load() || timed_out;
+            return cancel->load() || timed_out.load();
         };
         auto rendered = job::render(def);
         if (!rendered) return rendered.error();

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <semaphore>
 
 #include "discreel/render.hpp"
 #include "discreel/serve.hpp"
@@ -23,6 +24,9 @@ constexpr const char* id_pattern = "([0-9a-f]{32})";
 // Each open event stream holds one of the connection threads; the rest stay for other requests.
 constexpr int http_threads = 64;
 constexpr int max_event_streams = 48;
+// Scenes loaded at once by the connection threads (validation before a job is accepted): each
+// may take up to the scene limits' memory (docs/reliability.md), so only a few at a time.
+constexpr std::ptrdiff_t concurrent_loads = 2;
 constexpr auto keep_alive_wait = std::chrono::seconds(15);   // between comments on a quiet stream
 
 void reply(httplib::Response& res, int status, const json& body) {
@@ -55,7 +59,6 @@ const char* reason_for(int status) {
         case 404: return "no such resource";
         case 405: return "method not allowed";
         case 413: return "the request body is over the scene size limit";
-        case 416: return "the range is outside the file";
         default: return "the request failed";
     }
 }
@@ -75,6 +78,17 @@ struct Server::Impl {
     httplib::Server http;
     int port = 0;
     std::atomic<int> streams{0};
+    std::counting_semaphore<concurrent_loads> loading{concurrent_loads};
+
+    // plan_job with at most concurrent_loads scenes in memory at once.
+    std::variant<job::RenderPlan, Refusal> plan(const JobRequest& request) {
+        loading.acquire();
+        struct Release {
+            std::counting_semaphore<concurrent_loads>& semaphore;
+            ~Release() { semaphore.release(); }
+        } release{loading};
+        return plan_job(request, def.limits);
+    }
 
     void routes();
     void post_render(const httplib::Request& req, httplib::Response& res);
@@ -87,10 +101,10 @@ void Server::Impl::post_render(const httplib::Request& req, httplib::Response& r
     auto parsed = parse_job_request(req.body, def.limits, def.version);
     if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(res, *refused);
     const JobRequest& request = std::get<JobRequest>(parsed);
-    auto planned = plan_job(request, def.limits);
+    auto planned = plan(request);
     if (auto* refused = std::get_if<Refusal>(&planned)) return reply(res, *refused);
-    const job::RenderPlan& plan = std::get<job::RenderPlan>(planned);
-    const Submission done = jobs->submit(request, plan.frames.last - plan.frames.first + 1);
+    const job::RenderPlan& resolved = std::get<job::RenderPlan>(planned);
+    const Submission done = jobs->submit(request, resolved.frames.last - resolved.frames.first + 1);
     switch (done.what) {
         case Submitted::accepted:
         case Submitted::existing:
@@ -112,7 +126,7 @@ void Server::Impl::post_render(const httplib::Request& req, httplib::Response& r
 void Server::Impl::post_validate(const httplib::Request& req, httplib::Response& res) {
     auto parsed = parse_job_request(req.body, def.limits, def.version);
     if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(res, *refused);
-    auto planned = plan_job(std::get<JobRequest>(parsed), def.limits);
+    auto planned = plan(std::get<JobRequest>(parsed));
     if (auto* refused = std::get_if<Refusal>(&planned)) return reply(res, *refused);
     reply(res, 200, {{"ok", true}});
 }
@@ -131,6 +145,21 @@ void Server::Impl::get_output(const httplib::Request& req, httplib::Response& re
     if (req.get_header_value("If-None-Match") == etag) {
         res.status = 304;
         return;
+    }
+    // cpp-httplib 0.11 slices a streamed body by the ranges it parsed as they are, past the end
+    // of the file too (announcing lengths the body does not have): a range that starts past the
+    // end is 416 here, and one that ends past it is cut at the end (RFC 9110, 14.1.2). The
+    // request is this connection's own object, made const only for handlers.
+    const auto size = static_cast<std::int64_t>(output->info.bytes);
+    for (auto& [first, last] : const_cast<httplib::Request&>(req).ranges) {
+        const bool suffix = first < 0;
+        if ((suffix && last <= 0) || (!suffix && first >= size)) {
+            res.status = 416;
+            res.set_header("Content-Range", "bytes */" + std::to_string(size));
+            return;
+        }
+        if (suffix) last = std::min<std::int64_t>(last, size);
+        if (!suffix && last >= size) last = size - 1;
     }
     std::shared_ptr<std::FILE> file(std::fopen(output->path.c_str(), "rb"), FileCloser{});
     if (!file) return reply(res, 500, error_body("the output of job " + id + " is missing"));
@@ -202,7 +231,10 @@ void Server::Impl::routes() {
         return httplib::Server::HandlerResponse::Unhandled;
     });
     http.set_error_handler([](const httplib::Request&, httplib::Response& res) {
-        if (res.body.empty() && res.status != 304) reply(res, res.status, error_body(reason_for(res.status)));
+        // 304 and 416 carry no body (a 416's would be cut by the range it refuses).
+        if (res.body.empty() && res.status != 304 && res.status != 416) {
+            reply(res, res.status, error_body(reason_for(res.status)));
+        }
     });
     http.set_exception_handler(
         [](const httplib::Request&, httplib::Response& res, const std::exception_ptr& failure) {

@@ -162,11 +162,37 @@ TEST_F(ServeGLTest, AStillIsTheCliBytesAndTheSameRequestIsACacheHit) {
     EXPECT_EQ(metric(metrics->body, "discreel_jobs_finished_total{status=\"succeeded\"}"), "1");
     EXPECT_EQ(metric(metrics->body, "discreel_render_seconds_count"), "1");
     EXPECT_EQ(metric(metrics->body, "discreel_output_bytes_served_total"),
-              std::to_string(cli.size() + 16));
+              std::to_string(cli.size() + 16));   // the whole file and the range
+    // A range past the end is cut at the end; one that starts past it is 416.
+    auto tail = client.Get("/v1/renders/" + id + "/output", {{"Range", "bytes=-16"}});
+    ASSERT_TRUE(tail);
+    EXPECT_EQ(tail->status, 206);
+    EXPECT_EQ(tail->body, cli.substr(cli.size() - 16));
+    auto cut = client.Get("/v1/renders/" + id + "/output", {{"Range", "bytes=100-99999999"}});
+    ASSERT_TRUE(cut);
+    EXPECT_EQ(cut->status, 206);
+    EXPECT_EQ(cut->body, cli.substr(100));
+    auto outside = client.Get("/v1/renders/" + id + "/output", {{"Range", "bytes=99999999-"}});
+    ASSERT_TRUE(outside);
+    EXPECT_EQ(outside->status, 416);
+    EXPECT_EQ(outside->get_header_value("Content-Range"), "bytes */" + std::to_string(cli.size()));
     // Finished: nothing to cancel.
     auto cancel = client.Delete("/v1/renders/" + id);
     ASSERT_TRUE(cancel);
     EXPECT_EQ(cancel->status, 409);
+
+    // Another still on the same worker, whose context is now warm: still the CLI's bytes.
+    auto second = post(client, "/v1/renders",
+                       json{{"scene", scene_text(9)}, {"output", "png"}, {"size", "160x90"}});
+    ASSERT_TRUE(second);
+    ASSERT_EQ(second->status, 202);
+    const std::string second_id = json::parse(second->body)["id"];
+    ASSERT_EQ(wait_final(client, second_id)["status"], "succeeded");
+    auto second_output = client.Get("/v1/renders/" + second_id + "/output");
+    ASSERT_TRUE(second_output);
+    EXPECT_EQ(second_output->body, cli_render(dir, scene_text(9), {"--size", "160x90"}, "2.png"));
+    // SIGTERM: a clean stop.
+    EXPECT_EQ(server.stop(SIGTERM), 0);
 }
 
 TEST_F(ServeGLTest, AClipIsTheCliBytesWithProgressEventsToTheEnd) {
