@@ -44,7 +44,31 @@ std::optional<std::string> check_options(const GoldenOptions& o) {
         return "--max-diff-pixels must be 0 or more";
     if (o.max_diff_ratio && !(*o.max_diff_ratio >= 0 && *o.max_diff_ratio <= 1))
         return "--max-diff-ratio must be between 0 and 1";
+    if (o.shards < 1 || o.shard < 1 || o.shard > o.shards)
+        return "--shard takes K/N with 1 <= K <= N, e.g. 2/4";
     return std::nullopt;
+}
+
+// Keeps the golden frames of share `shard` of `shards` (see GoldenOptions::shard); each
+// scene's frames end sorted and without repeats, and a scene left with none is dropped.
+void keep_shard(std::vector<LoadedScene>& scenes, int shard, int shards) {
+    std::size_t index = 0;
+    std::vector<LoadedScene> kept;
+    for (LoadedScene& loaded : scenes) {
+        std::vector<int> frames = loaded.scene.golden_frames;
+        std::sort(frames.begin(), frames.end());
+        frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+        std::vector<int> mine;
+        for (const int frame : frames) {
+            if (index++ % static_cast<std::size_t>(shards) == static_cast<std::size_t>(shard - 1)) {
+                mine.push_back(frame);
+            }
+        }
+        if (mine.empty()) continue;
+        loaded.scene.golden_frames = std::move(mine);
+        kept.push_back(std::move(loaded));
+    }
+    scenes = std::move(kept);
 }
 
 // How many pixels of a frame may differ: the tighter of the two limits given, none by default.
@@ -422,8 +446,9 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
         report_error(err, *problem);
         return exit_bad_input;
     }
-    const auto scenes = load_scenes(o, err);
+    auto scenes = load_scenes(o, err);
     if (!scenes) return exit_bad_input;
+    if (o.shards > 1) keep_shard(*scenes, o.shard, o.shards);
     // The reports' files are created now: a missing directory fails before any rendering.
     std::vector<NamedPath> inputs, reports;
     for (const std::string& path : o.scene_paths) inputs.push_back({"the scene", path});

@@ -32,6 +32,11 @@ struct GoldenOptions {
     VideoOverrides video;                         // --size only
     ProgressRequest progress = ProgressRequest::none;   // --progress [json]
     scene::Limits limits;                         // --max-bodies, --max-duration, ...
+    // --shard K/N: only the K-th (1-based) of N shares of all the scenes' golden frames. The
+    // frames, in scene order and then frame order, are dealt out in turn: frame i to share
+    // i mod N + 1, so N runs together check every frame exactly once.
+    int shard = 1;
+    int shards = 1;
 };
 
 // Exit codes: 0 every frame matched (or was written), 1 a frame differs or has no golden,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -15,7 +16,9 @@
 #include "discreel/did_you_mean.hpp"
 #include "discreel/temporary_files.hpp"
 #include "exit_codes.hpp"
+#include "discreel/read_file.hpp"
 #include "golden_command.hpp"
+#include "manifest.hpp"
 #include "run_support.hpp"
 #include "signals.hpp"
 
@@ -143,7 +146,7 @@ void add_frame_option(CLI::App& cmd, std::optional<int>& frame) {
 // asks for JSON; `--update`/`-u` alone rewrites every golden and `--update=changed` only what
 // changed. The value is joined to the option here, so a scene path after a bare option is
 // never taken for its value.
-std::vector<std::string> normalise_arguments(int argc, char** argv) {
+std::vector<std::string> normalise_arguments(const std::vector<std::string>& args) {
     struct Optional {
         std::string_view name, fallback;
         std::vector<std::string_view> values;   // also taken as the value when they follow
@@ -151,7 +154,6 @@ std::vector<std::string> normalise_arguments(int argc, char** argv) {
     const std::vector<Optional> options{{"--progress", "lines", {"lines", "json"}},
                                         {"--update", "all", {"all", "changed", "missing"}},
                                         {"-u", "all", {"all", "changed", "missing"}}};
-    std::vector<std::string> args(argv + 1, argv + argc);
     std::vector<std::string> out;
     for (std::size_t k = 0; k < args.size(); ++k) {
         if (args[k] == "--") {
@@ -221,7 +223,37 @@ std::optional<std::string> unknown_word(CLI::App& app, const std::vector<std::st
 
 }  // namespace
 
-static int run_command_line(int argc, char** argv) {
+static int run_words(const std::vector<std::string>& words, const std::string& where);
+
+struct BatchOptions {
+    std::string manifest;
+    std::optional<std::size_t> index;
+};
+
+// A manifest's line, run as `discreel render` with that line's words; its mistakes are printed
+// as MANIFEST:LINE: message.
+static int run_batch(const BatchOptions& b) {
+    const auto fail = [](const std::string& message) {
+        report_error(std::cerr, message);
+        return exit_bad_input;
+    };
+    auto text = discreel::read_file_bounded(b.manifest, 16u << 20);
+    if (!text) return fail("cannot read '" + b.manifest + "': " + text.error().message);
+    if (text->too_large) return fail("'" + b.manifest + "' is over 16 MiB: not a manifest");
+    auto index = batch_index(b.index, [](const char* name) -> const char* {
+        return std::getenv(name);
+    });
+    if (!index) return fail(index.error().message);
+    auto line = pick_render(text->bytes, *index, b.manifest);
+    if (!line) return fail(line.error().message);
+    std::vector<std::string> words{"render"};
+    words.insert(words.end(), line->words.begin(), line->words.end());
+    return run_words(words, b.manifest + ":" + std::to_string(line->number) + ": ");
+}
+
+// Runs one command line (the words after the program's name). A mistake in it is printed after
+// `where`: "discreel: " for the process's own, "MANIFEST:LINE: " for a line of a batch.
+static int run_words(const std::vector<std::string>& words, const std::string& where) {
     CLI::App app{"discreel: renders 2-D disc physics scenes to video, headless and deterministic",
                  "discreel"};
     app.set_version_flag("--version", std::string("discreel ") + DISCREEL_VERSION);
@@ -297,6 +329,15 @@ static int run_command_line(int argc, char** argv) {
     add_output_files(*simulate_cmd, simulate.files);
     add_limit_options(*simulate_cmd, simulate.limits);
 
+    BatchOptions batch;
+    CLI::App* batch_cmd = app.add_subcommand(
+        "batch", "Render one line of a manifest (SCENE -o OUT [options] per line): the task's "
+                 "index picks it (docs/scale.md)");
+    batch_cmd->add_option("manifest", batch.manifest, "Manifest file")->required();
+    batch_cmd->add_option("--index", batch.index,
+                          "0-based render to run; default: SLURM_ARRAY_TASK_ID, then "
+                          "JOB_COMPLETION_INDEX");
+
     ServeOptions serve;
     serve.version = DISCREEL_VERSION;
     // A service holds many requests at once: its default scene size is smaller than a file's.
@@ -366,10 +407,33 @@ static int run_command_line(int argc, char** argv) {
     golden_cmd->add_option("--junit", golden.junit, "Also write a JUnit XML report to FILE")
         ->option_text("FILE");
     add_size_option(*golden_cmd, golden.video, "Override every scene's frame size, WIDTHxHEIGHT");
+    golden_cmd->add_option_function<std::string>(
+                  "--shard",
+                  [&golden](const std::string& text) {
+                      const auto number = [](std::string_view digits, int& value) {
+                          const auto [end, problem] = std::from_chars(
+                              digits.data(), digits.data() + digits.size(), value);
+                          return !digits.empty() && problem == std::errc() &&
+                                 end == digits.data() + digits.size();
+                      };
+                      const auto slash = text.find('/');
+                      const std::string_view all = text;
+                      int k = 0, n = 0;
+                      if (slash == std::string::npos || !number(all.substr(0, slash), k) ||
+                          !number(all.substr(slash + 1), n) || k < 1 || k > n) {
+                          throw CLI::ValidationError(
+                              "--shard",
+                              "expected K/N with 1 <= K <= N, e.g. 2/4, got '" + text + "'");
+                      }
+                      golden.shard = k;
+                      golden.shards = n;
+                  },
+                  "Check only the K-th of N shares of the frames (1-based), for parallel CI jobs")
+        ->option_text("K/N");
 
-    std::vector<std::string> args = normalise_arguments(argc, argv);
+    std::vector<std::string> args = normalise_arguments(words);
     if (const auto unknown = unknown_word(app, args)) {
-        std::cerr << "discreel: " << *unknown << '\n';
+        std::cerr << where << *unknown << '\n';
         return exit_bad_input;
     }
     try {
@@ -387,13 +451,12 @@ static int run_command_line(int argc, char** argv) {
         for (const CLI::App* sub : app.get_subcommands({})) {
             if (sub->parsed()) command = " " + sub->get_name();
         }
-        std::cerr << "discreel: " << e.what() << "\nRun 'discreel" << command
+        std::cerr << where << e.what() << "\nRun 'discreel" << command
                   << " --help' for more information.\n";
         return exit_bad_input;
     }
 
-    ignore_file_size_signal();
-    install_stop_handlers();
+    if (batch_cmd->parsed()) return run_batch(batch);
     int code = exit_bad_input;
     if (render_cmd->parsed()) code = run_render(render, std::cout, std::cerr);
     if (simulate_cmd->parsed()) code = run_simulate(simulate, std::cout, std::cerr);
@@ -413,7 +476,9 @@ static int run_command_line(int argc, char** argv) {
 int main(int argc, char** argv) {
     discreel::delete_temporary_files_on_crash();
     try {
-        return run_command_line(argc, argv);
+        ignore_file_size_signal();
+        install_stop_handlers();
+        return run_words(std::vector<std::string>(argv + 1, argv + argc), "discreel: ");
     } catch (const std::bad_alloc&) {
         std::cerr << "discreel: out of memory\n";
     } catch (const std::exception& e) {

@@ -253,5 +253,37 @@ TEST(CliHabitsGLTest, UnquotedColourInFlowStyleIsPointedAt) {
         << run.err;
 }
 
+// Render farms run one line of a manifest per task: the index from --index, a Slurm array or
+// a Kubernetes indexed Job; the line means what it means after `discreel render`.
+TEST(BatchGLTest, EachTaskRendersItsLineOfTheManifest) {
+    TempDir dir;
+    testing::write_file(dir / "renders.txt",
+                        "# stills of the short scene\n\n" + short_scene + " -o '" + (dir / "a 0.png") +
+                            "' --frame 2\n" + short_scene + " -o " + (dir / "b.png") +
+                            " --size 64x36\n" + short_scene + " -o " + (dir / "c.png") +
+                            " --colour red\n");
+    auto run = run_command({bin, "batch", dir / "renders.txt", "--index", "0"});
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    const auto direct = run_command({bin, "render", short_scene, "-o", dir / "direct.png",
+                                     "--frame", "2", "-q"});
+    ASSERT_EQ(direct.exit_code, 0);
+    EXPECT_EQ(read_file(dir / "a 0.png"), read_file(dir / "direct.png"));
+
+    run = run_command({bin, "batch", dir / "renders.txt"}, {{"SLURM_ARRAY_TASK_ID", "1"}});
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(testing::probe_video(dir / "b.png")["width"], "64");
+    run = run_command({bin, "batch", dir / "renders.txt"}, {{"JOB_COMPLETION_INDEX", "2"}});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err.rfind(dir / "renders.txt" + ":5: unknown option '--colour' for 'render'", 0),
+              0u)
+        << run.err;
+    run = run_command({bin, "batch", dir / "renders.txt", "--index", "3"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: index 3 is past the end of " + (dir / "renders.txt") +
+                           ", which has 3 renders (indexes 0 to 2)\n");
+    run = run_command({bin, "batch", dir / "renders.txt"});
+    EXPECT_EQ(run.exit_code, 2);
+}
+
 }  // namespace
 }  // namespace discreel

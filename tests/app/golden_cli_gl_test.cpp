@@ -336,5 +336,60 @@ TEST(GoldenConfigsGLTest, EveryShippedSceneMatchesItsGoldens) {
     }
 }
 
+// The <testcase classname=... name=...> opening tags of a JUnit file, sorted.
+std::vector<std::string> junit_cases(const std::string& path) {
+    const std::string xml = read_file(path);
+    std::vector<std::string> cases;
+    for (auto at = xml.find("<testcase "); at != std::string::npos;
+         at = xml.find("<testcase ", at + 1)) {
+        cases.push_back(xml.substr(at, xml.find('>', at) - at));
+    }
+    std::sort(cases.begin(), cases.end());
+    return cases;
+}
+
+// Playwright's --shard=K/N: N runs split the frames between them, and their JUnit files hold
+// one full run's cases, each once.
+TEST(GoldenShardsGLTest, ShardsTogetherCheckEveryFrameOnce) {
+    std::vector<std::string> argv{bin, "golden"};
+    for (const char* name : {"billiards", "cradle", "shapes"}) {
+        argv.push_back((source_dir / "configs" / (std::string(name) + ".yaml")).string());
+    }
+    argv.insert(argv.end(), {"--dir", (source_dir / "tests/golden/configs").string(), "--size",
+                             "320x180"});
+    TempDir dir;
+    auto full = argv;
+    full.insert(full.end(), {"--junit", dir / "full.xml"});
+    const auto run = run_command(full);
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    const auto all = junit_cases(dir / "full.xml");
+    ASSERT_GE(all.size(), 5u);
+    std::vector<std::string> together;
+    for (int k = 1; k <= 3; ++k) {
+        auto shard = argv;
+        const std::string junit = dir / ("shard" + std::to_string(k) + ".xml");
+        shard.insert(shard.end(), {"--shard", std::to_string(k) + "/3", "--junit", junit});
+        const auto part = run_command(shard);
+        ASSERT_EQ(part.exit_code, 0) << part.out << part.err;
+        const auto cases = junit_cases(junit);
+        EXPECT_GE(cases.size(), all.size() / 3) << "shard " << k;
+        EXPECT_LE(cases.size(), all.size() / 3 + 1) << "shard " << k;
+        together.insert(together.end(), cases.begin(), cases.end());
+    }
+    std::sort(together.begin(), together.end());
+    EXPECT_EQ(together, all);
+
+    for (const char* bad : {"0/3", "4/3", "3", "a/b", "1/0"}) {
+        auto refused = argv;
+        refused.insert(refused.end(), {"--shard", bad});
+        const auto result = run_command(refused);
+        EXPECT_EQ(result.exit_code, 2) << bad;
+        EXPECT_NE(result.err.find("expected K/N with 1 <= K <= N, e.g. 2/4, got '" +
+                                  std::string(bad) + "'"),
+                  std::string::npos)
+            << result.err;
+    }
+}
+
 }  // namespace
 }  // namespace discreel
