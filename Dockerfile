@@ -7,7 +7,7 @@
 # Build stage: the same set-up script a developer runs, then the test suite. The container
 # test is left out: it builds this very image; so are the `arch` tests, which build physics
 # again in other configurations and need the cross tools only `setup.sh test` installs, and
-# the `browser` test, which needs chromium.
+# the `browser` and `slurm` tests, which need chromium and Slurm.
 FROM debian:bookworm-slim AS build
 WORKDIR /src
 # setup.sh alone first, so the package layer is cached until the package list changes.
@@ -15,7 +15,7 @@ COPY setup.sh ./
 RUN bash setup.sh deps && rm -rf /var/lib/apt/lists/*
 COPY . .
 RUN bash setup.sh build \
- && ctest --test-dir build --output-on-failure --parallel "$(nproc)" --label-exclude '^(container|arch|browser)$'
+ && ctest --test-dir build --output-on-failure --parallel "$(nproc)" --label-exclude '^(container|arch|browser|slurm)$'
 
 # Runtime stage: the binary and the shared libraries it links (from its ldd), nothing else.
 FROM debian:bookworm-slim

@@ -3,10 +3,10 @@
 #
 #   bash setup.sh demo          install packages, build, render the demo to out/demo.mp4
 #   bash setup.sh test [ARGS]   install packages (with the container tools, clang, the
-#                               aarch64 cross compiler and qemu, chromium), build, run ctest (the fuzzer
-#                               for 60 s and the `arch` builds included) and clang-tidy over
-#                               src/; then build again with ASan + UBSan and run the suite once
-#                               more under them.
+#                               aarch64 cross compiler and qemu, chromium, Slurm), build, run
+#                               ctest (the fuzzer for 60 s and the `arch` builds included) and
+#                               clang-tidy over src/; then build again with ASan + UBSan and
+#                               run the suite once more under them.
 #                               ARGS go to both ctest runs, e.g. `bash setup.sh test -LE container`
 #   bash setup.sh build         install packages, build (what the Dockerfile runs)
 #   bash setup.sh deps          install packages only
@@ -38,6 +38,9 @@ readonly CHECK_PACKAGES=(clang libclang-rt-14-dev clang-tidy)
 # The service's browser test (ctest label `browser`) drives chromium over the DevTools protocol
 # from Python; see docs/serve.md. The container test talks to the service with curl.
 readonly BROWSER_TEST_PACKAGES=(chromium python3 python3-websocket curl)
+# The Slurm test (ctest label `slurm`) runs munged, slurmctld and two slurmd nodes on this
+# machine; see docs/scale.md.
+readonly SLURM_TEST_PACKAGES=(slurm-wlm munge)
 # The aarch64 test (ctest label `arch`) cross-builds physics and runs it under qemu; see
 # docs/physics.md.
 readonly ARCH_TEST_PACKAGES=(g++-aarch64-linux-gnu qemu-user)
@@ -110,7 +113,7 @@ case "$command" in
     ;;
   test)
     install_packages "${BUILD_PACKAGES[@]}" "${CONTAINER_TEST_PACKAGES[@]}" "${CHECK_PACKAGES[@]}" \
-      "${ARCH_TEST_PACKAGES[@]}" "${BROWSER_TEST_PACKAGES[@]}"
+      "${ARCH_TEST_PACKAGES[@]}" "${BROWSER_TEST_PACKAGES[@]}" "${SLURM_TEST_PACKAGES[@]}"
     build
     log "Running the tests"
     ctest --test-dir "$BUILD_DIR" --output-on-failure --parallel "$JOBS" "$@"

@@ -176,6 +176,19 @@ serve_in_container() {
   echo "rendered $id through the service: $(stat -c %s "$WORK_DIR/container-out/served.png") bytes"
 }
 
+# The image as a Kubernetes Indexed Job runs it (deploy/k8s/batch-job.yaml): `batch` with
+# JOB_COMPLETION_INDEX in the environment renders that line of the manifest.
+batch_in_container() {
+  local dir="$WORK_DIR/container-batch"
+  rm -rf "$dir" && mkdir -p "$dir" && chmod 0777 "$dir"
+  printf 'version: 1\nvideo:\n  size: [64, 36]\ndiscs:\n  - position: [0, 0]\n    radius: 0.4\n' >"$dir/s.yaml"
+  printf '# two stills\ns.yaml -o first.png\ns.yaml -o second.png --size 32x18\n' >"$dir/renders.txt"
+  buildah run --isolation chroot --env JOB_COMPLETION_INDEX=1 --volume "$dir:/work" \
+    --workingdir /work "$CONTAINER" -- discreel batch /work/renders.txt
+  [[ -s $dir/second.png && ! -e $dir/first.png ]] || fail "index 1 did not render second.png alone"
+  [[ "$(stream_facts "$dir/second.png")" == *width=32* ]] || fail "second.png is not 32 wide"
+}
+
 remove_container() {
   buildah rm "$CONTAINER" >/dev/null 2>&1 || true
 }
@@ -232,4 +245,5 @@ step container-render render_in_container
 step host-render render_on_host
 step compare compare_clips
 step container-serve serve_in_container
+step container-batch batch_in_container
 echo "container test passed in $((SECONDS - total_start)) s"
