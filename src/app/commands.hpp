@@ -18,19 +18,11 @@ struct OutputFiles {
 
 struct RenderOptions {
     std::optional<std::string> scene_path;   // none: the built-in demo
-    std::string output;                      // extension picks the format; "-": stdout
-    std::optional<int> frame;                // for a .png still; negative counts from the end
-    std::optional<double> at;                // seconds, for a .png still
-    std::optional<std::string> frames;       // "A-B" or "A-": a range of frames, any format
-    std::optional<std::string> quality;      // low, medium, high, 4k: size, fps and crf
+    // What to render and how: -o, --frame, --at, --frames, --quality, --size, --fps,
+    // --duration, --crf, --preset, --codec, --pix-fmt, --lossless, --format. The service's
+    // requests fill the same struct (job::plan_render resolves both alike).
+    job::RenderRequest request;
     scene::Limits limits;                    // --max-bodies, --max-duration, --max-scene-bytes
-    VideoOverrides video;
-    std::optional<int> crf;                  // none: the codec's default
-    std::string preset;                      // x264 preset; empty: veryfast
-    std::string codec;                       // empty: the container's default
-    std::string pixel_format;                // empty: yuv420p
-    bool lossless = false;                   // FFV1 in Matroska
-    std::string stream_container;            // -o -: "mkv" (empty) or "mp4" (fragmented)
     OutputFiles files;
     bool sequential = false;                 // every stage on one thread: same bytes, slower
     ProgressRequest progress = ProgressRequest::none;   // --progress [json]

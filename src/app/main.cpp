@@ -264,43 +264,44 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
         "render", "Render a scene to a video (.mp4 .mkv .webm .gif) or stills (.png)");
     render_cmd->add_option("scene", render.scene_path,
                            "Scene file (YAML); the built-in demo when omitted");
-    render_cmd->add_option("-o,--output", render.output,
+    render_cmd->add_option("-o,--output", render.request.output,
                            "Output file; the extension picks the format: .mp4, .mkv, .webm, "
                            ".gif, .png (a still, or every frame for frame_%04d.png), or - for "
                            "a stream on standard output (Matroska, or fragmented MP4 with "
                            "--format mp4)")
         ->required();
-    add_frame_option(*render_cmd, render.frame);
-    render_cmd->add_option("--at", render.at,
+    add_frame_option(*render_cmd, render.request.frame);
+    render_cmd->add_option("--at", render.request.at,
                            "Time in seconds for a .png still; the duration gives the last frame")
         ->check(finite_number(0, 1e9));
-    render_cmd->add_option("--frames", render.frames,
+    render_cmd->add_option("--frames", render.request.frames,
                            "Render frames A to B (inclusive, from 0), or A- to the end, into "
                            "any format")
         ->option_text("A-B|A-");
-    render_cmd->add_option("--quality", render.quality,
+    render_cmd->add_option("--quality", render.request.quality,
                            "low (480p, 15 fps), medium (720p, 30 fps), high (1080p, 60 fps) or "
                            "4k (2160p, 60 fps), with a crf to match; --size, --fps and --crf "
                            "still win")
         ->option_text("low|medium|high|4k")
         ->check(CLI::IsMember({"low", "medium", "high", "4k"}));
-    add_size_option(*render_cmd, render.video, "Override the frame size, WIDTHxHEIGHT");
-    render_cmd->add_option("--fps", render.video.fps, "Override frames per second");
-    render_cmd->add_option("--duration", render.video.duration, "Override duration in seconds")
+    add_size_option(*render_cmd, render.request.video, "Override the frame size, WIDTHxHEIGHT");
+    render_cmd->add_option("--fps", render.request.video.fps, "Override frames per second");
+    render_cmd->add_option("--duration", render.request.video.duration,
+                           "Override duration in seconds")
         ->check(finite_number(1e-9, 1e9));
-    render_cmd->add_option("--crf", render.crf,
+    render_cmd->add_option("--crf", render.request.crf,
                            "Quality, lower is better: H.264 0..51 (default 20), VP9 0..63 "
                            "(default 32)");
-    render_cmd->add_option("--preset", render.preset,
+    render_cmd->add_option("--preset", render.request.preset,
                            "x264 preset, ultrafast .. placebo (default veryfast)");
-    render_cmd->add_option("--codec", render.codec,
+    render_cmd->add_option("--codec", render.request.codec,
                            "Video codec: h264 (.mp4, .mkv), vp9 (.webm, .mkv), ffv1 (.mkv)");
-    render_cmd->add_option("--pix-fmt", render.pixel_format,
+    render_cmd->add_option("--pix-fmt", render.request.pixel_format,
                            "yuv420p (default) or yuv444p, for crisp colour edges (H.264, VP9)");
-    render_cmd->add_option("--format", render.stream_container,
+    render_cmd->add_option("--format", render.request.stream_container,
                            "Container of -o -: mkv (default) or mp4 (fragmented MP4)")
         ->check(CLI::IsMember({"mkv", "mp4"}));
-    render_cmd->add_flag("--lossless", render.lossless,
+    render_cmd->add_flag("--lossless", render.request.lossless,
                          "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);
     add_limit_options(*render_cmd, render.limits);

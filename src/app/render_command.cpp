@@ -19,21 +19,6 @@
 namespace discreel::app {
 namespace {
 
-job::RenderRequest request_of(const RenderOptions& o) {
-    return {.output = o.output,
-            .frame = o.frame,
-            .at = o.at,
-            .frames = o.frames,
-            .quality = o.quality,
-            .video = o.video,
-            .crf = o.crf,
-            .preset = o.preset,
-            .codec = o.codec,
-            .pixel_format = o.pixel_format,
-            .lossless = o.lossless,
-            .stream_container = o.stream_container};
-}
-
 // --no-overwrite: the first output that already exists, if any.
 std::optional<std::string> existing_output(const RenderOptions& o,
                                            const encode::OutputDescription& output,
@@ -42,7 +27,7 @@ std::optional<std::string> existing_output(const RenderOptions& o,
     if (output.format == "png sequence") {
         for (int n = frames.first; n <= frames.last; ++n) paths.push_back(output.frame_path(n));
     } else if (!output.to_stdout) {
-        paths.push_back(o.output);
+        paths.push_back(o.request.output);
     }
     if (o.files.trace) paths.push_back(*o.files.trace);
     if (o.files.events) paths.push_back(*o.files.events);
@@ -93,9 +78,9 @@ void report_details(const job::RenderSummary& run, int frames, std::ostream& err
 
 int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = Clock::now();
-    scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits, o.video.duration);
+    scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits, o.request.video.duration);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
-    auto plan = job::plan_render(std::move(loaded.scene), request_of(o), o.limits);
+    auto plan = job::plan_render(std::move(loaded.scene), o.request, o.limits);
     if (!plan) {
         report_error(err, plan.error().message);
         return exit_bad_input;
@@ -118,8 +103,11 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const job::FrameRange frames = plan->frames;
     if (o.no_overwrite) {
         if (const auto existing = existing_output(o, output, frames)) {
-            report_error(err, "'" + printable(*existing) +
-                                  "' exists and --no-overwrite keeps it; nothing was written");
+            // Built by appending: GCC 12 warns (-Wrestrict) falsely on "'" + std::string here.
+            std::string message(1, '\'');
+            message += printable(*existing);
+            message += "' exists and --no-overwrite keeps it; nothing was written";
+            report_error(err, message);
             return exit_bad_input;
         }
     }
@@ -128,7 +116,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
 
     std::vector<NamedPath> inputs, output_paths;
     if (o.scene_path) inputs.push_back({"the scene", *o.scene_path});
-    if (!output.to_stdout) output_paths.push_back({"-o", o.output});
+    if (!output.to_stdout) output_paths.push_back({"-o", o.request.output});
     add_output_paths(o.files, output_paths);
     if (!check_distinct_files(inputs, output_paths, err)) return exit_bad_input;
 
@@ -173,7 +161,8 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     progress.done(seconds);
     if (o.verbose) report_details(*run, to_write, err);
     if (o.quiet) return exit_ok;
-    summary << "wrote " << printable(o.output) << ": " << to_write << (to_write == 1 ? " frame" : " frames")
+    summary << "wrote " << printable(o.request.output) << ": " << to_write
+            << (to_write == 1 ? " frame" : " frames")
         << ", " << video.width << 'x' << video.height;
     if (!still) {
         const bool whole = to_write == video.frame_count();

@@ -172,8 +172,11 @@ Submission Jobs::submit(const JobRequest& request, int frames_total) {
         if (job.status == JobStatus::queued || job.status == JobStatus::running) {
             return answer(Submitted::existing, job_json(job));
         }
-        if (job.status == JobStatus::succeeded && job.output &&
-            std::filesystem::exists(outputs_ / (job.output->sha256 + "." + job.output->extension))) {
+        const auto kept = [&] {
+            return std::filesystem::exists(outputs_ /
+                                           (job.output->sha256 + "." + job.output->extension));
+        };
+        if (job.status == JobStatus::succeeded && job.output && kept()) {
             metrics_.cache_hit();
             return answer(Submitted::cached, job_json(job));
         }

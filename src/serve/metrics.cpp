@@ -28,7 +28,8 @@ std::string Metrics::text(std::size_t queued, std::size_t running, int workers) 
     const auto metric = [&](const char* name, const char* type, const char* help) {
         out << "# HELP " << name << ' ' << help << "\n# TYPE " << name << ' ' << type << '\n';
     };
-    metric("discreel_jobs_accepted_total", "counter", "Jobs put in the queue (new requests, and failed or cancelled ones sent again).");
+    metric("discreel_jobs_accepted_total", "counter",
+           "Jobs put in the queue (new requests, and failed or cancelled ones sent again).");
     out << "discreel_jobs_accepted_total " << accepted_.load() << '\n';
     metric("discreel_jobs_cache_hits_total", "counter",
            "Requests answered from a finished job without rendering.");

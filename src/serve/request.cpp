@@ -117,7 +117,9 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
         }
         if (auto problem = type_problem(key, value)) return refusal(400, *problem);
     }
-    if (!parsed.contains("scene")) return refusal(400, "field 'scene' (the scene's YAML) is required");
+    if (!parsed.contains("scene")) {
+        return refusal(400, "field 'scene' (the scene's YAML) is required");
+    }
     JobRequest request;
     request.scene = parsed["scene"].get<std::string>();
     if (request.scene.size() > limits.file_bytes) {

@@ -12,7 +12,8 @@ namespace {
 using Words = std::vector<std::string>;
 
 TEST(ManifestTest, WordsSplitAsAShellSplitsThem) {
-    EXPECT_EQ(*split_words("a.yaml -o out.mp4 --crf 20"), (Words{"a.yaml", "-o", "out.mp4", "--crf", "20"}));
+    EXPECT_EQ(*split_words("a.yaml -o out.mp4 --crf 20"),
+              (Words{"a.yaml", "-o", "out.mp4", "--crf", "20"}));
     EXPECT_EQ(*split_words("  'my scene.yaml'\t-o \"out \\\"1\\\".png\" a\\ b  "),
               (Words{"my scene.yaml", "-o", "out \"1\".png", "a b"}));
     EXPECT_EQ(*split_words("''"), (Words{""}));

@@ -261,8 +261,8 @@ TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
                              "message": "--fps must be between 1 and 240"}]})"));
     EXPECT_EQ(answer("/v1/renders", "{\"scene\": ").first, 400);
     EXPECT_EQ(answer("/v1/renders", "[1, 2]"),
-              (std::pair{400, std::string(
-                                  "{\"error\":{\"message\":\"the body must be a JSON object\"}}\n")}));
+              (std::pair{400, std::string("{\"error\":{\"message\":\"the body must be a "
+                                          "JSON object\"}}\n")}));
     EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"colour", "red"}}.dump()).second,
               "{\"error\":{\"message\":\"unknown field 'colour'; the fields are scene, output, "
               "frame, at, size, fps, duration, crf and preset\"}}\n");
