@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "bench_results.hpp"
+#include "gas_scene.hpp"
 #include "discreel/encode.hpp"
 #include "discreel/job.hpp"
 #include "discreel/render.hpp"
@@ -45,6 +46,7 @@ extern char** environ;
 namespace {
 
 using namespace discreel;
+using bench::gas_scene;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
@@ -70,23 +72,6 @@ struct Settings {
     int hd_seconds = 0;
     int repeat = 1;                 // runs of each encoding column; the median is reported
 };
-
-// Discs covering about a fifth of a 12.8 x 7.2 m box, moving without gravity or losses, so
-// every frame differs from the last (what makes x264 work hard).
-std::string gas_scene(int discs, int width, int height, int frames) {
-    const double radius = std::sqrt(0.2 * 12.8 * 7.2 / (M_PI * discs));
-    std::ostringstream yaml;
-    yaml << "version: 1\nvideo:\n  size: [" << width << ", " << height << "]\n  fps: 60\n"
-         << "  duration: " << frames / 60.0 << "\nphysics:\n  gravity: [0, 0]\n"
-         << "  restitution: 1.0\n  friction: 0\n  seed: 7\n"
-         << "walls:\n  - box: [[0, 0], [12.8, 7.2]]\n"
-         << "discs:\n  - random:\n      count: " << discs << "\n"
-         << "      region: [[0.1, 0.1], [12.7, 7.1]]\n"
-         << "      radius: [" << 0.7 * radius << ", " << radius << "]\n"
-         << "      speed: [0.5, 2]\n"
-         << "      colors: [\"#e4572e\", \"#76b041\", \"#17bebb\", \"#f4d35e\"]\n";
-    return yaml.str();
-}
 
 struct Rendered {
     std::vector<std::uint8_t> frames;   // every frame, one after the other

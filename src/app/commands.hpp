@@ -25,6 +25,7 @@ struct RenderOptions {
     scene::Limits limits;                    // --max-bodies, --max-duration, --max-scene-bytes
     OutputFiles files;
     bool sequential = false;                 // every stage on one thread: same bytes, slower
+    int jobs = 0;                            // --jobs: segments at once; 0: one per core
     ProgressRequest progress = ProgressRequest::none;   // --progress [json]
     bool no_overwrite = false;               // refuse an existing output
     bool quiet = false;                      // errors only: no progress, no summary
@@ -54,6 +55,13 @@ struct ServeOptions {
     std::string version;                     // discreel's, part of every job id
 };
 
+struct ConcatOptions {
+    std::string dir;                         // segments written by render --segment
+    std::string output;                      // -o
+    bool quiet = false;
+};
+
+int run_concat(const ConcatOptions& options, std::ostream& out, std::ostream& err);
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
 int run_validate(const ValidateOptions& options, std::ostream& out, std::ostream& err);
 int run_simulate(const SimulateOptions& options, std::ostream& out, std::ostream& err);

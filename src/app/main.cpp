@@ -299,8 +299,18 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     render_cmd->add_option("--pix-fmt", render.request.pixel_format,
                            "yuv420p (default) or yuv444p, for crisp colour edges (H.264, VP9)");
     render_cmd->add_option("--format", render.request.stream_container,
-                           "Container of -o -: mkv (default) or mp4 (fragmented MP4)")
-        ->check(CLI::IsMember({"mkv", "mp4"}));
+                           "Container of -o -: mkv (default) or mp4 (fragmented MP4); of a "
+                           "--segment: mp4 (default), mkv or webm")
+        ->check(CLI::IsMember({"mkv", "mp4", "webm"}));
+    render_cmd->add_option("--jobs", render.jobs,
+                           "Segments of a video file rendered at once (default: one per core); "
+                           "the bytes are the same for any number")
+        ->check(CLI::Range(1, 1024));
+    render_cmd->add_option("--segment", render.request.segment,
+                           "Render only segment K (from 0) of the video, into the directory -o "
+                           "names; join them with discreel concat")
+        ->option_text("K")
+        ->check(CLI::NonNegativeNumber);
     render_cmd->add_flag("--lossless", render.request.lossless,
                          "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);
@@ -320,6 +330,15 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
                          "(same output, slower)");
     render_cmd->get_option("--quiet")->excludes("--verbose");
     render_cmd->get_option("--quiet")->excludes("--progress");
+
+    ConcatOptions concat;
+    CLI::App* concat_cmd = app.add_subcommand(
+        "concat", "Join the segments render --segment wrote into one video, by stream copy");
+    concat_cmd->add_option("dir", concat.dir, "Directory of the segments")->required();
+    concat_cmd->add_option("-o,--output", concat.output,
+                           "Output file, of the segments' format (.mp4, .mkv or .webm)")
+        ->required();
+    concat_cmd->add_flag("-q,--quiet", concat.quiet, "Print nothing but errors");
 
     SimulateOptions simulate;
     CLI::App* simulate_cmd =
@@ -460,6 +479,7 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     if (batch_cmd->parsed()) return run_batch(batch);
     int code = exit_bad_input;
     if (render_cmd->parsed()) code = run_render(render, std::cout, std::cerr);
+    if (concat_cmd->parsed()) code = run_concat(concat, std::cout, std::cerr);
     if (simulate_cmd->parsed()) code = run_simulate(simulate, std::cout, std::cerr);
     if (validate_cmd->parsed()) code = run_validate(validate, std::cout, std::cerr);
     if (golden_cmd->parsed()) code = run_golden(golden, std::cout, std::cerr);

@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -27,7 +28,7 @@ std::optional<std::string> existing_output(const RenderOptions& o,
     if (output.format == "png sequence") {
         for (int n = frames.first; n <= frames.last; ++n) paths.push_back(output.frame_path(n));
     } else if (!output.to_stdout) {
-        paths.push_back(o.request.output);
+        paths.push_back(output.path);
     }
     if (o.files.trace) paths.push_back(*o.files.trace);
     if (o.files.events) paths.push_back(*o.files.events);
@@ -44,7 +45,7 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-std::string describe_encoder(const encode::SinkDef& def) {
+std::string describe_encoder(const encode::SinkDef& def, bool segmented) {
     std::ostringstream text;
     text << "codec " << (def.codec.empty() ? "default" : def.codec) << ", crf ";
     if (def.crf) {
@@ -52,8 +53,12 @@ std::string describe_encoder(const encode::SinkDef& def) {
     } else {
         text << "default";
     }
-    text << ", preset " << (def.preset.empty() ? "veryfast" : def.preset) << ", "
-         << def.threads << " encoder threads";
+    text << ", preset " << (def.preset.empty() ? "veryfast" : def.preset) << ", ";
+    if (segmented) {
+        text << "1 encoder thread per segment";
+    } else {
+        text << def.threads << " encoder threads";
+    }
     return text.str();
 }
 
@@ -100,7 +105,25 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         return exit_bad_input;
     }
     const bool still = output.one_frame;
-    const job::FrameRange frames = plan->frames;
+    const job::FrameRange frames =
+        plan->segment ? job::segment_frames(scene.video, plan->frames, *plan->segment)
+                      : plan->frames;
+    if (plan->segment && (o.files.trace || o.files.events)) {
+        report_error(err, "--trace and --events belong to a whole render, not to one segment");
+        return exit_bad_input;
+    }
+    // Tasks of one render share the directory of its segments, and make it if need be.
+    if (plan->segment) {
+        std::error_code error;
+        std::filesystem::create_directory(o.request.output, error);
+        if (error && !std::filesystem::is_directory(o.request.output)) {
+            std::string message = "cannot make the directory '";
+            message += printable(o.request.output);
+            message += "' for the segment: " + error.message();
+            report_error(err, message);
+            return exit_runtime_failure;
+        }
+    }
     if (o.no_overwrite) {
         if (const auto existing = existing_output(o, output, frames)) {
             // Built by appending: GCC 12 warns (-Wrestrict) falsely on "'" + std::string here.
@@ -116,7 +139,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
 
     std::vector<NamedPath> inputs, output_paths;
     if (o.scene_path) inputs.push_back({"the scene", *o.scene_path});
-    if (!output.to_stdout) output_paths.push_back({"-o", o.request.output});
+    if (!output.to_stdout) output_paths.push_back({"-o", output.path});
     add_output_paths(o.files, output_paths);
     if (!check_distinct_files(inputs, output_paths, err)) return exit_bad_input;
 
@@ -125,8 +148,13 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         err << "discreel: " << scene.video.width << 'x' << scene.video.height << ", "
             << scene.video.fps << " fps, frames " << frames.first << ".." << frames.last
             << ", " << scene.discs.size() << " discs; " << output.format << ", "
-            << describe_encoder(sink_def) << "; "
-            << (o.sequential ? "one thread" : "simulate, render and encode threads") << '\n';
+            << describe_encoder(sink_def, job::segmented(output)) << "; "
+            << (o.sequential ? "one thread" : "simulate, render and encode threads");
+        if (job::segmented(output)) {
+            err << "; " << plan->segments << (plan->segments == 1 ? " segment" : " segments")
+                << " of " << scene.video.segment_frames() << " frames";
+        }
+        err << '\n';
     }
 
     const scene::Video video = scene.video;   // the scene itself moves into the job
@@ -136,7 +164,9 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     job::RenderDef def;
     def.scene = std::move(scene);
     def.output = sink_def;
-    def.frames = {.first = frames.first, .last = frames.last};
+    def.frames = plan->frames;
+    def.segment = plan->segment;
+    def.jobs = o.jobs;
     def.trace = o.files.trace;
     def.events = o.files.events;
     def.threaded = !o.sequential;
@@ -161,7 +191,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     progress.done(seconds);
     if (o.verbose) report_details(*run, to_write, err);
     if (o.quiet) return exit_ok;
-    summary << "wrote " << printable(o.request.output) << ": " << to_write
+    summary << "wrote " << printable(output.path) << ": " << to_write
             << (to_write == 1 ? " frame" : " frames")
         << ", " << video.width << 'x' << video.height;
     if (!still) {

@@ -78,8 +78,8 @@ Expected<Resolved> resolve(const std::string& path) {
 
 Status check_resolved(const Resolved& resolved, const SinkDef& def) {
     if (!def.stream_container.empty() && resolved.kind->name != "-") {
-        return Error{"a stream container is chosen for standard output (-o -) only; a file's "
-                     "extension picks its format"};
+        return Error{"a container is chosen for standard output (-o -) or a segment "
+                     "(--segment) only; a file's extension picks its format"};
     }
     if (resolved.kind->video != nullptr) {
         auto format = resolved.kind->video(def);
@@ -125,6 +125,18 @@ Status check_settings(const SinkDef& def) {
         return resolved.error();
     }
     return check_resolved(*resolved, def);
+}
+
+Expected<VideoFormat> container_of(const std::string& path) {
+    auto resolved = resolve(path);
+    if (!resolved) return resolved.error();
+    const std::string_view name = resolved->kind->name;
+    if (name != ".mp4" && name != ".mkv" && name != ".webm") {
+        return Error{"segments join into .mp4, .mkv or .webm files, not '" + path + "'"};
+    }
+    SinkDef def;
+    def.path = path;
+    return resolved->kind->video(def);
 }
 
 Status Sink::finish() {

@@ -125,6 +125,13 @@ Expected<VideoFormat> h264_format(const SinkDef& def, const std::string& muxer) 
         add_param("sync-lookahead", "0");
         if (preset == "veryfast") add_param("rc-lookahead", "8");
     }
+    // A closed group of pictures per segment: one keyframe, at its start, whatever the
+    // pictures show.
+    if (def.keyint > 0) {
+        add_param("keyint", std::to_string(def.keyint));
+        add_param("scenecut", "0");
+        add_param("open-gop", "0");
+    }
     if (!x264_params.empty()) format.encoder_options.push_back({"x264-params", x264_params});
     return format;
 }
@@ -148,6 +155,7 @@ Expected<VideoFormat> vp9_format(const SinkDef& def, const std::string& muxer) {
     format.encoder = "libvpx-vp9";
     format.pixel_format = *pixel_format;
     format.threads = def.threads;
+    if (def.keyint > 0) format.gop_size = def.keyint;
     format.encoder_options = {
         // Constant quality: crf with no bitrate target ("b" 0), as libvpx documents it.
         {"crf", std::to_string(def.crf.value_or(32))},

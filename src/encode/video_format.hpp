@@ -30,6 +30,7 @@ struct VideoFormat {
     AVColorTransferCharacteristic transfer = AVCOL_TRC_BT709;
     AVColorRange range = AVCOL_RANGE_MPEG;              // limited ("tv") range
     int threads = 1;                                    // encoder threads, pinned
+    int gop_size = -1;                                  // keyframe interval; -1: the encoder's
     OptionList encoder_options;                         // the encoder's options
     OptionList muxer_options;                           // the muxer's private options
 };
@@ -46,6 +47,10 @@ Expected<VideoFormat> stream_format(const SinkDef& def);
 Expected<VideoFormat> mkv_format(const SinkDef& def);
 Expected<VideoFormat> webm_format(const SinkDef& def);
 Expected<VideoFormat> gif_format(const SinkDef& def);
+
+// The container of a video file path (.mp4, .mkv, .webm): its muxer and muxer options, for
+// joining segments; the codec fields are the format's defaults and unused.
+Expected<VideoFormat> container_of(const std::string& path);
 
 // "<setting> does not apply to <target>" when the SinkDef sets any of crf, preset, codec,
 // pixel format or lossless: for outputs that take none of them (GIF, PNG).

@@ -243,6 +243,7 @@ Expected<std::unique_ptr<Sink>> open_video_sink(const SinkDef& def, const VideoF
     encoder->color_trc = format.transfer;
     encoder->color_range = format.range;
     encoder->thread_count = format.threads;
+    if (format.gop_size > 0) encoder->gop_size = format.gop_size;
     encoder->flags |= AV_CODEC_FLAG_BITEXACT;
     // MP4 and Matroska keep the codec headers (SPS/PPS) in the container, not in the stream.
     if (muxer->oformat->flags & AVFMT_GLOBALHEADER) {

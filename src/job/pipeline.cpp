@@ -49,7 +49,7 @@ PipelineResult run_on_one_thread(const PipelineDef& def, const PipelineStages& s
     result.renderer_info = renderer->renderer_info();
     std::vector<std::uint8_t> pixels(frame_bytes(def.renderer));
     int encoded = 0;
-    for (int frame = 0; frame < def.frame_count; ++frame) {
+    for (int frame = def.first_frame; frame < def.frame_count; ++frame) {
         if (stages.should_stop()) {
             result.stopped = true;
             return result;
@@ -119,7 +119,7 @@ private:
 
     void simulate_stage() {
         if (def_.encoder_first) yield_to_other_threads();
-        for (int frame = 0; frame < def_.frame_count; ++frame) {
+        for (int frame = def_.first_frame; frame < def_.frame_count; ++frame) {
             if (stages_.should_stop()) {
                 stopped_ = true;
                 cancel_all();

@@ -16,7 +16,8 @@
 namespace discreel::job {
 
 struct PipelineDef {
-    int frame_count = 0;             // simulate() is called for frames 0 .. frame_count - 1
+    int first_frame = 0;             // simulate() is called for frames first_frame ..
+    int frame_count = 0;             // .. frame_count - 1
     render::RendererDef renderer;
     // A renderer of that size to draw with instead of creating one (its context is made
     // current on the drawing thread); it must not be drawing elsewhere meanwhile.

@@ -1,11 +1,13 @@
 // job::render: the simulate, render and encode stages of a clip or still, and its outputs.
 #include <sys/prctl.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "discreel/commit.hpp"
 #include "discreel/job.hpp"
 #include "pipeline.hpp"
+#include "segment_render.hpp"
 #include "side_outputs.hpp"
 
 namespace discreel::job {
@@ -27,6 +29,10 @@ std::vector<encode::Rgb> scene_colours(const scene::Scene& scene) {
     return colours;
 }
 
+const Error cancelled{"cancelled; nothing was written"};
+
+}  // namespace
+
 // Up to 720p, six slots (3.5 MiB each at 720p) let the simulate and render stages, which
 // yield to the encoder (PipelineDef::encoder_first), work several frames ahead in the cycles
 // x264 leaves idle. Above 720p a slot is 8 MiB or more and two keep a 1080p render under
@@ -36,9 +42,21 @@ int slots_for(int width, int height) {
     return static_cast<long>(width) * height > 1280L * 720L ? 2 : 6;
 }
 
-const Error cancelled{"cancelled; nothing was written"};
+bool segmented(const encode::OutputDescription& output) {
+    return !output.to_stdout &&
+           (output.format == "mp4" || output.format == "mkv" || output.format == "webm");
+}
 
-}  // namespace
+int segment_count(const scene::Video& video, FrameRange frames) {
+    const int length = video.segment_frames();
+    return (frames.last - frames.first + length) / length;
+}
+
+FrameRange segment_frames(const scene::Video& video, FrameRange frames, int index) {
+    const int length = video.segment_frames();
+    const int first = frames.first + index * length;
+    return {first, std::min(frames.last, first + length - 1)};
+}
 
 Expected<RenderSummary> render(const RenderDef& def) {
     const auto started = Clock::now();
@@ -69,6 +87,11 @@ Expected<RenderSummary> render(const RenderDef& def) {
     sink_def.fps = scene.video.fps;
     sink_def.key_colours = scene_colours(scene);
     sink_def.first_number = range.first;
+    auto output = encode::describe_output(sink_def.path, sink_def.stream_container);
+    if (!output) return output.error();
+    if (segmented(*output)) return render_segments(def, range, sink_def, output->format);
+    if (def.segment) return Error{"only video files (.mp4, .mkv, .webm) are made of segments"};
+
     auto outputs = SideOutputs::open(def.trace, def.events, scene);
     if (!outputs) return outputs.error();
     auto sink = encode::open_sink(sink_def);

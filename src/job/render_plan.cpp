@@ -5,6 +5,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <string_view>
 
 #include "discreel/printable.hpp"
@@ -182,7 +183,20 @@ std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverr
 
 Expected<RenderPlan> plan_render(scene::Scene scene, const RenderRequest& o,
                                  const scene::Limits& limits) {
-    auto output = encode::describe_output(o.output, o.stream_container);
+    // A segment is a file in the directory -o names, of the format --format names.
+    std::string path = o.output;
+    std::string container = o.stream_container;
+    if (o.segment) {
+        if (container.empty()) container = "mp4";
+        if (container != "mp4" && container != "mkv" && container != "webm") {
+            return Error{"--format of a segment is mp4, mkv or webm, not '" + container + "'"};
+        }
+        if (o.frame || o.at) return Error{"--segment renders part of a video; --frame and --at "
+                                          "select a still"};
+        path = (std::filesystem::path(o.output) / "segment.").string() + container;
+        container.clear();
+    }
+    auto output = encode::describe_output(path, container);
     if (!output) return output.error();
     const Settings settings = settings_for(o, scene, *output);
     if (auto problem = apply_overrides(scene, settings.video, limits)) return Error{*problem};
@@ -204,7 +218,7 @@ Expected<RenderPlan> plan_render(scene::Scene scene, const RenderRequest& o,
         plan.drawn_opaque = true;
         scene.video.background.a = 255;
     }
-    plan.sink = encode::SinkDef{.path = o.output,
+    plan.sink = encode::SinkDef{.path = path,
                                 .width = scene.video.width,
                                 .height = scene.video.height,
                                 .fps = scene.video.fps,
@@ -213,13 +227,28 @@ Expected<RenderPlan> plan_render(scene::Scene scene, const RenderRequest& o,
                                 .codec = o.codec,
                                 .pixel_format = o.pixel_format,
                                 .lossless = o.lossless,
-                                .stream_container = o.stream_container,
+                                .stream_container = container,
                                 .key_colours = {},     // the job's: the scene's colours
-                                .first_number = 0};    // the job's: the first frame
+                                .first_number = 0,     // the job's: the first frame
+                                .keyint = 0};          // the job's: a segment's length
     if (Status checked = encode::check_settings(plan.sink); !checked) return checked.error();
     auto frames = pick_frames(o, scene, *output);
     if (!frames) return frames.error();
     plan.frames = *frames;
+    if (segmented(*output)) plan.segments = segment_count(scene.video, plan.frames);
+    if (o.segment) {
+        if (*o.segment < 0 || *o.segment >= plan.segments) {
+            return Error{"--segment " + std::to_string(*o.segment) + " is past the end: the clip has " +
+                         std::to_string(plan.segments) +
+                         (plan.segments == 1 ? " segment (0)" : " segments (0.." +
+                                                                  std::to_string(plan.segments - 1) + ")")};
+        }
+        plan.segment = o.segment;
+        plan.sink.path = (std::filesystem::path(o.output) /
+                          encode::segment_file_name(*o.segment, plan.segments, output->format))
+                             .string();
+        output->path = plan.sink.path;
+    }
     plan.output = std::move(*output);
     plan.scene = std::move(scene);
     return plan;

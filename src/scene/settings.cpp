@@ -11,6 +11,10 @@ namespace discreel::scene {
 
 int Video::frame_count() const { return static_cast<int>(std::lround(duration * fps)); }
 
+int Video::segment_frames() const {
+    return std::max(1, static_cast<int>(std::lround(segment * fps)));
+}
+
 std::optional<std::string> check_work(const Scene& scene, const Limits& limits) {
     const double frames = scene.video.duration * scene.video.fps;
     if (!(frames <= max_frames)) {
@@ -69,7 +73,8 @@ std::optional<int> read_side(const Value& value, std::string_view name, int max,
 }  // namespace
 
 void read_video(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 4> known{"size", "fps", "duration", "background"};
+    static constexpr std::array<std::string_view, 5> known{"size", "fps", "duration", "background",
+                                                           "segment"};
     auto& d = loader.diagnostics;
     Video& video = loader.scene.video;
     const auto fields = Fields::open(value, known, d);
@@ -116,6 +121,10 @@ void read_video(Loader& loader, const Value& value) {
     if (loader.frames_known && video.frame_count() < 1) loader.frames_known = false;
     if (const auto background = fields->get("background"))
         if (const auto c = read_color(*background, d)) video.background = *c;
+    if (const auto segment = fields->get("segment")) {
+        const auto v = read_number(*segment, d);
+        if (v && check_between(*segment, *v, 1e-3, 3600, d)) video.segment = *v;
+    }
 }
 
 void read_camera(Loader& loader, const Value& value) {

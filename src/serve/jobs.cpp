@@ -359,6 +359,9 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         def.output.path = tmp + "." + request.format;
         def.frames = plan.frames;
         def.renderer = &*warm;
+        // One segment at a time: the service's parallelism is its workers, each on its warm
+        // renderer. The bytes are those of any --jobs.
+        def.jobs = 1;
         def.on_progress = [&](const job::Progress& p) {
             std::lock_guard lock(mutex_);
             Job& job = jobs_.at(id);

@@ -217,8 +217,8 @@ TEST(CliGLTest, FormatOptionsThatDoNotFitAreABadCommandLine) {
     TempDir dir;
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"-o", dir / "c.mkv", "--format", "mp4"},
-         "discreel: a stream container is chosen for standard output (-o -) only; a file's "
-         "extension picks its format\n"},
+         "discreel: a container is chosen for standard output (-o -) or a segment "
+         "(--segment) only; a file's extension picks its format\n"},
         {{"-o", dir / "c.mp4", "--lossless"},
          "discreel: lossless output is FFV1 in Matroska: use .mkv or -, not .mp4\n"},
         {{"-o", dir / "c.mp4", "--codec", "vp9"},

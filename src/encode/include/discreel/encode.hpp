@@ -40,6 +40,10 @@ struct SinkDef {
     std::vector<Rgb> key_colours;
     // A PNG sequence's number for its first frame: `render --frames 10-20` writes 10..20.
     int first_number = 0;
+    // Frames per group of pictures, each opened by a keyframe, with no keyframes in between
+    // (x264's scene cuts off): a segment sets its length, so it is one closed group.
+    // 0: the encoder's own choice. H.264 and VP9; FFV1 frames are all coded alone.
+    int keyint = 0;
 };
 
 class Sink {
@@ -52,6 +56,8 @@ public:
     // After seal(): the files to commit, in order (none for a stream on standard output).
     virtual std::vector<OutputFile*> files() = 0;
     // seal(), then commit_together(files()): for a sink that is its run's only output.
+    // A caller may instead move the sealed files out of files() and destroy the sink, which
+    // then owns nothing.
     Status finish();
 };
 
@@ -84,6 +90,29 @@ Status check_settings(const SinkDef& def);
 // check_settings rejects (prefixed "cannot write '<path>': "), odd sizes for yuv420p video,
 // missing or unwritable directories and encoders that cannot be opened. Errors name the path.
 Expected<std::unique_ptr<Sink>> open_sink(const SinkDef& def);
+
+// Segments: a video encoded in pieces, each its own closed group of pictures in its own file
+// (a SinkDef with keyint), joined by stream copy. Segment K of N of a render is the file
+// segment_file_name(K, N, format), "segment-0003-of-0010.mp4", so a directory of them says
+// which are there and which are missing.
+std::string segment_file_name(int index, int count, const std::string& format);
+
+struct SegmentSet {
+    std::string format;                // "mp4", "mkv" or "webm"
+    std::vector<std::string> paths;    // segment 0 .. N-1
+};
+// The segments in `dir`: every segment-K-of-N.FORMAT for K in 0..N-1, of one N and one format.
+// Other files are ignored; a missing segment, or segments of different counts or formats, is
+// an error that names them.
+Expected<SegmentSet> find_segments(const std::string& dir);
+
+// Joins the segments (in order) into `out`, whose target's extension must name their format,
+// by copying their packets: no frame is decoded or encoded again. The segments must be of one
+// codec, size, frame rate and encoder set-up, each starting with a keyframe, and all but the
+// last of one length. Frames are renumbered from 0, so the result depends only on the
+// segments' bytes. `out` (from OutputFile::create, made before any work so that an unwritable
+// target fails first) is sealed, for the caller to commit.
+Status join_segments(const SegmentSet& segments, OutputFile& out);
 
 // PNG stills for goldens and single frames: decoded/encoded with libavcodec's PNG codec.
 // Reading trusts nothing about the file: the header is read first (a file that is no PNG, or

@@ -79,6 +79,15 @@ struct RenderDef {
     std::optional<std::string> trace;        // CSV path, one row per disc per frame
     std::optional<std::string> events;       // CSV path, one row per new contact
     bool threaded = true;                    // false: one thread, same bytes, slower
+    // Video files (.mp4, .mkv, .webm) are encoded in segments of scene.video.segment seconds,
+    // each its own closed group of pictures on one encoder thread, and joined by stream copy:
+    // `jobs` segments are rendered at once, each with its own playback, renderer and encoder.
+    // The bytes never depend on it. 0: one per core the process may run on. GIFs (one palette
+    // for the whole clip), streams on standard output and PNG are encoded in one pass.
+    int jobs = 0;
+    // Render only this segment of the frames, into output.path (see segment_path). No trace or
+    // events: those are the whole clip's.
+    std::optional<int> segment;
     // A renderer of the scene's video size to draw with, kept warm between jobs by a caller
     // that renders many (its context and compiled shaders are reused); nullptr: the job
     // creates its own. Used by one job at a time. The bytes are the same either way.
@@ -94,6 +103,13 @@ struct RenderSummary {
     StageSeconds busy;
     std::string renderer;                    // GL_RENDERER and GL_VERSION
 };
+
+// Whether `output` is encoded in segments: a video file, not a stream, GIF or PNG.
+bool segmented(const encode::OutputDescription& output);
+// How many segments a render of `frames` (resolved) has.
+int segment_count(const scene::Video& video, FrameRange frames);
+// The frames of segment `index`.
+FrameRange segment_frames(const scene::Video& video, FrameRange frames, int index);
 
 // Renders def.frames of def.scene into def.output (and the trace and events), all committed
 // together at the end, or nothing. Cancelled (should_stop), the error says so.

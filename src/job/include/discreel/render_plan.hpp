@@ -39,7 +39,11 @@ struct RenderRequest {
     std::string codec;                       // empty: the container's default
     std::string pixel_format;                // empty: yuv420p
     bool lossless = false;                   // FFV1 in Matroska
-    std::string stream_container;            // -o -: "mkv" (empty) or "mp4" (fragmented)
+    // The container of a stream (-o -: "mkv", the default, or "mp4", fragmented) or of a
+    // segment (mp4, the default, mkv or webm).
+    std::string stream_container;
+    // Render only this segment (from 0), into a file in the directory `output` names.
+    std::optional<int> segment;
 };
 
 struct RenderPlan {
@@ -49,6 +53,8 @@ struct RenderPlan {
     FrameRange frames;                       // resolved: first..last, inclusive
     std::optional<int> gif_fps_from;         // the frame rate a GIF could not show, if lowered
     bool drawn_opaque = false;               // a transparent background the format cannot keep
+    std::optional<int> segment;              // one segment only: sink.path is its file
+    int segments = 1;                        // how many a whole render of `frames` has
 };
 
 // Resolves `request` against `scene`: the format, the quality preset, the overrides, the GIF

@@ -55,9 +55,15 @@ struct Video {
     int fps = 60;                  // frames per second, 1..240
     double duration = 8.0;         // seconds of simulated time, (0, 3600]
     Color background{0x0f, 0x14, 0x19, 0xff};
+    // Seconds per encoded segment of a video, (0, 3600]: each is its own closed group of
+    // pictures, so every way of rendering the clip (any number of workers or machines) gives
+    // the same bytes. A property of the output, never of the machine.
+    double segment = 2.0;
 
     // round(duration * fps): frame n shows the state at t = n / fps.
     int frame_count() const;
+    // Frames per segment: round(segment * fps), at least 1.
+    int segment_frames() const;
 };
 
 struct Camera {

@@ -1,0 +1,194 @@
+// segments_bench: `discreel render --jobs N` against the ffmpeg CLI encoding the same RGBA
+// frames alone (read from a file in the page cache, libx264 veryfast crf 23, ffmpeg's default
+// threads), on the 1 000-disc gas clip at 1280x720, 600 frames, in the same run.
+//     segments_bench [--frames 600] [--discs 1000] [--jobs 1,2] [--repeat 1]
+// --repeat K runs every column K times in turn and reports each one's median. Prints a Markdown
+// table and appends one row per column to bench/results/segments_bench.csv: wall fps, the
+// ratio to ffmpeg, CPU ms per frame and discreel's peak memory (its --verbose VmHWM).
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench_results.hpp"
+#include "discreel/job.hpp"
+#include "discreel/render.hpp"
+#include "discreel/scene.hpp"
+#include "gas_scene.hpp"
+
+extern char** environ;
+
+namespace {
+
+using namespace discreel;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double children_cpu_seconds() {
+    rusage usage{};
+    getrusage(RUSAGE_CHILDREN, &usage);
+    const auto seconds = [](const timeval& t) { return t.tv_sec + t.tv_usec / 1e6; };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+[[noreturn]] void die(const std::string& message) {
+    std::cerr << "segments_bench: " << message << '\n';
+    std::exit(1);
+}
+
+struct Run {
+    double seconds = 0;
+    double cpu_seconds = 0;
+    double peak_mib = 0;   // discreel only
+};
+
+// Runs argv with stderr into err_path; the wall time, its CPU time and any "peak memory: X"
+// it reported.
+Run run_process(const std::vector<std::string>& args, const std::string& err_path) {
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const double cpu_before = children_cpu_seconds();
+    const auto start = Clock::now();
+    pid_t pid = -1;
+    int status = 0;
+    if (posix_spawnp(&pid, args[0].c_str(), &actions, nullptr, argv.data(), environ) != 0 ||
+        waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        die(args[0] + " failed; see " + err_path);
+    }
+    Run run{.seconds = seconds_since(start), .cpu_seconds = children_cpu_seconds() - cpu_before};
+    posix_spawn_file_actions_destroy(&actions);
+    std::ifstream err(err_path);
+    const std::string marker = "peak memory: ";
+    for (std::string line; std::getline(err, line);) {
+        if (auto at = line.find(marker); at != std::string::npos) {
+            run.peak_mib = std::stod(line.substr(at + marker.size()));
+        }
+    }
+    return run;
+}
+
+Run median(std::vector<Run> runs) {
+    std::sort(runs.begin(), runs.end(),
+              [](const Run& a, const Run& b) { return a.seconds < b.seconds; });
+    return runs[runs.size() / 2];
+}
+
+// Draws every frame of the scene into a raw RGBA file, the ffmpeg column's input.
+void write_raw_frames(const scene::Scene& scene, const std::string& path) {
+    render::set_rasterizer_threads(0);
+    auto renderer = render::Renderer::create({.width = scene.video.width,
+                                              .height = scene.video.height});
+    if (!renderer) die(renderer.error().message);
+    std::ofstream raw(path, std::ios::binary);
+    job::Playback playback(scene);
+    for (int frame = 0; frame < scene.video.frame_count(); ++frame) {
+        if (Status stepped = playback.advance_to(frame); !stepped) die(stepped.error().message);
+        auto image = renderer->draw(playback.frame_scene(frame));
+        if (!image) die(image.error().message);
+        raw.write(reinterpret_cast<const char*>(image->rgba.data()),
+                  static_cast<std::streamsize>(image->rgba.size()));
+    }
+    if (!raw.flush()) die("cannot write " + path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int frames = 600, discs = 1000, repeat = 1;
+    std::vector<int> jobs{1, 2};
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string name = argv[i], value = argv[i + 1];
+        if (name == "--frames") {
+            frames = std::stoi(value);
+        } else if (name == "--discs") {
+            discs = std::stoi(value);
+        } else if (name == "--repeat") {
+            repeat = std::max(1, std::stoi(value));
+        } else if (name == "--jobs") {
+            jobs.clear();
+            std::istringstream list(value);
+            for (std::string n; std::getline(list, n, ',');) jobs.push_back(std::stoi(n));
+        } else {
+            die("unknown option " + name);
+        }
+    }
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("discreel-segments-bench-" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string scene_path = (dir / "gas.yaml").string();
+    std::ofstream(scene_path) << bench::gas_scene(discs, 1280, 720, frames);
+    const scene::LoadResult loaded = scene::load_scene_file(scene_path);
+    if (!loaded.ok()) die("the bench scene does not load");
+    const std::string raw = (dir / "frames.rgba").string();
+    write_raw_frames(loaded.scene, raw);
+
+    const std::vector<std::string> ffmpeg{
+        "ffmpeg", "-v",   "error",   "-y",      "-f",  "rawvideo", "-pix_fmt", "rgba",
+        "-s",     "1280x720", "-r",  "60",      "-i",  raw,        "-c:v",     "libx264",
+        "-preset", "veryfast", "-crf", "23",    "-pix_fmt", "yuv420p", (dir / "ffmpeg.mp4").string()};
+    std::vector<Run> ffmpeg_runs;
+    std::vector<std::vector<Run>> discreel_runs(jobs.size());
+    for (int r = 0; r < repeat; ++r) {
+        ffmpeg_runs.push_back(run_process(ffmpeg, (dir / "ffmpeg.err").string()));
+        for (std::size_t j = 0; j < jobs.size(); ++j) {
+            discreel_runs[j].push_back(run_process(
+                {DISCREEL_BIN, "render", scene_path, "-o", (dir / "out.mp4").string(), "--crf",
+                 "23", "--preset", "veryfast", "--jobs", std::to_string(jobs[j]), "--verbose"},
+                (dir / "discreel.err").string()));
+        }
+    }
+    std::filesystem::remove_all(dir);
+
+    double load[1] = {0};
+    getloadavg(load, 1);
+    std::printf("%d discs, 1280x720, %d frames at 60 fps, libx264 veryfast crf 23; %u cores; "
+                "median of %d; load average %.1f at the end\n\n",
+                discs, frames, std::thread::hardware_concurrency(), repeat, load[0]);
+    std::printf("| command | fps | vs ffmpeg | CPU ms/frame | peak memory |\n|---|---:|---:|---:|---:|\n");
+    bench::ResultsFile results("segments_bench",
+                               {"frames", "discs", "repeat", "command", "jobs", "fps",
+                                "over_ffmpeg", "cpu_ms_per_frame", "peak_mib", "load_avg_end"});
+    const Run base = median(ffmpeg_runs);
+    const auto row = [&](const std::string& command, int job_count, const Run& run) {
+        const double fps = frames / run.seconds;
+        const double ratio = base.seconds / run.seconds;
+        const double cpu_ms = 1000.0 * run.cpu_seconds / frames;
+        std::printf("| %s | %.1f | %.2f | %.1f | %s |\n", command.c_str(), fps, ratio, cpu_ms,
+                    run.peak_mib > 0 ? (std::to_string(static_cast<int>(run.peak_mib)) + " MiB").c_str() : "");
+        results.append({std::to_string(frames), std::to_string(discs), std::to_string(repeat),
+                        command, job_count > 0 ? std::to_string(job_count) : "",
+                        bench::csv_number(fps, 1), bench::csv_number(ratio, 3),
+                        bench::csv_number(cpu_ms, 1),
+                        run.peak_mib > 0 ? bench::csv_number(run.peak_mib, 1) : "",
+                        bench::csv_number(load[0], 2)});
+    };
+    row("ffmpeg (RGBA file, default threads)", 0, base);
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+        row("discreel render --jobs " + std::to_string(jobs[j]), jobs[j], median(discreel_runs[j]));
+    }
+    if (!results.path().empty()) std::printf("\nappended to %s\n", results.path().c_str());
+    return 0;
+}

@@ -1,0 +1,284 @@
+// A video rendered in segments: workers take the next segment in turn, each playing the scene
+// forward on its own (physics is sequential, and a small part of a frame's cost, so each
+// worker simulates every frame up to its segment without drawing it) and encoding the segment
+// into a file of its own; the files are then joined by stream copy. Segment k is the same
+// bytes whichever worker renders it, so the output does not depend on the number of workers.
+#include <sched.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "discreel/commit.hpp"
+#include "pipeline.hpp"
+#include "segment_render.hpp"
+#include "side_outputs.hpp"
+
+namespace discreel::job {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The cores this process may run on (its affinity mask, which containers and Slurm set).
+int usable_cores() {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+    return std::max(1U, std::thread::hardware_concurrency());
+}
+
+const Error cancelled{"cancelled; nothing was written"};
+
+// What the workers share: the queue of segments, progress, the first failure.
+class SegmentRun {
+public:
+    SegmentRun(const RenderDef& def, FrameRange range, const encode::SinkDef& sink,
+               std::vector<int> wanted, std::vector<std::string> paths)
+        : def_(def), range_(range), sink_(sink), wanted_(std::move(wanted)),
+          paths_(std::move(paths)), files_(wanted_.size()), started_(Clock::now()) {
+        for (int k : wanted_) {
+            const FrameRange piece = segment_frames(def_.scene.video, range_, k);
+            frames_total_ += piece.last - piece.first + 1;
+        }
+    }
+
+    // Runs `workers` workers (the first on the caller's warm renderer, if any) and, when
+    // asked for, the trace and events beside them.
+    Status run(int workers, SideOutputs* outputs) {
+        std::vector<std::thread> threads;
+        for (int w = 1; w < workers; ++w) threads.emplace_back([this] { work(nullptr); });
+        std::thread recorder;
+        if (outputs != nullptr) recorder = std::thread([this, outputs] { record(*outputs); });
+        work(def_.renderer);
+        for (std::thread& thread : threads) thread.join();
+        if (recorder.joinable()) recorder.join();
+        if (stop_asked()) return cancelled;
+        std::lock_guard lock(mutex_);
+        return status_;
+    }
+
+    std::vector<std::optional<OutputFile>>& files() { return files_; }
+    const StageSeconds& busy() const { return busy_; }
+    const std::string& renderer_info() const { return renderer_info_; }
+
+private:
+    bool stop_asked() const { return def_.should_stop && def_.should_stop(); }
+    bool stopping() const { return failed_.load() || stop_asked(); }
+
+    void fail(Error error) {
+        std::lock_guard lock(mutex_);
+        if (status_) status_ = std::move(error);
+        failed_ = true;
+    }
+
+    void work(render::Renderer* warm) {
+        Playback playback(def_.scene);
+        int next_frame = 0;   // the first frame playback has not shown yet
+        std::optional<render::Renderer> own;
+        for (;;) {
+            const std::size_t j = next_.fetch_add(1);
+            if (j >= wanted_.size() || stopping()) return;
+            if (warm == nullptr) {
+                auto made = render::Renderer::create(
+                    {.width = def_.scene.video.width, .height = def_.scene.video.height});
+                if (!made) return fail(made.error());
+                own = std::move(*made);
+                warm = &*own;
+            }
+            const FrameRange piece = segment_frames(def_.scene.video, range_, wanted_[j]);
+            if (Status done = encode_segment(playback, next_frame, piece, *warm, j); !done) {
+                return fail(as_output_error(done.error(), j));
+            }
+            next_frame = piece.last + 1;
+        }
+    }
+
+    // A segment of a whole render is a temporary file of the output's: its write errors are
+    // the output's, and name it.
+    Error as_output_error(Error error, std::size_t j) const {
+        if (def_.segment) return error;
+        const std::string prefix = write_error(paths_[j], "").message;
+        if (error.message.rfind(prefix, 0) != 0) return error;
+        return write_error(def_.output.path, error.message.substr(prefix.size()));
+    }
+
+    Status encode_segment(Playback& playback, int next_frame, FrameRange piece,
+                          render::Renderer& renderer, std::size_t j) {
+        encode::SinkDef sink_def = sink_;
+        sink_def.path = paths_[j];
+        sink_def.first_number = piece.first;
+        auto sink = encode::open_sink(sink_def);
+        if (!sink) return sink.error();
+        Status simulated;
+        int reported = 0;
+        const PipelineStages stages{
+            .simulate = [&](int frame) -> const render::FrameScene* {
+                simulated = playback.advance_to(frame);
+                if (!simulated) return nullptr;
+                playback.take_events();   // the recorder writes them; here they are not kept
+                if (frame < piece.first) {
+                    playback.observe(frame);   // trails and the follow camera
+                    return nullptr;
+                }
+                return &playback.frame_scene(frame);
+            },
+            .encode = [&](const ImageView& image) { return (*sink)->write(image); },
+            .encoded =
+                [&](int done) {
+                    progress(done - reported);
+                    reported = done;
+                },
+            .should_stop = [&] { return !simulated || stopping(); },
+        };
+        const PipelineResult run = run_pipeline(
+            {.first_frame = next_frame,
+             .frame_count = piece.last + 1,
+             .renderer = renderer.def(),
+             .warm_renderer = &renderer,
+             .threaded = def_.threaded,
+             .slots = slots_for(def_.scene.video.width, def_.scene.video.height),
+             .encoder_first = true},
+            stages);
+        {
+            std::lock_guard lock(mutex_);
+            busy_.simulate += run.busy.simulate;
+            busy_.render += run.busy.render;
+            busy_.encode += run.busy.encode;
+            if (renderer_info_.empty()) renderer_info_ = run.renderer_info;
+        }
+        if (!simulated) return simulated.error();
+        if (!run.status) return run.status.error();
+        if (run.stopped) return cancelled;
+        if (Status sealed = (*sink)->seal(); !sealed) return sealed.error();
+        // The sealed file outlives its sink, whose encoder is freed now.
+        files_[j].emplace(std::move(*(*sink)->files().front()));
+        return {};
+    }
+
+    void progress(int frames) {
+        std::lock_guard lock(mutex_);
+        frames_done_ += frames;
+        if (def_.on_progress) {
+            def_.on_progress({.frames_done = frames_done_,
+                              .frames_total = frames_total_,
+                              .elapsed = seconds_since(started_)});
+        }
+    }
+
+    // The trace and events of the whole clip, from a playback of their own.
+    void record(SideOutputs& outputs) {
+        Playback playback(def_.scene);
+        for (int frame = 0; frame <= range_.last && !stopping(); ++frame) {
+            if (Status advanced = playback.advance_to(frame); !advanced) {
+                return fail(advanced.error());
+            }
+            outputs.record(frame, playback.time_of_frame(frame), playback.discs(),
+                           playback.take_events(), playback.world().respawns_applied());
+        }
+    }
+
+    const RenderDef& def_;
+    const FrameRange range_;
+    const encode::SinkDef& sink_;
+    const std::vector<int> wanted_;          // segment indices, rendered in this order
+    const std::vector<std::string> paths_;   // each one's file
+    std::vector<std::optional<OutputFile>> files_;   // sealed, per wanted segment
+    std::atomic<std::size_t> next_{0};
+    std::atomic<bool> failed_{false};
+    std::mutex mutex_;                       // guards what follows
+    Status status_;
+    StageSeconds busy_;
+    std::string renderer_info_;
+    int frames_done_ = 0;
+    int frames_total_ = 0;
+    Clock::time_point started_;
+};
+
+}  // namespace
+
+Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
+                                        const encode::SinkDef& sink, const std::string& format) {
+    const auto started = Clock::now();
+    const int count = segment_count(def.scene.video, range);
+    encode::SinkDef segment_sink = sink;
+    segment_sink.keyint = def.scene.video.segment_frames();
+    // One encoder thread per segment: x264's bytes depend on its thread count, and segments
+    // side by side use the cores better than one encoder's frame threads.
+    segment_sink.threads = 1;
+
+    std::vector<int> wanted;
+    std::vector<std::string> paths;
+    if (def.segment) {
+        if (*def.segment < 0 || *def.segment >= count) {
+            return Error{"segment " + std::to_string(*def.segment) + " is not in the clip, which has " +
+                         std::to_string(count) + (count == 1 ? " segment" : " segments") +
+                         " (0.." + std::to_string(count - 1) + ")"};
+        }
+        if (def.trace || def.events) {
+            return Error{"--trace and --events belong to a whole render, not to one segment"};
+        }
+        wanted = {*def.segment};
+        paths = {sink.path};
+    } else {
+        // Each segment goes to a temporary file beside the output (never committed), so the
+        // join reads and writes on one file system.
+        const std::filesystem::path dir = std::filesystem::path(sink.path).parent_path();
+        for (int k = 0; k < count; ++k) {
+            wanted.push_back(k);
+            paths.push_back((dir / encode::segment_file_name(k, count, format)).string());
+        }
+    }
+    // The output's temporary file is made first: a target that cannot be written fails
+    // before any work.
+    std::optional<OutputFile> joined;
+    if (!def.segment) {
+        auto made = OutputFile::create(sink.path);
+        if (!made) return made.error();
+        joined.emplace(std::move(*made));
+    }
+    std::optional<SideOutputs> outputs;
+    if (def.trace || def.events) {
+        auto opened = SideOutputs::open(def.trace, def.events, def.scene);
+        if (!opened) return opened.error();
+        outputs.emplace(std::move(*opened));
+    }
+    const int asked = def.jobs > 0 ? def.jobs : usable_cores();
+    const int workers = def.threaded ? std::clamp(asked, 1, static_cast<int>(wanted.size())) : 1;
+
+    SegmentRun run(def, range, segment_sink, wanted, paths);
+    if (Status done = run.run(workers, outputs ? &*outputs : nullptr); !done) return done.error();
+
+    std::vector<OutputFile*> files;
+    if (def.segment) {
+        files.push_back(&*run.files().front());
+    } else {
+        encode::SegmentSet set{format, {}};
+        for (const auto& file : run.files()) set.paths.push_back(file->temp_path());
+        if (Status done = encode::join_segments(set, *joined); !done) return done.error();
+        files.push_back(&*joined);
+    }
+    if (outputs) {
+        if (Status sealed = outputs->seal(); !sealed) return sealed.error();
+        for (OutputFile* file : outputs->files()) files.push_back(file);
+    }
+    if (def.should_stop && def.should_stop()) return cancelled;
+    if (Status committed = commit_together(files); !committed) return committed.error();
+    const FrameRange written =
+        def.segment ? segment_frames(def.scene.video, range, *def.segment) : range;
+    return RenderSummary{.frames = written.last - written.first + 1,
+                         .range = written,
+                         .seconds = seconds_since(started),
+                         .busy = run.busy(),
+                         .renderer = run.renderer_info()};
+}
+
+}  // namespace discreel::job

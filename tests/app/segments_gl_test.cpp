@@ -1,0 +1,197 @@
+// Segments (docs/scale.md): a video file is encoded in segments of video.segment seconds and
+// joined by stream copy, so its bytes are the same for any --jobs and for segments rendered
+// apart (--segment K) and joined with `discreel concat`. Through the binary, so GL; ffprobe
+// and the ffmpeg CLI are the independent readers.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "test_support.hpp"
+
+namespace discreel {
+namespace {
+
+using testing::probe_video;
+using testing::read_file;
+using testing::run_command;
+using testing::TempDir;
+using testing::write_file;
+
+const std::string bin = DISCREEL_BIN;
+
+// 160x120 at 24 fps for 2.5 s: 60 frames, in segments of 0.5 s (12 frames): 5 segments. Trails
+// and a follow camera remember earlier frames, and a throw and a bounce fall inside segments,
+// so a segment's frames depend on everything before them.
+const std::string scene_text = R"(version: 1
+video: {size: [160, 120], fps: 24, duration: 2.5, segment: 0.5}
+physics: {rate: 480, restitution: 0.8}
+camera: {follow: red, height: 3}
+style: {trails: {length: 0.5}, clock: {format: frame}}
+walls:
+  - box: [[0, 0], [4, 3]]
+discs:
+  - {id: red, position: [1, 2], velocity: [3, 0], radius: 0.3, color: "#e4572e"}
+  - {id: teal, position: [3, 1], velocity: [-1, 3], radius: 0.25, color: "#17bebb"}
+throws:
+  - {disc: red, at: 0.9, velocity: [-3, 4]}
+)";
+
+struct Scene {
+    TempDir dir;
+    std::string path = dir / "scene.yaml";
+    Scene() { write_file(path, scene_text); }
+};
+
+testing::CommandResult discreel(std::vector<std::string> args) {
+    args.insert(args.begin(), bin);
+    return run_command(args);
+}
+
+// Every way of rendering the clip gives the same file, in each container: --jobs 1, 2 and 3,
+// the default, and the five segments rendered one by one (in reverse, as a farm may finish
+// them) and joined.
+TEST(SegmentsGLTest, EveryWayOfRenderingGivesTheSameBytes) {
+    Scene scene;
+    for (const std::string format : {"mp4", "mkv", "webm"}) {
+        SCOPED_TRACE(format);
+        const std::string whole = scene.dir / ("default." + format);
+        ASSERT_EQ(discreel({"render", scene.path, "-o", whole, "-q"}).exit_code, 0);
+        const std::string expected = read_file(whole);
+        ASSERT_GT(expected.size(), 1000u);
+        for (const std::string jobs : {"1", "2", "3"}) {
+            const std::string out = scene.dir / ("jobs" + jobs + "." + format);
+            const auto run = discreel({"render", scene.path, "-o", out, "--jobs", jobs, "-q"});
+            ASSERT_EQ(run.exit_code, 0) << run.err;
+            EXPECT_EQ(read_file(out), expected) << "--jobs " << jobs;
+        }
+        const std::string segments = scene.dir / ("segments-" + format);
+        for (int k = 4; k >= 0; --k) {
+            const auto run = discreel({"render", scene.path, "-o", segments, "--segment",
+                                       std::to_string(k), "--format", format});
+            ASSERT_EQ(run.exit_code, 0) << run.err;
+            EXPECT_EQ(run.out, "wrote " + segments + "/segment-000" + std::to_string(k) +
+                                   "-of-0005." + format + ": 12 frames, 160x120, 0.50 s at 24 "
+                                   "fps, frames " + std::to_string(12 * k) + ".." +
+                                   std::to_string(12 * k + 11) + run.out.substr(run.out.find(" (")));
+        }
+        const std::string joined = scene.dir / ("joined." + format);
+        const auto concat = discreel({"concat", segments, "-o", joined});
+        ASSERT_EQ(concat.exit_code, 0) << concat.err;
+        EXPECT_EQ(concat.out, "wrote " + joined + ": 5 segments joined\n");
+        EXPECT_EQ(read_file(joined), expected);
+        // What a player sees: 60 frames, 2.5 s, each segment opening with a keyframe.
+        const auto probe = probe_video(joined);
+        EXPECT_EQ(probe.at("nb_read_frames"), "60");
+        EXPECT_EQ(probe.at("r_frame_rate"), "24/1");
+    }
+}
+
+// The keyframes are the segments' first frames and no others (scene cuts are off), and the
+// file plays for exactly the clip's duration.
+TEST(SegmentsGLTest, EachSegmentIsOneClosedGroupOfPictures) {
+    Scene scene;
+    const std::string out = scene.dir / "clip.mp4";
+    ASSERT_EQ(discreel({"render", scene.path, "-o", out, "-q"}).exit_code, 0);
+    const auto frames = run_command({"ffprobe", "-v", "error", "-select_streams", "v",
+                                     "-show_entries", "frame=key_frame,pict_type", "-of", "csv=p=0",
+                                     out});
+    ASSERT_EQ(frames.exit_code, 0) << frames.err;
+    std::vector<int> keyframes;
+    std::istringstream lines(frames.out);
+    std::string line;
+    int n = 0;
+    while (std::getline(lines, line)) {
+        // "KEY,TYPE", with a further field where the frame has side data (x264's SEI with
+        // its settings, once per segment); other lines are that side data's.
+        if (line.size() < 3 || line[1] != ',' || line.find_first_of("IPB") != 2) continue;
+        if (line[0] == '1') keyframes.push_back(n);
+        ++n;
+    }
+    EXPECT_EQ(n, 60);
+    EXPECT_EQ(keyframes, (std::vector<int>{0, 12, 24, 36, 48}));
+    const auto duration = run_command({"ffprobe", "-v", "error", "-show_entries",
+                                       "format=duration", "-of", "csv=p=0", out});
+    EXPECT_EQ(duration.out, "2.500000\n");
+}
+
+// A segment rendered on its own shows exactly the frames a whole render draws there: its
+// worker simulated (and remembered, for trails and the camera) every frame before it. Lossless
+// FFV1 against a PNG sequence of the whole clip drawn in one pass.
+TEST(SegmentsGLTest, ASegmentsFramesAreTheWholeRendersFrames) {
+    Scene scene;
+    const std::string segments = scene.dir / "lossless";
+    auto run = discreel({"render", scene.path, "-o", segments, "--segment", "3", "--format",
+                         "mkv", "--lossless", "-q"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    run = discreel({"render", scene.path, "-o", scene.dir / "f_%02d.png", "-q"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto decode = [](std::vector<std::string> input) {
+        std::vector<std::string> argv{"ffmpeg", "-v", "error"};
+        argv.insert(argv.end(), input.begin(), input.end());
+        for (const char* arg : {"-pix_fmt", "rgb24", "-f", "framemd5", "-"}) argv.push_back(arg);
+        const auto decoded = run_command(argv);
+        std::vector<std::string> sums;
+        std::istringstream lines(decoded.out);
+        std::string line;
+        while (std::getline(lines, line)) {
+            if (!line.empty() && line[0] != '#') sums.push_back(line.substr(line.rfind(',') + 1));
+        }
+        return sums;
+    };
+    const auto segment = decode({"-i", segments + "/segment-0003-of-0005.mkv"});
+    const auto whole = decode({"-start_number", "36", "-i", scene.dir / "f_%02d.png",
+                               "-frames:v", "12"});
+    ASSERT_EQ(segment.size(), 12u);
+    EXPECT_EQ(segment, whole);
+}
+
+TEST(SegmentsGLTest, MistakesAreNamed) {
+    Scene scene;
+    auto run = discreel({"render", scene.path, "-o", scene.dir / "s", "--segment", "5"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: --segment 5 is past the end: the clip has 5 segments (0..4)\n");
+    EXPECT_FALSE(std::filesystem::exists(scene.dir / "s"));
+    run = discreel({"render", scene.path, "-o", scene.dir / "s", "--segment", "0", "--trace",
+                    scene.dir / "t.csv"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err,
+              "discreel: --trace and --events belong to a whole render, not to one segment\n");
+
+    const std::string dir = scene.dir / "parts";
+    for (const std::string k : {"0", "1", "3", "4"}) {
+        ASSERT_EQ(discreel({"render", scene.path, "-o", dir, "--segment", k, "-q"}).exit_code, 0);
+    }
+    run = discreel({"concat", dir, "-o", scene.dir / "out.mp4"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: '" + dir + "' lacks segment 2 of 5 (segment-0002-of-0005.mp4); "
+                       "render it with --segment 2\n");
+    ASSERT_EQ(discreel({"render", scene.path, "-o", dir, "--segment", "2", "-q"}).exit_code, 0);
+    run = discreel({"concat", dir, "-o", scene.dir / "out.webm"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: the segments are mp4 files; join them into a .mp4 file, not '" +
+                           scene.dir / "out.webm" + "'\n");
+    // Segments of another render (other crf, so other encoder settings) in the same directory.
+    ASSERT_EQ(discreel({"render", scene.path, "-o", scene.dir / "other", "--segment", "2",
+                        "--crf", "30", "--size", "320x240", "-q"})
+                  .exit_code,
+              0);
+    std::filesystem::copy_file(scene.dir / "other/segment-0002-of-0005.mp4",
+                               dir + "/segment-0002-of-0005.mp4",
+                               std::filesystem::copy_options::overwrite_existing);
+    run = discreel({"concat", dir, "-o", scene.dir / "out.mp4"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: segment '" + dir + "/segment-0002-of-0005.mp4' was not "
+                       "encoded like '" + dir + "/segment-0000-of-0005.mp4' (codec, size, frame "
+                       "rate or encoder settings differ); join the segments of one render\n");
+    write_file(dir + "/segment-0001-of-0004.mkv", "");
+    run = discreel({"concat", dir, "-o", scene.dir / "out.mp4"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_NE(run.err.find("holds segments of different renders"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(scene.dir / "out.mp4"));
+    run = discreel({"concat", scene.dir / "none", "-o", scene.dir / "out.mp4"});
+    EXPECT_EQ(run.exit_code, 2);
+}
+
+}  // namespace
+}  // namespace discreel
