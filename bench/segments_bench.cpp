@@ -62,6 +62,7 @@ struct Run {
 // it reported.
 Run run_process(const std::vector<std::string>& args, const std::string& err_path) {
     std::vector<char*> argv;
+    argv.reserve(args.size() + 1);
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
     posix_spawn_file_actions_t actions;

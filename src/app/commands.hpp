@@ -26,6 +26,7 @@ struct RenderOptions {
     OutputFiles files;
     bool sequential = false;                 // every stage on one thread: same bytes, slower
     int jobs = 0;                            // --jobs: segments at once; 0: one per core
+    bool dry_run = false;                    // print the plan as KEY=VALUE lines, render nothing
     ProgressRequest progress = ProgressRequest::none;   // --progress [json]
     bool no_overwrite = false;               // refuse an existing output
     bool quiet = false;                      // errors only: no progress, no summary

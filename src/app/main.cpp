@@ -306,6 +306,9 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
                            "Segments of a video file rendered at once (default: one per core); "
                            "the bytes are the same for any number")
         ->check(CLI::Range(1, 1024));
+    render_cmd->add_flag("--dry-run", render.dry_run,
+                         "Check everything, print what would be written (output, format, "
+                         "frames, segments) as KEY=VALUE lines and render nothing");
     render_cmd->add_option("--segment", render.request.segment,
                            "Render only segment K (from 0) of the video, into the directory -o "
                            "names; join them with discreel concat")

@@ -108,6 +108,16 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const job::FrameRange frames =
         plan->segment ? job::segment_frames(scene.video, plan->frames, *plan->segment)
                       : plan->frames;
+    if (o.dry_run) {
+        // For scripts (deploy/slurm/clip.sh asks how many segment tasks to submit).
+        out << "output=" << printable(output.path) << "\nformat=" << output.format
+            << "\nsize=" << scene.video.width << 'x' << scene.video.height
+            << "\nfps=" << scene.video.fps << "\nframes=" << frames.first << '-' << frames.last
+            << "\nsegments=" << (job::segmented(output) ? plan->segments : 0)
+            << "\nsegment_frames=" << (job::segmented(output) ? scene.video.segment_frames() : 0)
+            << '\n';
+        return standard_output_ok(out, err) ? exit_ok : exit_runtime_failure;
+    }
     if (plan->segment && (o.files.trace || o.files.events)) {
         report_error(err, "--trace and --events belong to a whole render, not to one segment");
         return exit_bad_input;

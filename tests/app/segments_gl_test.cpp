@@ -129,7 +129,7 @@ TEST(SegmentsGLTest, ASegmentsFramesAreTheWholeRendersFrames) {
     const auto decode = [](std::vector<std::string> input) {
         std::vector<std::string> argv{"ffmpeg", "-v", "error"};
         argv.insert(argv.end(), input.begin(), input.end());
-        for (const char* arg : {"-pix_fmt", "rgb24", "-f", "framemd5", "-"}) argv.push_back(arg);
+        for (const char* arg : {"-pix_fmt", "rgb24", "-f", "framemd5", "-"}) argv.emplace_back(arg);
         const auto decoded = run_command(argv);
         std::vector<std::string> sums;
         std::istringstream lines(decoded.out);
@@ -144,6 +144,25 @@ TEST(SegmentsGLTest, ASegmentsFramesAreTheWholeRendersFrames) {
                                "-frames:v", "12"});
     ASSERT_EQ(segment.size(), 12u);
     EXPECT_EQ(segment, whole);
+}
+
+// --dry-run: the plan a script submits tasks by (deploy/slurm/clip.sh), and nothing written.
+TEST(SegmentsGLTest, DryRunPrintsThePlan) {
+    Scene scene;
+    auto run = discreel({"render", scene.path, "-o", scene.dir / "clip.webm", "--fps", "30",
+                         "--dry-run"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(run.out, "output=" + scene.dir / "clip.webm" +
+                           "\nformat=webm\nsize=160x120\nfps=30\nframes=0-74\nsegments=5\n"
+                           "segment_frames=15\n");
+    run = discreel({"render", scene.path, "-o", scene.dir / "parts", "--segment", "2",
+                    "--dry-run"});
+    EXPECT_EQ(run.out, "output=" + scene.dir / "parts/segment-0002-of-0005.mp4" +
+                           "\nformat=mp4\nsize=160x120\nfps=24\nframes=24-35\nsegments=5\n"
+                           "segment_frames=12\n");
+    run = discreel({"render", scene.path, "-o", scene.dir / "clip.gif", "--dry-run"});
+    EXPECT_NE(run.out.find("\nsegments=0\n"), std::string::npos) << run.out;
+    EXPECT_EQ(testing::directory_entries(scene.dir.path()), std::vector<std::string>{"scene.yaml"});
 }
 
 TEST(SegmentsGLTest, MistakesAreNamed) {

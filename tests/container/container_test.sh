@@ -187,6 +187,20 @@ batch_in_container() {
     --workingdir /work "$CONTAINER" -- discreel batch /work/renders.txt
   [[ -s $dir/second.png && ! -e $dir/first.png ]] || fail "index 1 did not render second.png alone"
   [[ "$(stream_facts "$dir/second.png")" == *width=32* ]] || fail "second.png is not 32 wide"
+  # deploy/k8s/clip-*-job.yaml: each index renders its segment, then concat joins them into the
+  # bytes of one render.
+  printf 'version: 1\nvideo:\n  size: [64, 36]\n  duration: 1\n  segment: 0.5\ndiscs:\n  - position: [0, 0]\n    velocity: [1, 0]\n    radius: 0.4\n' >"$dir/clip.yaml"
+  local index
+  for index in 0 1; do
+    buildah run --isolation chroot --env JOB_COMPLETION_INDEX=$index --volume "$dir:/work" \
+      --workingdir /work "$CONTAINER" -- bash -c \
+      'exec discreel render clip.yaml -o clip.segments --segment "$JOB_COMPLETION_INDEX" --format mp4'
+  done
+  buildah run --isolation chroot --volume "$dir:/work" --workingdir /work "$CONTAINER" -- \
+    discreel concat clip.segments -o clip.mp4
+  buildah run --isolation chroot --volume "$dir:/work" --workingdir /work "$CONTAINER" -- \
+    discreel render clip.yaml -o whole.mp4
+  cmp "$dir/clip.mp4" "$dir/whole.mp4" || fail "the joined segments differ from one render"
 }
 
 remove_container() {

@@ -4,6 +4,8 @@
 # processes and stopped by pid. A manifest of three stills is submitted as a job array through
 # deploy/slurm/batch.sbatch; the two good tasks must give the bytes of `discreel render`, the
 # third fails (its scene is missing), and after the scene appears `scontrol requeue` reruns it.
+# Then one clip goes through deploy/slurm/clip.sh: five segment tasks spread over both nodes and
+# a gather job after them; the joined clip must be `discreel render`'s bytes.
 #
 #   slurm_test.sh SOURCE_DIR WORK_DIR DISCREEL
 set -euo pipefail
@@ -127,4 +129,22 @@ wait_done "$job"
 cmp "$WORK/b.png" "$WORK/out/b.png" >/dev/null
 "$DISCREEL" render "$scene" -o "$WORK/c.png" -q
 cmp "$WORK/c.png" "$WORK/out/c.png" || fail "the requeued task's still differs"
-echo "slurm test passed: array $job on $(sinfo -h -N -o '%N' | sort -u | tr '\n' ' ')"
+
+# One clip as segments on both nodes, then the gather job (deploy/slurm/clip.sh): the same
+# bytes as one render on this machine.
+cat >"$WORK/scenes/clip.yaml" <<SCENE
+$(sed 's/^  duration: 1.25$/  duration: 1.25\n  segment: 0.25/' "$scene")
+SCENE
+grep -q 'segment: 0.25' "$WORK/scenes/clip.yaml" || fail "the clip scene has no segment length"
+read -r array gather < <(cd "$WORK/out" && "$SOURCE_DIR/deploy/slurm/clip.sh" \
+  "$WORK/scenes/clip.yaml" "$WORK/out/clip.mp4" --crf 30)
+echo "submitted segments $array and gather $gather"
+wait_done "$array"
+wait_done "$gather"
+for task in 0 1 2 3 4; do
+  [[ $(state_of "${array}_$task") == COMPLETED ]] || fail "segment task $task ended $(state_of "${array}_$task")"
+done
+[[ $(state_of "$gather") == COMPLETED ]] || fail "the gather job ended $(state_of "$gather")"
+"$DISCREEL" render "$WORK/scenes/clip.yaml" -o "$WORK/clip.mp4" --crf 30 -q
+cmp "$WORK/clip.mp4" "$WORK/out/clip.mp4" || fail "the gathered clip differs from discreel render's"
+echo "slurm test passed: array $job, segments $array, gather $gather on $(sinfo -h -N -o '%N' | sort -u | tr '\n' ' ')"
