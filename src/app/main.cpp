@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <cstdlib>
 #include <cmath>
 #include <limits>
@@ -14,6 +13,7 @@
 
 #include "commands.hpp"
 #include "discreel/did_you_mean.hpp"
+#include "discreel/parse_number.hpp"
 #include "discreel/temporary_files.hpp"
 #include "exit_codes.hpp"
 #include "discreel/read_file.hpp"
@@ -25,31 +25,19 @@
 namespace {
 
 using namespace discreel::app;
-
-// "1280x720" -> width, height; anything else is rejected with CLI11's usual message.
-std::string parse_size(const std::string& text, VideoOverrides& video) {
-    const auto x = text.find('x');
-    int w = 0, h = 0;
-    if (x != std::string::npos) {
-        const char* end = text.data() + text.size();
-        const auto [pw, ew] = std::from_chars(text.data(), text.data() + x, w);
-        const auto [ph, eh] = std::from_chars(text.data() + x + 1, end, h);
-        if (ew == std::errc() && eh == std::errc() && pw == text.data() + x && ph == end) {
-            video.width = w;
-            video.height = h;
-            return {};
-        }
-    }
-    return "expected WIDTHxHEIGHT, e.g. 1280x720";
-}
+using discreel::parse_size;
+using discreel::parse_whole;
 
 void add_size_option(CLI::App& cmd, VideoOverrides& video, const std::string& description) {
     cmd.add_option_function<std::string>(
            "--size",
            [&video](const std::string& s) {
-               if (auto problem = parse_size(s, video); !problem.empty()) {
-                   throw CLI::ValidationError("--size", problem);
+               const auto size = parse_size(s);
+               if (!size) {
+                   throw CLI::ValidationError("--size", "expected WIDTHxHEIGHT, e.g. 1280x720");
                }
+               video.width = size->first;
+               video.height = size->second;
            },
            description)
         ->option_text("WxH");
@@ -128,15 +116,13 @@ void add_frame_option(CLI::App& cmd, std::optional<int>& frame) {
                    frame = -1;
                    return;
                }
-               int value = 0;
-               const auto [end, problem] =
-                   std::from_chars(text.data(), text.data() + text.size(), value);
-               if (problem != std::errc() || end != text.data() + text.size()) {
+               const auto value = parse_whole(text);
+               if (!value) {
                    throw CLI::ValidationError(
                        "--frame", "expected a frame number (negative counts from the end) or "
                                   "'last', got '" + text + "'");
                }
-               frame = value;
+               frame = *value;
            },
            "Frame of a .png still: 0 (default) is the first, -1 or 'last' the last")
         ->option_text("N|last");
@@ -433,23 +419,20 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     golden_cmd->add_option_function<std::string>(
                   "--shard",
                   [&golden](const std::string& text) {
-                      const auto number = [](std::string_view digits, int& value) {
-                          const auto [end, problem] = std::from_chars(
-                              digits.data(), digits.data() + digits.size(), value);
-                          return !digits.empty() && problem == std::errc() &&
-                                 end == digits.data() + digits.size();
-                      };
                       const auto slash = text.find('/');
                       const std::string_view all = text;
-                      int k = 0, n = 0;
-                      if (slash == std::string::npos || !number(all.substr(0, slash), k) ||
-                          !number(all.substr(slash + 1), n) || k < 1 || k > n) {
+                      std::optional<int> k, n;
+                      if (slash != std::string::npos) {
+                          k = parse_whole(all.substr(0, slash));
+                          n = parse_whole(all.substr(slash + 1));
+                      }
+                      if (!k || !n || *k < 1 || *k > *n) {
                           throw CLI::ValidationError(
                               "--shard",
                               "expected K/N with 1 <= K <= N, e.g. 2/4, got '" + text + "'");
                       }
-                      golden.shard = k;
-                      golden.shards = n;
+                      golden.shard = *k;
+                      golden.shards = *n;
                   },
                   "Check only the K-th of N shares of the frames (1-based), for parallel CI jobs")
         ->option_text("K/N");

@@ -1,6 +1,6 @@
 #include "manifest.hpp"
 
-#include <charconv>
+#include "discreel/parse_number.hpp"
 
 namespace discreel::app {
 
@@ -76,12 +76,11 @@ Expected<std::size_t> batch_index(std::optional<std::size_t> flag,
         const char* value = getenv(name);
         if (value == nullptr || *value == '\0') continue;
         const std::string_view text = value;
-        std::size_t index = 0;
-        const auto [end, problem] = std::from_chars(text.data(), text.data() + text.size(), index);
-        if (problem != std::errc() || end != text.data() + text.size()) {
+        const auto index = parse_whole<std::size_t>(text);
+        if (!index) {
             return Error{std::string(name) + " is '" + value + "', not an index (0, 1, 2, ...)"};
         }
-        return index;
+        return *index;
     }
     return Error{"batch needs the render's index: --index I, or SLURM_ARRAY_TASK_ID (a Slurm "
                  "job array) or JOB_COMPLETION_INDEX (a Kubernetes indexed Job) in the "

@@ -2,7 +2,6 @@
 // stream copy (FFmpeg's doc/examples/remux.c, with the timestamps renumbered).
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +15,7 @@
 #include "libav_log.hpp"
 #include "video_format.hpp"
 #include "discreel/encode.hpp"
+#include "discreel/parse_number.hpp"
 
 namespace discreel::encode {
 namespace {
@@ -30,13 +30,10 @@ struct ParsedName {
     std::string format;
 };
 
+// The zero-padded numbers of a segment's name: at least four digits.
 std::optional<int> whole_number(std::string_view digits) {
-    int value = 0;
-    const auto [end, problem] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (digits.size() < 4 || problem != std::errc() || end != digits.data() + digits.size()) {
-        return std::nullopt;
-    }
-    return value;
+    if (digits.size() < 4 || digits[0] == '-') return std::nullopt;
+    return parse_whole(digits);
 }
 
 // "segment-0003-of-0010.mp4" -> {3, 10, "mp4"}; nullopt for any other name.

@@ -3,11 +3,11 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <string_view>
 
+#include "discreel/parse_number.hpp"
 #include "discreel/printable.hpp"
 
 namespace discreel::job {
@@ -25,18 +25,10 @@ Expected<FrameRange> parse_range(const std::string& text, int count) {
                           "got '" + text + "'"};
     const auto dash = text.find('-');
     if (dash == std::string::npos || dash == 0) return malformed;
-    const auto number = [](std::string_view digits) -> std::optional<int> {
-        int value = 0;
-        const auto [end, problem] =
-            std::from_chars(digits.data(), digits.data() + digits.size(), value);
-        if (digits.empty() || problem != std::errc() || end != digits.data() + digits.size())
-            return std::nullopt;
-        return value;
-    };
     const std::string_view all = text;
-    const auto first = number(all.substr(0, dash));
+    const auto first = parse_whole(all.substr(0, dash));
     const auto last = dash + 1 == text.size() ? std::optional<int>(count - 1)
-                                              : number(all.substr(dash + 1));
+                                              : parse_whole(all.substr(dash + 1));
     if (!first || !last) return malformed;
     if (*first >= count) return Error{outside_clip(*first, count)};
     if (*last >= count) return Error{outside_clip(*last, count)};

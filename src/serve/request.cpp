@@ -1,12 +1,12 @@
 #include "request.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <optional>
 
 #include "digest.hpp"
+#include "discreel/parse_number.hpp"
 
 namespace discreel::serve {
 namespace {
@@ -41,20 +41,6 @@ bool known_field(const std::string& key) {
         if (key == name) return true;
     }
     return false;
-}
-
-// "1280x720"; nullopt when it is not two whole numbers around an x.
-std::optional<std::pair<int, int>> parse_size(const std::string& text) {
-    const auto x = text.find('x');
-    if (x == std::string::npos) return std::nullopt;
-    int w = 0, h = 0;
-    const char* end = text.data() + text.size();
-    const auto [pw, ew] = std::from_chars(text.data(), text.data() + x, w);
-    const auto [ph, eh] = std::from_chars(text.data() + x + 1, end, h);
-    if (ew != std::errc() || eh != std::errc() || pw != text.data() + x || ph != end) {
-        return std::nullopt;
-    }
-    return std::pair{w, h};
 }
 
 // An integer field within int's range.
