@@ -201,6 +201,12 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     progress.done(seconds);
     if (o.verbose) report_details(*run, to_write, err);
     if (o.quiet) return exit_ok;
+    if (output.format == "wav") {
+        summary << "wrote " << printable(output.path) << ": " << std::fixed << std::setprecision(2)
+                << video.duration << " s of sound, 48 kHz stereo (" << std::setprecision(1)
+                << seconds << " s)\n";
+        return exit_ok;
+    }
     summary << "wrote " << printable(output.path) << ": " << to_write
             << (to_write == 1 ? " frame" : " frames")
         << ", " << video.width << 'x' << video.height;

@@ -43,7 +43,15 @@ std::string supported_formats() {
     for (const auto& kind : output_kinds) {
         list += (list.empty() ? "" : ", ") + std::string(kind.summary);
     }
-    return list;
+    return list + ", .wav (the soundtrack alone)";
+}
+
+// A .wav is the soundtrack alone: no frames, so no sink; the job writes it (WavWriter).
+bool is_wav(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return path != "-" && extension == ".wav";
 }
 
 struct Resolved {
@@ -95,6 +103,16 @@ Status check_resolved(const Resolved& resolved, const SinkDef& def) {
 
 Expected<OutputDescription> describe_output(const std::string& path,
                                             const std::string& stream_container) {
+    if (is_wav(path)) {
+        if (!stream_container.empty()) {
+            return Error{"a container is chosen for standard output (-o -) or a segment "
+                         "(--segment) only; a file's extension picks its format"};
+        }
+        OutputDescription description;
+        description.path = path;
+        description.format = "wav";
+        return description;
+    }
     auto resolved = resolve(path);
     if (!resolved) {
         return resolved.error();
@@ -120,6 +138,13 @@ std::string OutputDescription::frame_path(int n) const {
 }
 
 Status check_settings(const SinkDef& def) {
+    if (is_wav(def.path)) {
+        if (!def.stream_container.empty()) {
+            return Error{"a container is chosen for standard output (-o -) or a segment "
+                         "(--segment) only; a file's extension picks its format"};
+        }
+        return reject_encoder_settings(def, "WAV (the soundtrack alone)");
+    }
     auto resolved = resolve(def.path);
     if (!resolved) {
         return resolved.error();
@@ -145,6 +170,9 @@ Status Sink::finish() {
 }
 
 Expected<std::unique_ptr<Sink>> open_sink(const SinkDef& def) {
+    if (is_wav(def.path)) {
+        return write_error(def.path, "a .wav holds sound, not frames (encode::WavWriter)");
+    }
     auto resolved = resolve(def.path);
     if (!resolved) {
         return resolved.error();

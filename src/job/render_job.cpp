@@ -9,6 +9,7 @@
 #include "pipeline.hpp"
 #include "segment_render.hpp"
 #include "side_outputs.hpp"
+#include "soundtrack.hpp"
 
 namespace discreel::job {
 namespace {
@@ -89,6 +90,7 @@ Expected<RenderSummary> render(const RenderDef& def) {
     sink_def.first_number = range.first;
     auto output = encode::describe_output(sink_def.path, sink_def.stream_container);
     if (!output) return output.error();
+    if (output->format == "wav") return render_soundtrack(def, range);
     if (segmented(*output)) return render_segments(def, range, sink_def, output->format);
     if (def.segment) return Error{"only video files (.mp4, .mkv, .webm) are made of segments"};
 

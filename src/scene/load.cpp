@@ -23,9 +23,9 @@ using detail::Fields;
 using detail::Location;
 using detail::Value;
 
-constexpr std::array<std::string_view, 10> top_level_keys{
-    "version", "video", "camera", "style", "physics", "walls", "discs", "bodies", "throws",
-    "golden"};
+constexpr std::array<std::string_view, 11> top_level_keys{
+    "version", "video", "audio", "camera", "style", "physics", "walls", "discs", "bodies",
+    "throws", "golden"};
 constexpr int supported_version = 1;
 // Values under unknown top-level keys beyond which a file is refused before it is parsed into
 // nodes: a misspelt section of an ordinary scene holds fewer, and is reported with the file's
@@ -279,6 +279,7 @@ void read_scene(const Value& root, detail::Loader& loader) {
     // Dependency order, not file order: discs take their defaults from physics, throws and
     // camera.follow refer to discs, golden frames are checked against the video's length.
     if (const auto v = fields->get("video")) detail::read_video(loader, *v);
+    if (const auto v = fields->get("audio")) detail::read_audio(loader, *v);
     if (const auto v = fields->get("camera")) detail::read_camera(loader, *v);
     const auto physics = fields->get("physics");
     if (physics) detail::read_physics(loader, *physics);

@@ -45,6 +45,7 @@ struct Loader {
 };
 
 void read_video(Loader& loader, const Value& value);
+void read_audio(Loader& loader, const Value& value);
 void read_camera(Loader& loader, const Value& value);
 void resolve_camera_follow(Loader& loader);
 void read_style(Loader& loader, const Value& value);

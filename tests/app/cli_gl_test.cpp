@@ -102,7 +102,8 @@ TEST(CliGLTest, UnknownOutputExtensionIsABadCommandLine) {
     EXPECT_EQ(run.err,
               "discreel: unsupported output extension '.avi' (supported: .mp4 (H.264), .mkv "
               "(H.264, VP9, or FFV1 lossless), .webm (VP9), .gif, .png (one frame, or every frame "
-              "for a numbered name such as frame_%04d.png), - (Matroska or fragmented MP4 on standard output))\n");
+              "for a numbered name such as frame_%04d.png), - (Matroska or fragmented MP4 on "
+              "standard output), .wav (the soundtrack alone))\n");
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 

@@ -8,7 +8,8 @@ namespace {
 
 const std::string supported =
     ".mp4 (H.264), .mkv (H.264, VP9, or FFV1 lossless), .webm (VP9), .gif, .png (one frame, or "
-    "every frame for a numbered name such as frame_%04d.png), - (Matroska or fragmented MP4 on standard output)";
+    "every frame for a numbered name such as frame_%04d.png), - (Matroska or fragmented MP4 on "
+    "standard output), .wav (the soundtrack alone)";
 
 SinkDef def_for(const std::filesystem::path& path) {
     SinkDef def;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -113,6 +114,25 @@ Expected<SegmentSet> find_segments(const std::string& dir);
 // segments' bytes. `out` (from OutputFile::create, made before any work so that an unwritable
 // target fails first) is sealed, for the caller to commit.
 Status join_segments(const SegmentSet& segments, OutputFile& out);
+
+// A soundtrack alone: interleaved 16-bit PCM in a WAV file, through libavformat's wav muxer
+// (bit-exact: no encoder tag), written under a temporary name until committed.
+class WavWriter {
+public:
+    static Expected<WavWriter> open(const std::string& path, int sample_rate, int channels);
+    ~WavWriter();
+    WavWriter(WavWriter&&) noexcept;
+    WavWriter& operator=(WavWriter&&) noexcept;
+
+    Status write(std::span<const std::int16_t> samples);   // whole frames, interleaved
+    Status seal();                                          // the header's sizes, then close
+    OutputFile& file();                                     // after seal(): to commit
+
+private:
+    struct Impl;
+    explicit WavWriter(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
 
 // PNG stills for goldens and single frames: decoded/encoded with libavcodec's PNG codec.
 // Reading trusts nothing about the file: the header is read first (a file that is no PNG, or

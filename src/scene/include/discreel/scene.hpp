@@ -66,6 +66,11 @@ struct Video {
     int segment_frames() const;
 };
 
+// The soundtrack made from the contacts (docs/sound.md): written alone by a .wav output.
+struct Audio {
+    double volume = 0.8;           // 0..1 of full scale: the loudest a sample may be
+};
+
 struct Camera {
     // Absent: the app frames the walls (or, without walls, the discs at t = 0) with a 5 % margin
     // (app::fit_camera).
@@ -176,6 +181,7 @@ struct Scene {
     std::string name;              // file stem ("demo" for configs/demo.yaml)
     int version = 1;
     Video video;
+    Audio audio;
     Camera camera;
     Style style;
     Physics physics;

@@ -1,0 +1,101 @@
+// The soundtrack alone (-o F.wav, docs/sound.md): through the binary (it builds each frame's
+// description as a render does, so GL in the suite name); ffprobe checks the stream, and the
+// samples are read from the file's data chunk.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+#include <vector>
+
+#include "test_support.hpp"
+
+namespace discreel {
+namespace {
+
+using testing::read_file;
+using testing::run_command;
+using testing::TempDir;
+using testing::write_file;
+
+const std::string bin = DISCREEL_BIN;
+
+// The interleaved samples of a 48 kHz stereo 16-bit WAV, checked by ffprobe.
+std::vector<std::int16_t> samples_of(const std::string& path) {
+    const auto probe = run_command({"ffprobe", "-v", "error", "-show_entries",
+                                    "stream=codec_name,sample_rate,channels", "-of", "csv=p=0",
+                                    path});
+    EXPECT_EQ(probe.out, "pcm_s16le,48000,2\n");
+    const std::string bytes = read_file(path);
+    const std::size_t data = bytes.find("data");
+    EXPECT_NE(data, std::string::npos);
+    std::vector<std::int16_t> samples((bytes.size() - data - 8) / 2);
+    std::memcpy(samples.data(), bytes.data() + data + 8, samples.size() * 2);
+    return samples;
+}
+
+// A disc crossing a 4 m box at 3 m/s hits a wall every 1.27 s, long enough for each sound to
+// die away: each onset in the WAV is within 1 ms of its row in the events file.
+TEST(SoundGLTest, OnsetsAreTheContactsTimesWithinOneMillisecond) {
+    TempDir dir;
+    write_file(dir / "s.yaml", "version: 1\nvideo: {size: [160, 90], fps: 30, duration: 4}\n"
+                               "physics: {gravity: [0, 0], restitution: 1}\n"
+                               "walls:\n  - box: [[0, 0], [4, 2.25]]\n"
+                               "discs:\n  - {position: [2, 1], velocity: [3, 0], radius: 0.1}\n");
+    auto run = run_command({bin, "render", dir / "s.yaml", "-o", dir / "s.wav"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(run.out.rfind("wrote " + dir / "s.wav" + ": 4.00 s of sound, 48 kHz stereo (", 0), 0u)
+        << run.out;
+    run = run_command({bin, "simulate", dir / "s.yaml", "--events", dir / "e.csv"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::vector<double> contacts;
+    std::istringstream rows(read_file(dir / "e.csv"));
+    std::string row;
+    std::getline(rows, row);   // header
+    while (std::getline(rows, row)) contacts.push_back(std::stod(row.substr(0, row.find(','))));
+    ASSERT_EQ(contacts.size(), 3u);
+
+    const auto samples = samples_of(dir / "s.wav");
+    ASSERT_EQ(samples.size(), 2u * 4 * 48000);
+    std::vector<double> onsets;   // the first loud sample after 0.5 s of quiet
+    std::size_t last_loud = 0;
+    bool heard = false;
+    for (std::size_t frame = 0; 2 * frame < samples.size(); ++frame) {
+        if (std::abs(samples[2 * frame]) <= 32 && std::abs(samples[2 * frame + 1]) <= 32) continue;
+        if (!heard || frame - last_loud > 24000) onsets.push_back(frame / 48000.0);
+        heard = true;
+        last_loud = frame;
+    }
+    ASSERT_EQ(onsets.size(), contacts.size());
+    for (std::size_t i = 0; i < onsets.size(); ++i) EXPECT_NEAR(onsets[i], contacts[i], 0.001);
+    // Same scene, same bytes.
+    ASSERT_EQ(run_command({bin, "render", dir / "s.yaml", "-o", dir / "again.wav", "-q"}).exit_code, 0);
+    EXPECT_EQ(read_file(dir / "again.wav"), read_file(dir / "s.wav"));
+}
+
+TEST(SoundGLTest, NoContactsIsDigitalSilence) {
+    TempDir dir;
+    write_file(dir / "s.yaml", "version: 1\nvideo: {duration: 1}\naudio: {volume: 1}\n"
+                               "discs:\n  - {position: [0, 0], velocity: [1, 0], radius: 0.1}\n");
+    ASSERT_EQ(run_command({bin, "render", dir / "s.yaml", "-o", dir / "s.wav", "-q"}).exit_code, 0);
+    const auto samples = samples_of(dir / "s.wav");
+    EXPECT_EQ(samples.size(), 2u * 48000);
+    EXPECT_EQ(std::count(samples.begin(), samples.end(), 0), static_cast<long>(samples.size()));
+}
+
+TEST(SoundGLTest, EncoderSettingsAndBadVolumesAreRefused) {
+    TempDir dir;
+    write_file(dir / "s.yaml", "version: 1\naudio: {volume: 1.5}\n");
+    auto run = run_command({bin, "render", dir / "s.yaml", "-o", dir / "s.wav"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, dir / "s.yaml" + ":2:17: audio.volume: must be between 0 and 1, got 1.5\n");
+    write_file(dir / "s.yaml", "version: 1\n");
+    run = run_command({bin, "render", dir / "s.yaml", "-o", dir / "s.wav", "--crf", "20"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: crf does not apply to WAV (the soundtrack alone)\n");
+    EXPECT_EQ(testing::directory_entries(dir.path()), std::vector<std::string>{"s.yaml"});
+}
+
+}  // namespace
+}  // namespace discreel
