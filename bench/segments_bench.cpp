@@ -1,7 +1,8 @@
 // segments_bench: `discreel render --jobs N` against the ffmpeg CLI encoding the same RGBA
 // frames alone (read from a file in the page cache, libx264 veryfast crf 23, ffmpeg's default
 // threads), on the 1 000-disc gas clip at 1280x720, 600 frames, in the same run.
-//     segments_bench [--frames 600] [--discs 1000] [--jobs 1,2] [--repeat 1]
+//     segments_bench [--frames 600] [--discs 1000] [--jobs 1,2] [--repeat 1] [--sound 1]
+// --sound 1 also renders each --jobs with the soundtrack (--audio, AAC), the cost of sound.
 // --repeat K runs every column K times in turn and reports each one's median. Prints a Markdown
 // table and appends one row per column to bench/results/segments_bench.csv: wall fps, the
 // ratio to ffmpeg, CPU ms per frame and discreel's peak memory (its --verbose VmHWM).
@@ -119,6 +120,7 @@ void write_raw_frames(const scene::Scene& scene, const std::string& path) {
 
 int main(int argc, char** argv) {
     int frames = 600, discs = 1000, repeat = 1;
+    bool sound = false;
     std::vector<int> jobs{1, 2};
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string name = argv[i], value = argv[i + 1];
@@ -128,6 +130,8 @@ int main(int argc, char** argv) {
             discs = std::stoi(value);
         } else if (name == "--repeat") {
             repeat = std::max(1, std::stoi(value));
+        } else if (name == "--sound") {
+            sound = value == "1";
         } else if (name == "--jobs") {
             jobs.clear();
             std::istringstream list(value);
@@ -151,13 +155,20 @@ int main(int argc, char** argv) {
         "-s",     "1280x720", "-r",  "60",      "-i",  raw,        "-c:v",     "libx264",
         "-preset", "veryfast", "-crf", "23",    "-pix_fmt", "yuv420p", (dir / "ffmpeg.mp4").string()};
     std::vector<Run> ffmpeg_runs;
-    std::vector<std::vector<Run>> discreel_runs(jobs.size());
+    // Each --jobs without sound, then (--sound 1) with it.
+    std::vector<std::pair<int, bool>> columns;
+    for (const int j : jobs) columns.emplace_back(j, false);
+    if (sound) {
+        for (const int j : jobs) columns.emplace_back(j, true);
+    }
+    std::vector<std::vector<Run>> discreel_runs(columns.size());
     for (int r = 0; r < repeat; ++r) {
         ffmpeg_runs.push_back(run_process(ffmpeg, (dir / "ffmpeg.err").string()));
-        for (std::size_t j = 0; j < jobs.size(); ++j) {
-            discreel_runs[j].push_back(run_process(
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+            discreel_runs[c].push_back(run_process(
                 {DISCREEL_BIN, "render", scene_path, "-o", (dir / "out.mp4").string(), "--crf",
-                 "23", "--preset", "veryfast", "--jobs", std::to_string(jobs[j]), "--verbose"},
+                 "23", "--preset", "veryfast", "--jobs", std::to_string(columns[c].first),
+                 columns[c].second ? "--audio" : "--no-audio", "--verbose"},
                 (dir / "discreel.err").string()));
         }
     }
@@ -187,8 +198,10 @@ int main(int argc, char** argv) {
                         bench::csv_number(load[0], 2)});
     };
     row("ffmpeg (RGBA file, default threads)", 0, base);
-    for (std::size_t j = 0; j < jobs.size(); ++j) {
-        row("discreel render --jobs " + std::to_string(jobs[j]), jobs[j], median(discreel_runs[j]));
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+        row("discreel render --jobs " + std::to_string(columns[c].first) +
+                (columns[c].second ? " --audio" : ""),
+            columns[c].first, median(discreel_runs[c]));
     }
     if (!results.path().empty()) std::printf("\nappended to %s\n", results.path().c_str());
     return 0;

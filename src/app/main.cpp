@@ -292,6 +292,11 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
                            "Segments of a video file rendered at once (default: one per core); "
                            "the bytes are the same for any number")
         ->check(CLI::Range(1, 1024));
+    render_cmd->add_flag_function(
+        "--audio,!--no-audio",
+        [&render](std::int64_t count) { render.request.audio = count > 0; },
+                         "Put the contacts' soundtrack into the video file, or leave it out "
+                         "(default: the scene's audio.enabled)");
     render_cmd->add_flag("--dry-run", render.dry_run,
                          "Check everything, print what would be written (output, format, "
                          "frames, segments) as KEY=VALUE lines and render nothing");

@@ -115,7 +115,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             << "\nfps=" << scene.video.fps << "\nframes=" << frames.first << '-' << frames.last
             << "\nsegments=" << (job::segmented(output) ? plan->segments : 0)
             << "\nsegment_frames=" << (job::segmented(output) ? scene.video.segment_frames() : 0)
-            << '\n';
+            << "\naudio=" << (plan->audio || output.format == "wav" ? "yes" : "no") << '\n';
         return standard_output_ok(out, err) ? exit_ok : exit_runtime_failure;
     }
     if (plan->segment && (o.files.trace || o.files.events)) {
@@ -176,6 +176,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     def.output = sink_def;
     def.frames = plan->frames;
     def.segment = plan->segment;
+    def.audio = plan->audio;
     def.jobs = o.jobs;
     def.trace = o.files.trace;
     def.events = o.files.events;

@@ -13,6 +13,7 @@
 
 #include "av_handles.hpp"
 #include "libav_log.hpp"
+#include "sound_track.hpp"
 #include "video_format.hpp"
 #include "discreel/encode.hpp"
 #include "discreel/parse_number.hpp"
@@ -232,11 +233,15 @@ Expected<SegmentSet> find_segments(const std::string& dir) {
         }
         found[parsed->index] = entry.path().string();
     }
+    std::size_t sounds = 0;
+    for (const auto& [index, path] : found) {
+        sounds += std::filesystem::exists(std::filesystem::path(path).replace_extension(".wav"));
+    }
     if (!first) {
         return Error{"'" + dir + "' holds no segments (files named like " +
                      segment_file_name(0, 3, "mp4") + ", written by render --segment K)"};
     }
-    SegmentSet set{first->format, {}};
+    SegmentSet set{first->format, {}, {}};
     for (int k = 0; k < first->count; ++k) {
         const auto it = found.find(k);
         if (it == found.end()) {
@@ -246,6 +251,13 @@ Expected<SegmentSet> find_segments(const std::string& dir) {
                          "); render it with --segment " + std::to_string(k)};
         }
         set.paths.push_back(it->second);
+        const std::string sound = std::filesystem::path(it->second).replace_extension(".wav");
+        if (sounds > 0 && !std::filesystem::exists(sound)) {
+            return Error{"'" + dir + "' lacks the sound of segment " + std::to_string(k) + " (" +
+                         segment_file_name(k, first->count, "wav") + "); render it again with "
+                         "--segment " + std::to_string(k)};
+        }
+        if (sounds > 0) set.sound.push_back(sound);
     }
     return set;
 }
@@ -296,6 +308,12 @@ Status join_segments(const SegmentSet& set, OutputFile& file) {
         result < 0) {
         return fail("cannot open the temporary file", result);
     }
+    std::optional<SoundTrack> sound;
+    if (!set.sound.empty()) {
+        auto added = SoundTrack::add(*muxer, set.format, set.sound);
+        if (!added) return write_error(path, added.error().message);
+        sound.emplace(std::move(*added));
+    }
     AVDictionary* options = nullptr;
     for (const auto& [key, value] : container->muxer_options) {
         av_dict_set(&options, key.c_str(), value.c_str(), 0);
@@ -328,14 +346,24 @@ Status join_segments(const SegmentSet& set, OutputFile& file) {
             packet->duration = 1;
             packet->pos = -1;
             packet->stream_index = 0;
+            const double decoded_at = static_cast<double>(packet->dts) / fps;
             av_packet_rescale_ts(packet.get(), AVRational{1, fps}, stream->time_base);
             if (const int written = av_interleaved_write_frame(muxer.get(), packet.get());
                 written < 0) {
                 return fail("writing a packet failed", written);
             }
+            // The sound keeps pace with the pictures, so the muxer holds few packets back.
+            if (sound) {
+                if (Status kept = sound->write_until(decoded_at); !kept) {
+                    return write_error(path, kept.error().message);
+                }
+            }
         }
         if (i != order.size()) return read_error(segments[k], "it changed while being joined");
         first_frame += static_cast<std::int64_t>(order.size());
+    }
+    if (sound) {
+        if (Status done = sound->finish(); !done) return write_error(path, done.error().message);
     }
     if (const int result = av_write_trailer(muxer.get()); result < 0) {
         return fail("writing the trailer failed", result);

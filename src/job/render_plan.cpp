@@ -227,6 +227,19 @@ Expected<RenderPlan> plan_render(scene::Scene scene, const RenderRequest& o,
     auto frames = pick_frames(o, scene, *output);
     if (!frames) return frames.error();
     plan.frames = *frames;
+    // Sound goes into video files (and is all a .wav holds).
+    plan.audio = o.audio.value_or(scene.audio.enabled);
+    if (plan.audio && !segmented(*output) && output->format != "wav") {
+        if (o.audio) {
+            return Error{output->to_stdout
+                             ? "--audio: sound is written into video files (.mp4, .mkv, .webm) "
+                               "and .wav, not into streams on standard output"
+                             : "--audio: " + output->format + " carries no sound; write .mp4, "
+                                                             ".mkv, .webm or .wav"};
+        }
+        plan.audio = false;   // the scene's sound where the format has none: the pictures only
+    }
+    if (output->format == "wav") plan.audio = false;
     if (segmented(*output)) plan.segments = segment_count(scene.video, plan.frames);
     if (o.segment) {
         if (*o.segment < 0 || *o.segment >= plan.segments) {

@@ -18,6 +18,7 @@
 #include "pipeline.hpp"
 #include "segment_render.hpp"
 #include "side_outputs.hpp"
+#include "soundtrack.hpp"
 
 namespace discreel::job {
 namespace {
@@ -245,6 +246,16 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
         if (!made) return made.error();
         joined.emplace(std::move(*made));
     }
+    // The sound of the frames rendered: beside the segment, or a temporary file for the join.
+    std::optional<encode::WavWriter> sound;
+    if (def.audio) {
+        const std::string sound_path =
+            def.segment ? std::filesystem::path(sink.path).replace_extension(".wav").string()
+                        : sink.path + ".sound.wav";
+        auto opened = encode::WavWriter::open(sound_path, sound_rate, 2);
+        if (!opened) return opened.error();
+        sound.emplace(std::move(*opened));
+    }
     std::optional<SideOutputs> outputs;
     if (def.trace || def.events) {
         auto opened = SideOutputs::open(def.trace, def.events, def.scene);
@@ -255,14 +266,29 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
     const int workers = def.threaded ? std::clamp(asked, 1, static_cast<int>(wanted.size())) : 1;
 
     SegmentRun run(def, range, segment_sink, wanted, paths);
-    if (Status done = run.run(workers, outputs ? &*outputs : nullptr); !done) return done.error();
+    Status sounded;
+    std::thread sound_thread;
+    if (sound) {
+        const FrameRange heard =
+            def.segment ? segment_frames(def.scene.video, range, *def.segment) : range;
+        sound_thread = std::thread([&] {
+            sounded = write_soundtrack(def.scene, heard, *sound, def.should_stop);
+            if (sounded) sounded = sound->seal();
+        });
+    }
+    Status done = run.run(workers, outputs ? &*outputs : nullptr);
+    if (sound_thread.joinable()) sound_thread.join();
+    if (!done) return done.error();
+    if (!sounded) return sounded.error();
 
     std::vector<OutputFile*> files;
     if (def.segment) {
         files.push_back(&*run.files().front());
+        if (sound) files.push_back(&sound->file());
     } else {
-        encode::SegmentSet set{format, {}};
+        encode::SegmentSet set{format, {}, {}};
         for (const auto& file : run.files()) set.paths.push_back(file->temp_path());
+        if (sound) set.sound.push_back(sound->file().temp_path());
         if (Status done = encode::join_segments(set, *joined); !done) return done.error();
         files.push_back(&*joined);
     }

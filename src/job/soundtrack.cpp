@@ -35,56 +35,70 @@ std::vector<Body> bodies_of(const physics::WorldDef& world) {
 
 }  // namespace
 
-Expected<RenderSummary> render_soundtrack(const RenderDef& def, FrameRange range) {
-    const auto started = Clock::now();
-    const scene::Scene& scene = def.scene;
-    if (range.first != 0 || range.last != scene.video.frame_count() - 1) {
-        return Error{"a .wav is the whole clip's soundtrack; --frames does not apply"};
-    }
-    auto writer = encode::WavWriter::open(def.output.path, 48000, 2);
-    if (!writer) return writer.error();
+std::size_t sample_of_frame(int frame, int fps) {
+    const auto scaled = static_cast<std::int64_t>(frame) * sound_rate;
+    return static_cast<std::size_t>((2 * scaled + fps) / (2 * static_cast<std::int64_t>(fps)));
+}
+
+Status write_soundtrack(const scene::Scene& scene, FrameRange range, encode::WavWriter& out,
+                        const std::function<bool()>& should_stop) {
     const std::vector<Body> bodies = bodies_of(build_world(scene));
     const double aspect = static_cast<double>(scene.video.width) / scene.video.height;
-    audio::Synthesizer synth({.sample_rate = 48000,
-                              .duration = scene.video.duration,
+    const int frame_count = scene.video.frame_count();
+    // As long as the pictures: frame_count / fps, which the duration rounds to.
+    audio::Synthesizer synth({.sample_rate = sound_rate,
+                              .duration = static_cast<double>(frame_count) / scene.video.fps,
                               .volume = scene.audio.volume});
+    const std::size_t begin = sample_of_frame(range.first, scene.video.fps);
+    const std::size_t end = sample_of_frame(range.last + 1, scene.video.fps);
+    std::size_t position = 0;   // sample frames the synthesizer has given
     Status written;
     const auto write = [&](std::span<const std::int16_t> samples) {
-        written = writer->write(samples);
+        const std::size_t frames = samples.size() / 2;
+        const std::size_t from = std::clamp(begin, position, position + frames) - position;
+        const std::size_t to = std::clamp(end, position, position + frames) - position;
+        position += frames;
+        if (to > from) written = out.write(samples.subspan(2 * from, 2 * (to - from)));
         return static_cast<bool>(written);
     };
     Playback playback(scene);
-    for (int frame = 0; frame <= range.last; ++frame) {
-        if (def.should_stop && def.should_stop()) return Error{"cancelled; nothing was written"};
+    for (int frame = 0; frame < frame_count && position < end; ++frame) {
+        if (should_stop && should_stop()) return Error{"cancelled; nothing was written"};
         if (Status advanced = playback.advance_to(frame); !advanced) return advanced.error();
         const render::Camera camera = playback.frame_scene(frame).camera;
+        const double half_width = camera.height * aspect / 2;
         for (const physics::ContactEvent& event : playback.take_events()) {
-            const physics::DiscState& a = playback.discs()[event.a];
             const Body& body = bodies[event.a];
             const bool disc = event.other_kind == physics::ContactEvent::Other::disc;
-            const Body other = disc ? bodies[event.other] : Body{body.size, std::numeric_limits<double>::infinity()};
+            const Body other = disc ? bodies[event.other]
+                                    : Body{body.size, std::numeric_limits<double>::infinity()};
             // The lighter body's change of speed: what makes the contact loud, at any scale.
             const double lighter = std::min(body.mass, other.mass);
-            const double half_width = camera.height * aspect / 2;
+            const double x = playback.discs()[event.a].position.x;
             synth.add({.t = event.t,
                        .speed = std::isfinite(lighter) ? event.impulse / lighter : 0.0,
                        .size = std::min(body.size, other.size),
-                       .pan = std::clamp((a.position.x - camera.center_x) / half_width, -1.0, 1.0)});
+                       .pan = std::clamp((x - camera.center_x) / half_width, -1.0, 1.0)});
         }
         if (!synth.render_until(synth.frame_of(playback.time_of_frame(frame)), write)) {
             return written.error();
         }
-        if (def.on_progress) {
-            def.on_progress({.frames_done = frame + 1,
-                             .frames_total = range.last + 1,
-                             .elapsed = std::chrono::duration<double>(Clock::now() - started).count()});
-        }
     }
-    if (!synth.finish(write)) return written.error();
+    if (position < end && !synth.finish(write)) return written.error();
+    return {};
+}
+
+Expected<RenderSummary> render_soundtrack(const RenderDef& def, FrameRange range) {
+    const auto started = Clock::now();
+    auto writer = encode::WavWriter::open(def.output.path, sound_rate, 2);
+    if (!writer) return writer.error();
+    if (Status done = write_soundtrack(def.scene, range, *writer, def.should_stop); !done) {
+        return done.error();
+    }
     if (Status sealed = writer->seal(); !sealed) return sealed.error();
     if (def.should_stop && def.should_stop()) return Error{"cancelled; nothing was written"};
     if (Status committed = writer->file().commit(); !committed) return committed.error();
-    return RenderSummary{.frames = range.last + 1,
+    return RenderSummary{.frames = range.last - range.first + 1,
                          .range = range,
                          .seconds = std::chrono::duration<double>(Clock::now() - started).count(),
                          .busy = {},

@@ -1,9 +1,26 @@
 #pragma once
-// job::render of a .wav: the scene's soundtrack alone.
+// A scene's soundtrack: its physics played from t = 0, each new contact heard as a hit
+// (docs/sound.md), written as 48 kHz stereo 16-bit PCM.
+#include <cstddef>
+#include <functional>
+
+#include "discreel/encode.hpp"
 #include "discreel/job.hpp"
 
 namespace discreel::job {
 
+constexpr int sound_rate = 48000;   // samples per second
+
+// The first sample of `frame`: round(frame * rate / fps). Frames [a, b] sound from sample_of(a)
+// to sample_of(b + 1), so the segments' sounds tile the clip's.
+std::size_t sample_of_frame(int frame, int fps);
+
+// Writes the sound of frames `range` (resolved) of `scene` into `out`. Stops (false) when
+// `should_stop` says so.
+Status write_soundtrack(const scene::Scene& scene, FrameRange range, encode::WavWriter& out,
+                        const std::function<bool()>& should_stop);
+
+// job::render of a .wav: the soundtrack alone, committed.
 Expected<RenderSummary> render_soundtrack(const RenderDef& def, FrameRange range);
 
 }  // namespace discreel::job

@@ -128,11 +128,13 @@ void read_video(Loader& loader, const Value& value) {
 }
 
 void read_audio(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 1> known{"volume"};
+    static constexpr std::array<std::string_view, 2> known{"enabled", "volume"};
     auto& d = loader.diagnostics;
     Audio& audio = loader.scene.audio;
     const auto fields = Fields::open(value, known, d);
     if (!fields) return;
+    if (const auto enabled = fields->get("enabled"))
+        if (const auto v = read_bool(*enabled, d)) audio.enabled = *v;
     if (const auto volume = fields->get("volume")) {
         const auto v = read_number(*volume, d);
         if (v && check_between(*volume, *v, 0, 1, d)) audio.volume = *v;

@@ -146,6 +146,84 @@ TEST(SegmentsGLTest, ASegmentsFramesAreTheWholeRendersFrames) {
     EXPECT_EQ(segment, whole);
 }
 
+// The soundtrack (docs/sound.md) travels with the segments: AAC in MP4 and Matroska, Opus in
+// WebM, encoded once over the joined samples, so --jobs and concat give the same bytes with
+// sound too, and sound and pictures end together (within one audio frame: 1024 or 960
+// samples, 21 ms).
+TEST(SegmentsGLTest, SoundJoinsWithTheSegments) {
+    Scene scene;
+    write_file(scene.path, scene_text + "audio: {enabled: true, volume: 0.7}\n");
+    for (const auto& [format, codec] :
+         std::vector<std::pair<std::string, std::string>>{{"mp4", "aac"}, {"mkv", "aac"},
+                                                          {"webm", "opus"}}) {
+        SCOPED_TRACE(format);
+        const std::string whole = scene.dir / ("jobs1." + format);
+        ASSERT_EQ(discreel({"render", scene.path, "-o", whole, "--jobs", "1", "-q"}).exit_code, 0);
+        const std::string two = scene.dir / ("jobs2." + format);
+        ASSERT_EQ(discreel({"render", scene.path, "-o", two, "--jobs", "2", "-q"}).exit_code, 0);
+        EXPECT_EQ(read_file(two), read_file(whole));
+        const std::string parts = scene.dir / ("parts-" + format);
+        for (const std::string k : {"4", "2", "0", "1", "3"}) {
+            ASSERT_EQ(discreel({"render", scene.path, "-o", parts, "--segment", k, "--format",
+                                format, "-q"})
+                          .exit_code,
+                      0);
+        }
+        EXPECT_TRUE(std::filesystem::exists(parts + "/segment-0002-of-0005.wav"));
+        const std::string joined = scene.dir / ("joined." + format);
+        ASSERT_EQ(discreel({"concat", parts, "-o", joined, "-q"}).exit_code, 0);
+        EXPECT_EQ(read_file(joined), read_file(whole));
+
+        const auto streams = run_command({"ffprobe", "-v", "error", "-count_packets",
+                                          "-show_entries", "stream=codec_name,sample_rate",
+                                          "-of", "csv=p=0", whole});
+        EXPECT_EQ(streams.out, (format == "webm" ? "vp9\n" : "h264\n") + codec + ",48000\n");
+        // Where each stream starts and ends on the file's clock (Matroska shifts both by the
+        // AAC encoder's delay): the sound ends with the pictures, within one audio frame (the
+        // encoders pad their last one; 1024 or 960 samples, 21 ms).
+        const auto span_of = [&](const std::string& stream) {
+            const auto packets = run_command({"ffprobe", "-v", "error", "-select_streams",
+                                              stream, "-show_entries",
+                                              "packet=pts_time,duration_time", "-of", "csv=p=0",
+                                              whole});
+            std::pair<double, double> span{1e9, -1e9};
+            std::istringstream lines(packets.out);
+            for (std::string line; std::getline(lines, line);) {
+                const auto comma = line.find(',');
+                if (comma == std::string::npos || line.find("N/A") != std::string::npos) continue;
+                const double pts = std::stod(line.substr(0, comma));
+                span.first = std::min(span.first, pts);
+                span.second = std::max(span.second, pts + std::stod(line.substr(comma + 1)));
+            }
+            return span;
+        };
+        const auto video = span_of("v:0");
+        EXPECT_NEAR(video.second - video.first, 2.5, 0.002);   // Matroska's clock is in ms
+        EXPECT_NEAR(span_of("a:0").second, video.second, 0.0215);
+        EXPECT_EQ(testing::probe_video(whole).at("nb_read_frames"), "60");
+        EXPECT_EQ(run_command({"ffmpeg", "-v", "error", "-i", whole, "-map", "0:a", "-f", "null",
+                               "-"})
+                      .err,
+                  "");
+    }
+    // --no-audio: the pictures alone, the same bytes as a scene without sound.
+    ASSERT_EQ(discreel({"render", scene.path, "-o", scene.dir / "silent.mp4", "--no-audio",
+                        "-q"}).exit_code, 0);
+    const auto streams = run_command({"ffprobe", "-v", "error", "-show_entries",
+                                      "stream=codec_name", "-of", "csv=p=0",
+                                      scene.dir / "silent.mp4"});
+    EXPECT_EQ(streams.out, "h264\n");
+    // A missing sound is named; formats without sound refuse --audio.
+    std::filesystem::remove(scene.dir / "parts-mp4/segment-0003-of-0005.wav");
+    auto run = discreel({"concat", scene.dir / "parts-mp4", "-o", scene.dir / "x.mp4"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: '" + scene.dir / "parts-mp4" + "' lacks the sound of segment 3 "
+                       "(segment-0003-of-0005.wav); render it again with --segment 3\n");
+    run = discreel({"render", scene.path, "-o", scene.dir / "x.gif", "--audio"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: --audio: gif carries no sound; write .mp4, .mkv, .webm or .wav\n");
+}
+
 // --dry-run: the plan a script submits tasks by (deploy/slurm/clip.sh), and nothing written.
 TEST(SegmentsGLTest, DryRunPrintsThePlan) {
     Scene scene;
@@ -154,12 +232,12 @@ TEST(SegmentsGLTest, DryRunPrintsThePlan) {
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_EQ(run.out, "output=" + scene.dir / "clip.webm" +
                            "\nformat=webm\nsize=160x120\nfps=30\nframes=0-74\nsegments=5\n"
-                           "segment_frames=15\n");
+                           "segment_frames=15\naudio=no\n");
     run = discreel({"render", scene.path, "-o", scene.dir / "parts", "--segment", "2",
                     "--dry-run"});
     EXPECT_EQ(run.out, "output=" + scene.dir / "parts/segment-0002-of-0005.mp4" +
                            "\nformat=mp4\nsize=160x120\nfps=24\nframes=24-35\nsegments=5\n"
-                           "segment_frames=12\n");
+                           "segment_frames=12\naudio=no\n");
     run = discreel({"render", scene.path, "-o", scene.dir / "clip.gif", "--dry-run"});
     EXPECT_NE(run.out.find("\nsegments=0\n"), std::string::npos) << run.out;
     EXPECT_EQ(testing::directory_entries(scene.dir.path()), std::vector<std::string>{"scene.yaml"});

@@ -101,13 +101,16 @@ std::string segment_file_name(int index, int count, const std::string& format);
 struct SegmentSet {
     std::string format;                // "mp4", "mkv" or "webm"
     std::vector<std::string> paths;    // segment 0 .. N-1
+    // The soundtrack, as 48 kHz stereo 16-bit WAV files read one after another (a segment's
+    // is segment-K-of-N.wav beside it); none: a silent video.
+    std::vector<std::string> sound;
 };
-// The segments in `dir`: every segment-K-of-N.FORMAT for K in 0..N-1, of one N and one format.
-// Other files are ignored; a missing segment, or segments of different counts or formats, is
-// an error that names them.
+// The segments in `dir`: every segment-K-of-N.FORMAT for K in 0..N-1, of one N and one format,
+// with their sounds if every segment has one. Other files are ignored; a missing segment or
+// sound, or segments of different counts or formats, is an error that names them.
 Expected<SegmentSet> find_segments(const std::string& dir);
 
-// Joins the segments (in order) into `out`, whose target's extension must name their format,
+// Joins the segments (in order), and their sound as AAC (.mp4, .mkv) or Opus (.webm), into `out`, whose target's extension must name their format,
 // by copying their packets: no frame is decoded or encoded again. The segments must be of one
 // codec, size, frame rate and encoder set-up, each starting with a keyframe, and all but the
 // last of one length. Frames are renumbered from 0, so the result depends only on the

@@ -85,9 +85,11 @@ struct RenderDef {
     // The bytes never depend on it. 0: one per core the process may run on. GIFs (one palette
     // for the whole clip), streams on standard output and PNG are encoded in one pass.
     int jobs = 0;
-    // Render only this segment of the frames, into output.path (see segment_path). No trace or
-    // events: those are the whole clip's.
+    // Render only this segment of the frames, into output.path (segment_file_name). No trace
+    // or events: those are the whole clip's. With `audio`, its sound goes beside it (.wav).
     std::optional<int> segment;
+    // A video file gets the scene's soundtrack as a second stream (docs/sound.md).
+    bool audio = false;
     // A renderer of the scene's video size to draw with, kept warm between jobs by a caller
     // that renders many (its context and compiled shaders are reused); nullptr: the job
     // creates its own. Used by one job at a time. The bytes are the same either way.

@@ -44,6 +44,7 @@ struct RenderRequest {
     std::string stream_container;
     // Render only this segment (from 0), into a file in the directory `output` names.
     std::optional<int> segment;
+    std::optional<bool> audio;               // --audio / --no-audio; none: the scene's
 };
 
 struct RenderPlan {
@@ -55,6 +56,7 @@ struct RenderPlan {
     bool drawn_opaque = false;               // a transparent background the format cannot keep
     std::optional<int> segment;              // one segment only: sink.path is its file
     int segments = 1;                        // how many a whole render of `frames` has
+    bool audio = false;                      // a video file with the soundtrack
 };
 
 // Resolves `request` against `scene`: the format, the quality preset, the overrides, the GIF

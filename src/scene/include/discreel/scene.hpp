@@ -66,8 +66,9 @@ struct Video {
     int segment_frames() const;
 };
 
-// The soundtrack made from the contacts (docs/sound.md): written alone by a .wav output.
+// The soundtrack made from the contacts (docs/sound.md).
 struct Audio {
+    bool enabled = false;          // in video files; `--audio` / `--no-audio` override it
     double volume = 0.8;           // 0..1 of full scale: the loudest a sample may be
 };
 
