@@ -61,6 +61,10 @@ Status write_soundtrack(const scene::Scene& scene, FrameRange range, encode::Wav
         if (to > from) written = out.write(samples.subspan(2 * from, 2 * (to - from)));
         return static_cast<bool>(written);
     };
+    // Bodies resting on others touch again and again, each time with the speed gravity gave
+    // them in a step or two: settling, not impacts. Below four steps' worth they are silent.
+    const double g = std::hypot(scene.physics.gravity.x, scene.physics.gravity.y);
+    const double settling = 4.0 * g / scene.physics.rate;
     Playback playback(scene);
     for (int frame = 0; frame < frame_count && position < end; ++frame) {
         if (should_stop && should_stop()) return Error{"cancelled; nothing was written"};
@@ -75,8 +79,10 @@ Status write_soundtrack(const scene::Scene& scene, FrameRange range, encode::Wav
             // The lighter body's change of speed: what makes the contact loud, at any scale.
             const double lighter = std::min(body.mass, other.mass);
             const double x = playback.discs()[event.a].position.x;
+            const double speed = std::isfinite(lighter) ? event.impulse / lighter : 0.0;
+            if (speed < settling) continue;
             synth.add({.t = event.t,
-                       .speed = std::isfinite(lighter) ? event.impulse / lighter : 0.0,
+                       .speed = speed,
                        .size = std::min(body.size, other.size),
                        .pan = std::clamp((x - camera.center_x) / half_width, -1.0, 1.0)});
         }

@@ -358,6 +358,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         def.output = plan.sink;
         def.output.path = tmp + "." + request.format;
         def.frames = plan.frames;
+        def.audio = plan.audio;
         def.renderer = &*warm;
         // One segment at a time: the service's parallelism is its workers, each on its warm
         // renderer. The bytes are those of any --jobs.

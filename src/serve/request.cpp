@@ -13,7 +13,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::array<const char*, 5> formats{"mp4", "webm", "mkv", "gif", "png"};
+constexpr std::array<const char*, 6> formats{"mp4", "webm", "mkv", "gif", "png", "wav"};
 
 // A body is one flat object; anything nested deeper is refused while parsing, before it is
 // built, so no body can make the parser or the value's destructor recurse deeply.
@@ -31,13 +31,15 @@ std::optional<std::string> type_problem(const std::string& key, const json& valu
         if (!value.is_number_integer()) return must_be("an integer");
     } else if (key == "at" || key == "duration") {
         if (!value.is_number()) return must_be("a number");
+    } else if (key == "audio") {
+        if (!value.is_boolean()) return must_be("true or false");
     }
     return std::nullopt;
 }
 
 bool known_field(const std::string& key) {
     for (const char* name : {"scene", "output", "frame", "at", "size", "fps", "duration", "crf",
-                             "preset"}) {
+                             "preset", "audio"}) {
         if (key == name) return true;
     }
     return false;
@@ -78,6 +80,7 @@ const char* content_type_of(const std::string& format) {
     if (format == "webm") return "video/webm";
     if (format == "mkv") return "video/x-matroska";
     if (format == "gif") return "image/gif";
+    if (format == "wav") return "audio/wav";
     return "image/png";
 }
 
@@ -99,7 +102,7 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
     for (const auto& [key, value] : parsed.items()) {
         if (!known_field(key)) {
             return refusal(400, "unknown field '" + key + "'; the fields are scene, output, "
-                                "frame, at, size, fps, duration, crf and preset");
+                                "frame, at, size, fps, duration, crf, preset and audio");
         }
         if (auto problem = type_problem(key, value)) return refusal(400, *problem);
     }
@@ -116,7 +119,7 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
     bool known_format = false;
     for (const char* format : formats) known_format = known_format || request.format == format;
     if (!known_format) {
-        return refusal(400, "field 'output' must be one of mp4, webm, mkv, gif, png");
+        return refusal(400, "field 'output' must be one of mp4, webm, mkv, gif, png, wav");
     }
     parsed.erase("scene");
     parsed["output"] = request.format;
@@ -133,6 +136,7 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
     if (parsed.contains("at")) render.at = parsed["at"].get<double>();
     if (parsed.contains("duration")) render.video.duration = parsed["duration"].get<double>();
     if (parsed.contains("preset")) render.preset = parsed["preset"].get<std::string>();
+    if (parsed.contains("audio")) render.audio = parsed["audio"].get<bool>();
     if (parsed.contains("size")) {
         const auto size = parse_size(parsed["size"].get<std::string>());
         if (!size) return refusal(400, "field 'size' must be WIDTHxHEIGHT, e.g. \"320x180\"");

@@ -3,6 +3,7 @@
 // samples are read from the file's data chunk.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -82,6 +83,24 @@ TEST(SoundGLTest, NoContactsIsDigitalSilence) {
     const auto samples = samples_of(dir / "s.wav");
     EXPECT_EQ(samples.size(), 2u * 48000);
     EXPECT_EQ(std::count(samples.begin(), samples.end(), 0), static_cast<long>(samples.size()));
+}
+
+// 300 discs bouncing in a box, many contacts at once: no sample reaches the volume, let alone
+// full scale, and the limiter is working (the loudest is within 10 % of the volume).
+TEST(SoundGLTest, ThreeHundredBouncingDiscsNeverClip) {
+    TempDir dir;
+    write_file(dir / "s.yaml", "version: 1\nvideo: {size: [160, 90], fps: 30, duration: 2}\n"
+                               "audio: {volume: 0.9}\nphysics: {restitution: 0.9}\n"
+                               "walls:\n  - box: [[0, 0], [8, 4.5]]\n"
+                               "discs:\n  - random: {count: 300, region: [[0.2, 0.2], [7.8, 4.3]],"
+                               " radius: [0.05, 0.09], speed: [2, 6]}\n");
+    const auto run = run_command({bin, "render", dir / "s.yaml", "-o", dir / "s.wav", "-q"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto samples = samples_of(dir / "s.wav");
+    int peak = 0;
+    for (const std::int16_t s : samples) peak = std::max(peak, std::abs(static_cast<int>(s)));
+    EXPECT_LE(peak, 29490);   // round(0.9 * 32767)
+    EXPECT_GT(peak, 26500);
 }
 
 TEST(SoundGLTest, EncoderSettingsAndBadVolumesAreRefused) {

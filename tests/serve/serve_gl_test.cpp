@@ -198,8 +198,9 @@ TEST_F(ServeGLTest, AStillIsTheCliBytesAndTheSameRequestIsACacheHit) {
 TEST_F(ServeGLTest, AClipIsTheCliBytesWithProgressEventsToTheEnd) {
     ServeProcess server(bin, {"--data", dir / "data"}, log);
     auto client = client_for(server.port());
+    // With the contacts' sound: the CLI's bytes with --audio.
     const json request{{"scene", scene_text(2)}, {"output", "mp4"}, {"crf", 30},
-                       {"preset", "ultrafast"}, {"fps", 25}};
+                       {"preset", "ultrafast"}, {"fps", 25}, {"audio", true}};
     auto accepted = post(client, "/v1/renders", request);
     ASSERT_TRUE(accepted);
     ASSERT_EQ(accepted->status, 202) << accepted->body;
@@ -231,7 +232,8 @@ TEST_F(ServeGLTest, AClipIsTheCliBytesWithProgressEventsToTheEnd) {
     ASSERT_TRUE(output);
     EXPECT_EQ(output->get_header_value("Content-Type"), "video/mp4");
     EXPECT_EQ(output->body, cli_render(dir, scene_text(2),
-                                       {"--crf", "30", "--preset", "ultrafast", "--fps", "25"},
+                                       {"--crf", "30", "--preset", "ultrafast", "--fps", "25",
+                                        "--audio"},
                                        "cli.mp4"));
 }
 
@@ -265,7 +267,7 @@ TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
                                           "JSON object\"}}\n")}));
     EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"colour", "red"}}.dump()).second,
               "{\"error\":{\"message\":\"unknown field 'colour'; the fields are scene, output, "
-              "frame, at, size, fps, duration, crf and preset\"}}\n");
+              "frame, at, size, fps, duration, crf, preset and audio\"}}\n");
     EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"fps", "30"}}.dump()).second,
               "{\"error\":{\"message\":\"field 'fps' must be an integer\"}}\n");
     EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"output", "avi"}}.dump()).first,
