@@ -11,10 +11,11 @@
 set -euo pipefail
 [[ $# -eq 3 ]] || { echo "usage: $0 SOURCE_DIR WORK_DIR DISCREEL" >&2; exit 2; }
 readonly SOURCE_DIR="$1" WORK="$2" DISCREEL="$3"
+MUNGE_DIR=""   # made below
 
 fail() {
   echo "slurm test FAILED: $*" >&2
-  for log in "$WORK"/log/*.log "$WORK"/log/*.out "$WORK"/munge/munged.log; do
+  for log in "$WORK"/log/*.log "$WORK"/log/*.out "$MUNGE_DIR"/munged.log; do
     [[ -f $log ]] && { echo "----- $log" >&2; tail -n 20 "$log" >&2; }
   done
   exit 1
@@ -26,9 +27,13 @@ done
 [[ $EUID -eq 0 ]] || fail "needs root (slurmd runs jobs as their user); skip it with: ctest -LE slurm"
 
 rm -rf "$WORK"
-mkdir -p "$WORK"/{state,spool,log,munge,out,scenes}
-chown munge:munge "$WORK/munge"
-chmod 711 "$WORK/munge"
+mkdir -p "$WORK"/{state,spool,log,out,scenes}
+# munged runs as munge, which may not reach into WORK (a checkout under a 0700 directory, such
+# as mktemp -d's): its key, socket and logs live in a directory of their own under /tmp.
+MUNGE_DIR="$(mktemp -d /tmp/discreel-munge-XXXXXX)"
+readonly MUNGE_DIR
+chown munge:munge "$MUNGE_DIR"
+chmod 711 "$MUNGE_DIR"
 pids=()
 stop_all() {
   scontrol shutdown >/dev/null 2>&1 || true
@@ -37,17 +42,18 @@ stop_all() {
     for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
     kill -KILL "$pid" 2>/dev/null || true
   done
-  [[ -f $WORK/munge/munged.pid ]] && kill "$(cat "$WORK/munge/munged.pid")" 2>/dev/null || true
+  [[ -f $MUNGE_DIR/munged.pid ]] && kill "$(cat "$MUNGE_DIR/munged.pid")" 2>/dev/null || true
+  [[ -n $MUNGE_DIR ]] && rm -rf "$MUNGE_DIR"
 }
 trap stop_all EXIT
 
 # Ports from this process's id, so that two runs on one machine do not meet.
 readonly BASE=$((20000 + ($$ % 2000) * 4))
-readonly SOCKET="$WORK/munge/munge.socket"
-runuser -u munge -- sh -c "dd if=/dev/urandom of='$WORK/munge/munge.key' bs=1024 count=1 2>/dev/null && chmod 400 '$WORK/munge/munge.key'"
-runuser -u munge -- munged --key-file="$WORK/munge/munge.key" --socket="$SOCKET" \
-  --pid-file="$WORK/munge/munged.pid" --log-file="$WORK/munge/munged.log" \
-  --seed-file="$WORK/munge/munged.seed"
+readonly SOCKET="$MUNGE_DIR/munge.socket"
+runuser -u munge -- sh -c "dd if=/dev/urandom of='$MUNGE_DIR/munge.key' bs=1024 count=1 2>/dev/null && chmod 400 '$MUNGE_DIR/munge.key'"
+runuser -u munge -- munged --key-file="$MUNGE_DIR/munge.key" --socket="$SOCKET" \
+  --pid-file="$MUNGE_DIR/munged.pid" --log-file="$MUNGE_DIR/munged.log" \
+  --seed-file="$MUNGE_DIR/munged.seed"
 cat >"$WORK/slurm.conf" <<CONF
 ClusterName=discreel
 SlurmctldHost=localhost(127.0.0.1)
