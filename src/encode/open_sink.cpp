@@ -164,6 +164,10 @@ Expected<VideoFormat> container_of(const std::string& path) {
     return resolved->kind->video(def);
 }
 
+Status Sink::write_sound(std::span<const std::int16_t>) {
+    return Error{"this output carries no sound"};
+}
+
 Status Sink::finish() {
     if (Status sealed = seal(); !sealed) return sealed;
     return commit_together(files());

@@ -206,6 +206,53 @@ Expected<Checked> check_segments(const std::vector<std::string>& segments) {
     return checked;
 }
 
+// The samples of 48 kHz stereo 16-bit WAV files, one after another, fed to a SoundTrack as the
+// join needs them.
+class WavChunks {
+public:
+    explicit WavChunks(std::vector<std::string> paths)
+        : paths_(std::move(paths)), packet_(av_packet_alloc()) {}
+
+    // Pushes samples into `track` until it holds a little more than those before `seconds`
+    // (what its next whole encoder frame needs), or there are no more.
+    Status feed(SoundTrack& track, double seconds) {
+        const double wanted = seconds * SoundTrack::sample_rate + 4096;
+        while (static_cast<double>(track.pushed()) < wanted) {
+            if (!input_) {
+                if (next_ == paths_.size()) return {};
+                const std::string& path = paths_[next_++];
+                AVFormatContext* raw = nullptr;
+                if (const int result = avformat_open_input(&raw, path.c_str(), nullptr, nullptr);
+                    result < 0) {
+                    return Error{"cannot read the sound '" + path + "': " + libav_reason(result)};
+                }
+                input_.reset(raw);
+                const AVCodecParameters* p = input_->streams[0]->codecpar;
+                if (input_->nb_streams != 1 || p->codec_id != AV_CODEC_ID_PCM_S16LE ||
+                    p->sample_rate != SoundTrack::sample_rate || p->ch_layout.nb_channels != 2) {
+                    return Error{"the sound '" + path + "' is not 48 kHz stereo 16-bit PCM"};
+                }
+            }
+            const int result = av_read_frame(input_.get(), packet_.get());
+            if (result == AVERROR_EOF) {
+                input_.reset();
+                continue;
+            }
+            if (result < 0) return Error{"cannot read the sound: " + libav_reason(result)};
+            track.push({reinterpret_cast<const std::int16_t*>(packet_->data),
+                        static_cast<std::size_t>(packet_->size) / sizeof(std::int16_t)});
+            av_packet_unref(packet_.get());
+        }
+        return {};
+    }
+
+private:
+    std::vector<std::string> paths_;
+    std::size_t next_ = 0;
+    InputPtr input_;
+    PacketPtr packet_;
+};
+
 }  // namespace
 
 std::string segment_file_name(int index, int count, const std::string& format) {
@@ -309,8 +356,9 @@ Status join_segments(const SegmentSet& set, OutputFile& file) {
         return fail("cannot open the temporary file", result);
     }
     std::optional<SoundTrack> sound;
+    WavChunks samples(set.sound);
     if (!set.sound.empty()) {
-        auto added = SoundTrack::add(*muxer, set.format, set.sound);
+        auto added = SoundTrack::add(*muxer, set.format);
         if (!added) return write_error(path, added.error().message);
         sound.emplace(std::move(*added));
     }
@@ -354,16 +402,18 @@ Status join_segments(const SegmentSet& set, OutputFile& file) {
             }
             // The sound keeps pace with the pictures, so the muxer holds few packets back.
             if (sound) {
-                if (Status kept = sound->write_until(decoded_at); !kept) {
-                    return write_error(path, kept.error().message);
-                }
+                Status kept = samples.feed(*sound, decoded_at);
+                if (kept) kept = sound->write_until(decoded_at);
+                if (!kept) return write_error(path, kept.error().message);
             }
         }
         if (i != order.size()) return read_error(segments[k], "it changed while being joined");
         first_frame += static_cast<std::int64_t>(order.size());
     }
     if (sound) {
-        if (Status done = sound->finish(); !done) return write_error(path, done.error().message);
+        Status done = samples.feed(*sound, std::numeric_limits<double>::infinity());
+        if (done) done = sound->finish();
+        if (!done) return write_error(path, done.error().message);
     }
     if (const int result = av_write_trailer(muxer.get()); result < 0) {
         return fail("writing the trailer failed", result);

@@ -15,13 +15,7 @@ extern "C" {
 namespace discreel::encode {
 namespace {
 
-constexpr int sample_rate = 48000;
 constexpr int channels = 2;
-
-struct InputDeleter {
-    void operator()(AVFormatContext* context) const { avformat_close_input(&context); }
-};
-using InputPtr = std::unique_ptr<AVFormatContext, InputDeleter>;
 
 }  // namespace
 
@@ -31,53 +25,13 @@ struct SoundTrack::Impl {
     CodecContextPtr encoder;
     FramePtr frame;
     PacketPtr packet;
-    PacketPtr read;
-    std::vector<std::string> paths;
-    std::size_t next_path = 0;
-    InputPtr input;                     // the WAV being read
-    std::vector<std::int16_t> pending;  // interleaved samples read, not yet encoded
+    std::vector<std::int16_t> pending;  // interleaved samples pushed, not yet encoded
     std::int64_t sent = 0;              // sample frames given to the encoder
-    bool input_done = false;
+    std::int64_t pushed = 0;            // sample frames pushed
     bool flushed = false;
 
     Error failure(const std::string& what, int code) const {
         return Error{"cannot encode the sound: " + what + ": " + libav_reason(code)};
-    }
-
-    // Reads at least `frames` sample frames into `pending`, or everything that is left.
-    Status fill(std::size_t frames) {
-        while (!input_done && pending.size() < frames * channels) {
-            if (!input) {
-                if (next_path == paths.size()) {
-                    input_done = true;
-                    break;
-                }
-                const std::string& path = paths[next_path++];
-                AVFormatContext* raw = nullptr;
-                if (const int result = avformat_open_input(&raw, path.c_str(), nullptr, nullptr);
-                    result < 0) {
-                    return Error{"cannot read the sound '" + path + "': " + libav_reason(result)};
-                }
-                input.reset(raw);
-                const AVCodecParameters* p = input->streams[0]->codecpar;
-                if (input->nb_streams != 1 || p->codec_id != AV_CODEC_ID_PCM_S16LE ||
-                    p->sample_rate != sample_rate || p->ch_layout.nb_channels != channels) {
-                    return Error{"the sound '" + path + "' is not 48 kHz stereo 16-bit PCM"};
-                }
-            }
-            const int result = av_read_frame(input.get(), read.get());
-            if (result == AVERROR_EOF) {
-                input.reset();
-                continue;
-            }
-            if (result < 0) return failure("reading the samples failed", result);
-            const std::size_t count = static_cast<std::size_t>(read->size) / sizeof(std::int16_t);
-            const std::size_t at = pending.size();
-            pending.resize(at + count);
-            std::memcpy(pending.data() + at, read->data, count * sizeof(std::int16_t));
-            av_packet_unref(read.get());
-        }
-        return {};
     }
 
     // Sends one frame (nullptr: the end) and writes every packet the encoder has ready.
@@ -125,12 +79,10 @@ SoundTrack::~SoundTrack() = default;
 SoundTrack::SoundTrack(SoundTrack&&) noexcept = default;
 SoundTrack& SoundTrack::operator=(SoundTrack&&) noexcept = default;
 
-Expected<SoundTrack> SoundTrack::add(AVFormatContext& muxer, const std::string& format,
-                                     std::vector<std::string> wav_paths) {
+Expected<SoundTrack> SoundTrack::add(AVFormatContext& muxer, const std::string& format) {
     begin_libav_call();
     auto impl = std::make_unique<Impl>();
     impl->muxer = &muxer;
-    impl->paths = std::move(wav_paths);
     // WebM carries Opus (or Vorbis); MP4 and Matroska players expect AAC.
     const bool opus = format == "webm";
     const char* name = opus ? "libopus" : "aac";
@@ -139,8 +91,7 @@ Expected<SoundTrack> SoundTrack::add(AVFormatContext& muxer, const std::string& 
     impl->encoder.reset(avcodec_alloc_context3(codec));
     impl->frame.reset(av_frame_alloc());
     impl->packet.reset(av_packet_alloc());
-    impl->read.reset(av_packet_alloc());
-    if (!impl->encoder || !impl->frame || !impl->packet || !impl->read) {
+    if (!impl->encoder || !impl->frame || !impl->packet) {
         return impl->failure("cannot allocate the encoder", AVERROR(ENOMEM));
     }
     AVCodecContext& e = *impl->encoder;
@@ -175,28 +126,38 @@ Expected<SoundTrack> SoundTrack::add(AVFormatContext& muxer, const std::string& 
     return SoundTrack(std::move(impl));
 }
 
+void SoundTrack::push(std::span<const std::int16_t> samples) {
+    impl_->pending.insert(impl_->pending.end(), samples.begin(), samples.end());
+    impl_->pushed += static_cast<std::int64_t>(samples.size() / channels);
+}
+
+std::int64_t SoundTrack::pushed() const { return impl_->pushed; }
+
 Status SoundTrack::write_until(double seconds) {
     Impl& s = *impl_;
     begin_libav_call();
     const double limit = std::min(seconds * sample_rate, 9e18);
     const auto frame_size = static_cast<std::size_t>(s.encoder->frame_size);
-    while (!s.flushed && static_cast<double>(s.sent) < limit) {
-        if (Status filled = s.fill(frame_size); !filled) return filled;
-        const std::size_t have = s.pending.size() / channels;
-        if (have >= frame_size) {
-            if (Status sent = s.encode_frame(frame_size); !sent) return sent;
-            continue;
-        }
-        // The end of the samples: the last, shorter frame, then the encoder's delayed packets.
-        if (have > 0) {
-            if (Status sent = s.encode_frame(have); !sent) return sent;
-        }
-        s.flushed = true;
-        return s.send(nullptr);
+    while (!s.flushed && static_cast<double>(s.sent) < limit &&
+           s.pending.size() >= frame_size * channels) {
+        if (Status sent = s.encode_frame(frame_size); !sent) return sent;
     }
     return {};
 }
 
-Status SoundTrack::finish() { return write_until(std::numeric_limits<double>::infinity()); }
+Status SoundTrack::finish() {
+    Impl& s = *impl_;
+    if (s.flushed) return {};
+    if (Status written = write_until(std::numeric_limits<double>::infinity()); !written) {
+        return written;
+    }
+    begin_libav_call();
+    // The last, shorter frame, then the encoder's delayed packets.
+    if (const std::size_t have = s.pending.size() / channels; have > 0) {
+        if (Status sent = s.encode_frame(have); !sent) return sent;
+    }
+    s.flushed = true;
+    return s.send(nullptr);
+}
 
 }  // namespace discreel::encode

@@ -13,6 +13,7 @@ extern "C" {
 #include "frame_converter.hpp"
 #include "image_check.hpp"
 #include "libav_log.hpp"
+#include "sound_track.hpp"
 #include "discreel/output_file.hpp"
 
 namespace discreel::encode {
@@ -65,7 +66,9 @@ public:
           packet_(std::move(packet)) {}
 
     Status write(const ImageView& frame) override;
+    Status write_sound(std::span<const std::int16_t> samples) override;
     Status seal() override;
+    void set_sound(SoundTrack track) { sound_.emplace(std::move(track)); }
     std::vector<OutputFile*> files() override {
         if (!file_) return {};
         return {&*file_};
@@ -89,6 +92,7 @@ private:
     AVStream* stream_;  // owned by muxer_
     FramePtr frame_;    // reused for every frame, made writable before each fill
     PacketPtr packet_;
+    std::optional<SoundTrack> sound_;   // the second stream, with SinkDef::sound
     std::int64_t frames_written_ = 0;
     bool finished_ = false;
     bool failed_ = false;
@@ -127,6 +131,21 @@ Status VideoSink::write(const ImageView& frame) {
         return status;
     }
     ++frames_written_;
+    // The sound keeps pace with the pictures, so the muxer holds few packets back.
+    if (sound_) return sound_->write_until(static_cast<double>(frames_written_) / def_.fps);
+    return {};
+}
+
+Status VideoSink::write_sound(std::span<const std::int16_t> samples) {
+    if (auto status = usable(); !status) return status;
+    if (!sound_) return write_error(def_.path, "this output was opened without sound");
+    begin_libav_call();
+    sound_->push(samples);
+    if (Status written = sound_->write_until(static_cast<double>(frames_written_) / def_.fps);
+        !written) {
+        failed_ = true;
+        return write_error(def_.path, written.error().message);
+    }
     return {};
 }
 
@@ -164,6 +183,12 @@ Status VideoSink::seal() {
     }
     if (auto status = encode(nullptr); !status) {
         return status;
+    }
+    if (sound_) {
+        if (Status done = sound_->finish(); !done) {
+            failed_ = true;
+            return write_error(def_.path, done.error().message);
+        }
     }
     // Without the trailer an MP4 has no index and does not play.
     if (const int result = av_write_trailer(muxer_.get()); result < 0) {
@@ -274,6 +299,12 @@ Expected<std::unique_ptr<Sink>> open_video_sink(const SinkDef& def, const VideoF
                               : "cannot open the temporary file '" + io_url + "'",
                     result);
     }
+    std::optional<SoundTrack> sound;
+    if (def.sound) {
+        auto added = SoundTrack::add(*muxer, format.muxer == "webm" ? "webm" : "mp4");
+        if (!added) return write_error(def.path, added.error().message);
+        sound.emplace(std::move(*added));
+    }
     Options muxer_options(format.muxer_options);
     if (const int result = avformat_write_header(muxer.get(), muxer_options.get()); result < 0) {
         return fail("cannot write the " + format.muxer + " header", result);
@@ -292,9 +323,11 @@ Expected<std::unique_ptr<Sink>> open_video_sink(const SinkDef& def, const VideoF
     if (!converter) {
         return write_error(def.path, converter.error().message);
     }
-    return std::unique_ptr<Sink>(std::make_unique<VideoSink>(
-        def, std::move(file), std::move(*converter), std::move(muxer), std::move(encoder),
-        stream, std::move(frame), std::move(packet)));
+    auto sink = std::make_unique<VideoSink>(def, std::move(file), std::move(*converter),
+                                            std::move(muxer), std::move(encoder), stream,
+                                            std::move(frame), std::move(packet));
+    if (sound) sink->set_sound(std::move(*sound));
+    return std::unique_ptr<Sink>(std::move(sink));
 }
 
 }  // namespace discreel::encode

@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
+#include <thread>
 
 #include "discreel/commit.hpp"
 #include "discreel/job.hpp"
 #include "pipeline.hpp"
+#include "sample_queue.hpp"
 #include "segment_render.hpp"
 #include "side_outputs.hpp"
 #include "soundtrack.hpp"
@@ -96,8 +99,51 @@ Expected<RenderSummary> render(const RenderDef& def) {
 
     auto outputs = SideOutputs::open(def.trace, def.events, scene);
     if (!outputs) return outputs.error();
+    sink_def.sound = def.audio;
     auto sink = encode::open_sink(sink_def);
     if (!sink) return sink.error();
+
+    // A stream with sound: the samples come from a thread of their own (its own playback)
+    // through a bounded queue of 2 s, and follow each frame into the sink.
+    std::optional<SampleQueue> samples;
+    std::thread sound_thread;
+    Status sounded;
+    if (def.audio) {
+        samples.emplace(std::size_t{2} * 2 * sound_rate);
+        sound_thread = std::thread([&] {
+            sounded = write_soundtrack(
+                scene, range,
+                [&](std::span<const std::int16_t> block) -> Status {
+                    if (!samples->push(block)) return Error{"cancelled"};
+                    return {};
+                },
+                def.should_stop);
+            samples->close();
+        });
+    }
+    // Ends the sound thread on every way out of this function.
+    struct SoundThreadGuard {
+        std::optional<SampleQueue>& queue;
+        std::thread& thread;
+        ~SoundThreadGuard() {
+            if (queue) queue->cancel();
+            if (thread.joinable()) thread.join();
+        }
+    } sound_guard{samples, sound_thread};
+    const std::size_t first_sample = sample_of_frame(range.first, scene.video.fps);
+    std::size_t samples_given = 0;   // sample frames given to the sink
+    const auto give_sound = [&](int frames_done) -> Status {
+        const std::size_t until =
+            sample_of_frame(range.first + frames_done, scene.video.fps) - first_sample;
+        while (samples_given < until) {
+            const auto block = samples->take(2 * (until - samples_given));
+            if (block.empty()) return sounded ? Error{"the sound ended early"} : sounded;
+            if (Status written = (*sink)->write_sound(block); !written) return written;
+            samples_given += block.size() / 2;
+        }
+        return {};
+    };
+    int frames_written = 0;
 
     Playback playback(scene);
     const auto stop_asked = [&] { return def.should_stop && def.should_stop(); };
@@ -114,7 +160,12 @@ Expected<RenderSummary> render(const RenderDef& def) {
             }
             return &playback.frame_scene(frame);
         },
-        .encode = [&](const ImageView& image) { return (*sink)->write(image); },
+        .encode =
+            [&](const ImageView& image) {
+                Status written = (*sink)->write(image);
+                if (written && samples) written = give_sound(++frames_written);
+                return written;
+            },
         .encoded =
             [&](int done) {
                 if (def.on_progress) {
@@ -139,6 +190,8 @@ Expected<RenderSummary> render(const RenderDef& def) {
     if (!run.status) return run.status.error();
     if (run.stopped) return cancelled;
     // The video, trace and events become visible together, or none of them.
+    if (sound_thread.joinable()) sound_thread.join();
+    if (!sounded) return sounded.error();
     Status sealed = (*sink)->seal();
     if (sealed) sealed = outputs->seal();
     if (stop_asked()) return cancelled;

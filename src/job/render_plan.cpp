@@ -229,13 +229,10 @@ Expected<RenderPlan> plan_render(scene::Scene scene, const RenderRequest& o,
     plan.frames = *frames;
     // Sound goes into video files (and is all a .wav holds).
     plan.audio = o.audio.value_or(scene.audio.enabled);
-    if (plan.audio && !segmented(*output) && output->format != "wav") {
+    if (plan.audio && !segmented(*output) && !output->to_stdout && output->format != "wav") {
         if (o.audio) {
-            return Error{output->to_stdout
-                             ? "--audio: sound is written into video files (.mp4, .mkv, .webm) "
-                               "and .wav, not into streams on standard output"
-                             : "--audio: " + output->format + " carries no sound; write .mp4, "
-                                                             ".mkv, .webm or .wav"};
+            return Error{"--audio: " + output->format +
+                         " carries no sound; write .mp4, .mkv, .webm, - or .wav"};
         }
         plan.audio = false;   // the scene's sound where the format has none: the pictures only
     }

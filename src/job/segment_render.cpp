@@ -272,7 +272,10 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
         const FrameRange heard =
             def.segment ? segment_frames(def.scene.video, range, *def.segment) : range;
         sound_thread = std::thread([&] {
-            sounded = write_soundtrack(def.scene, heard, *sound, def.should_stop);
+            sounded = write_soundtrack(
+                def.scene, heard,
+                [&](std::span<const std::int16_t> samples) { return sound->write(samples); },
+                def.should_stop);
             if (sounded) sounded = sound->seal();
         });
     }

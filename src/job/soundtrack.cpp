@@ -40,7 +40,7 @@ std::size_t sample_of_frame(int frame, int fps) {
     return static_cast<std::size_t>((2 * scaled + fps) / (2 * static_cast<std::int64_t>(fps)));
 }
 
-Status write_soundtrack(const scene::Scene& scene, FrameRange range, encode::WavWriter& out,
+Status write_soundtrack(const scene::Scene& scene, FrameRange range, const SampleWriter& out,
                         const std::function<bool()>& should_stop) {
     const std::vector<Body> bodies = bodies_of(build_world(scene));
     const double aspect = static_cast<double>(scene.video.width) / scene.video.height;
@@ -58,7 +58,7 @@ Status write_soundtrack(const scene::Scene& scene, FrameRange range, encode::Wav
         const std::size_t from = std::clamp(begin, position, position + frames) - position;
         const std::size_t to = std::clamp(end, position, position + frames) - position;
         position += frames;
-        if (to > from) written = out.write(samples.subspan(2 * from, 2 * (to - from)));
+        if (to > from) written = out(samples.subspan(2 * from, 2 * (to - from)));
         return static_cast<bool>(written);
     };
     // Bodies resting on others touch again and again, each time with the speed gravity gave
@@ -98,7 +98,10 @@ Expected<RenderSummary> render_soundtrack(const RenderDef& def, FrameRange range
     const auto started = Clock::now();
     auto writer = encode::WavWriter::open(def.output.path, sound_rate, 2);
     if (!writer) return writer.error();
-    if (Status done = write_soundtrack(def.scene, range, *writer, def.should_stop); !done) {
+    const auto write = [&](std::span<const std::int16_t> samples) {
+        return writer->write(samples);
+    };
+    if (Status done = write_soundtrack(def.scene, range, write, def.should_stop); !done) {
         return done.error();
     }
     if (Status sealed = writer->seal(); !sealed) return sealed.error();

@@ -221,7 +221,8 @@ TEST(SegmentsGLTest, SoundJoinsWithTheSegments) {
                        "(segment-0003-of-0005.wav); render it again with --segment 3\n");
     run = discreel({"render", scene.path, "-o", scene.dir / "x.gif", "--audio"});
     EXPECT_EQ(run.exit_code, 2);
-    EXPECT_EQ(run.err, "discreel: --audio: gif carries no sound; write .mp4, .mkv, .webm or .wav\n");
+    EXPECT_EQ(run.err,
+              "discreel: --audio: gif carries no sound; write .mp4, .mkv, .webm, - or .wav\n");
 }
 
 // --dry-run: the plan a script submits tasks by (deploy/slurm/clip.sh), and nothing written.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -101,6 +102,38 @@ TEST(SoundGLTest, ThreeHundredBouncingDiscsNeverClip) {
     for (const std::int16_t s : samples) peak = std::max(peak, std::abs(static_cast<int>(s)));
     EXPECT_LE(peak, 29490);   // round(0.9 * 32767)
     EXPECT_GT(peak, 26500);
+}
+
+// A stream on standard output carries the sound too (Matroska and fragmented MP4), the same
+// bytes twice; a reader that stops early ends the render (SIGPIPE) without a hang, though the
+// sound's thread is then waiting on a full queue.
+TEST(SoundGLTest, AStreamOnStandardOutputCarriesTheSound) {
+    TempDir dir;
+    write_file(dir / "s.yaml", "version: 1\nvideo: {size: [160, 90], fps: 30, duration: 2}\n"
+                               "audio: {enabled: true}\n"
+                               "walls:\n  - box: [[0, 0], [4, 2.25]]\n"
+                               "discs:\n  - {position: [2, 1], velocity: [5, 2], radius: 0.2}\n");
+    for (const std::string container : {"mkv", "mp4"}) {
+        SCOPED_TRACE(container);
+        const auto first = run_command({bin, "render", dir / "s.yaml", "-o", "-", "--format",
+                                        container, "-q"});
+        ASSERT_EQ(first.exit_code, 0) << first.err;
+        const auto second = run_command({bin, "render", dir / "s.yaml", "-o", "-", "--format",
+                                         container, "-q"});
+        EXPECT_EQ(first.out, second.out);
+        write_file(dir / ("s." + container), first.out);
+        const auto streams = run_command({"ffprobe", "-v", "error", "-show_entries",
+                                          "stream=codec_name,sample_rate", "-of", "csv=p=0",
+                                          dir / ("s." + container)});
+        EXPECT_EQ(streams.out, "h264\naac,48000\n");
+    }
+    const auto started = std::chrono::steady_clock::now();
+    const auto cut = run_command(
+        {"bash", "-c", "\"$0\" render \"$1\" -o - --duration 600 | head -c 20000 >/dev/null; "
+                       "exit ${PIPESTATUS[0]}",
+         bin, dir / "s.yaml"});
+    EXPECT_EQ(cut.exit_code, 128 + 13) << cut.err;   // SIGPIPE's
+    EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(20));
 }
 
 TEST(SoundGLTest, EncoderSettingsAndBadVolumesAreRefused) {

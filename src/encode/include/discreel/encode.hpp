@@ -45,12 +45,18 @@ struct SinkDef {
     // (x264's scene cuts off): a segment sets its length, so it is one closed group.
     // 0: the encoder's own choice. H.264 and VP9; FFV1 frames are all coded alone.
     int keyint = 0;
+    // A second stream, the soundtrack (AAC; Opus in WebM), from samples given to write_sound.
+    // Video outputs only.
+    bool sound = false;
 };
 
 class Sink {
 public:
     virtual ~Sink() = default;
     virtual Status write(const ImageView& frame) = 0;   // frames in presentation order
+    // With SinkDef::sound: 48 kHz stereo 16-bit samples, interleaved, in order, in blocks of any
+    // size; give the sound of each frame before or soon after the frame.
+    virtual Status write_sound(std::span<const std::int16_t> samples);
     // Flushes the encoder and closes the output under its temporary name(s): nothing is
     // visible at the target yet.
     virtual Status seal() = 0;
