@@ -271,7 +271,7 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
     if (sound) {
         const FrameRange heard =
             def.segment ? segment_frames(def.scene.video, range, *def.segment) : range;
-        sound_thread = std::thread([&] {
+        sound_thread = std::thread([&, heard] {   // `heard` by value: it ends with this block
             sounded = write_soundtrack(
                 def.scene, heard,
                 [&](std::span<const std::int16_t> samples) { return sound->write(samples); },
