@@ -46,13 +46,19 @@ std::string supported_formats() {
     return list + ", .wav (the soundtrack alone)";
 }
 
-// A .wav is the soundtrack alone: no frames, so no sink; the job writes it (WavWriter).
-bool is_wav(const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
+// The extension of `path`, lower-case, with its dot; "-" for standard output.
+std::string extension_of(const std::string& path) {
+    std::string extension = path == "-" ? path : std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return path != "-" && extension == ".wav";
+    return extension;
 }
+
+// A .wav is the soundtrack alone: no frames, so no sink; the job writes it (WavWriter).
+bool is_wav(const std::string& path) { return extension_of(path) == ".wav"; }
+
+const Error container_for_files{"a container is chosen for standard output (-o -) or a segment "
+                                "(--segment) only; a file's extension picks its format"};
 
 struct Resolved {
     const OutputKind* kind = nullptr;
@@ -60,9 +66,7 @@ struct Resolved {
 };
 
 Expected<Resolved> resolve(const std::string& path) {
-    std::string extension = path == "-" ? path : std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string extension = extension_of(path);
     const auto kind = std::find_if(output_kinds.begin(), output_kinds.end(),
                                    [&](const OutputKind& k) { return k.name == extension; });
     if (kind == output_kinds.end()) {
@@ -86,8 +90,7 @@ Expected<Resolved> resolve(const std::string& path) {
 
 Status check_resolved(const Resolved& resolved, const SinkDef& def) {
     if (!def.stream_container.empty() && resolved.kind->name != "-") {
-        return Error{"a container is chosen for standard output (-o -) or a segment "
-                     "(--segment) only; a file's extension picks its format"};
+        return container_for_files;
     }
     if (resolved.kind->video != nullptr) {
         auto format = resolved.kind->video(def);
@@ -105,8 +108,7 @@ Expected<OutputDescription> describe_output(const std::string& path,
                                             const std::string& stream_container) {
     if (is_wav(path)) {
         if (!stream_container.empty()) {
-            return Error{"a container is chosen for standard output (-o -) or a segment "
-                         "(--segment) only; a file's extension picks its format"};
+            return container_for_files;
         }
         OutputDescription description;
         description.path = path;
@@ -140,8 +142,7 @@ std::string OutputDescription::frame_path(int n) const {
 Status check_settings(const SinkDef& def) {
     if (is_wav(def.path)) {
         if (!def.stream_container.empty()) {
-            return Error{"a container is chosen for standard output (-o -) or a segment "
-                         "(--segment) only; a file's extension picks its format"};
+            return container_for_files;
         }
         return reject_encoder_settings(def, "WAV (the soundtrack alone)");
     }
