@@ -174,14 +174,27 @@ void BodySolver::group(const std::vector<unsigned char>& selected,
 }
 
 void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
-    for (RigidBody& b : bodies) {
+    start_angle_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        RigidBody& b = bodies[i];
         if (b.bound < 0) b.bound = bounding_radius(b.shape);
+        if (b.inner < 0) b.inner = inner_radius(b.shape);
         if (b.inv_mass > 0) b.v += gravity * dt;
+        start_angle_[i] = b.angle;
     }
     // Restitution acts on approaches faster than gravity gives in about two steps: slower
     // ones are a body settling, which would otherwise hop by e g dt every step.
     const double settle = 2 * gravity.norm() * dt;
     find_pairs(bodies, dt, 0.5 * gravity.norm() * dt * dt);
+    // A body that will travel more than impact_travel of its inner radius is fast: its pairs
+    // that start the step apart are left to the impacts (body_impacts.cpp), timed exactly,
+    // rather than to a speculative contact made from where the step starts.
+    fast_.assign(bodies.size(), 0);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const RigidBody& b = bodies[i];
+        const double travel = (b.v.norm() + std::abs(b.omega) * b.bound) * dt;
+        fast_[i] = b.inv_mass > 0 && travel > def_.impact_travel * b.inner;
+    }
 
     fresh_.clear();
     auto previous = contacts_.begin();
@@ -196,6 +209,22 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         pc.manifold =
             collide(a.shape, transforms_[i], b.shape, transforms_[j], margin_[i] + margin_[j]);
         if (pc.manifold.count == 0) continue;
+        // A fast body's pair that starts apart, against a wall or a body of alike mass, is met
+        // at its time of impact instead (body_impacts.cpp): exactly when it happens, bounced
+        // by Poisson's rule, where a speculative contact would bounce it at the step's end by
+        // Newton's rule at both points, which adds energy to a spinning body. Masses far apart
+        // stay speculative: their islands are solved together (island.hpp), which impacts one
+        // pair at a time are not.
+        const double lighter = std::max(a.inv_mass, b.inv_mass);
+        const double heavier = std::min(a.inv_mass, b.inv_mass);
+        const bool wall = heavier == 0;
+        if ((fast_[i] || fast_[j]) && (wall || lighter < def_.direct_mass_ratio * heavier)) {
+            double apart = HUGE_VAL;
+            for (int k = 0; k < pc.manifold.count; ++k) {
+                apart = std::min(apart, pc.manifold.points[k].separation);
+            }
+            if (apart > def_.slop) continue;
+        }
         BlockContact& c = pc.contact;
         c.normal = pc.manifold.normal;
         c.count = pc.manifold.count;
@@ -418,6 +447,32 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
             }
         }
     }
+    // A pair that started the step apart and ends deeper in than the slop was not kept apart
+    // by the iterations (bodies closing on each other from several sides at once, or features
+    // meeting that were not the nearest where the step started): its bodies are swept for
+    // their impacts too. Pairs that were already touching are a pile's, whose pressure the
+    // iterations share out; only pairs with a body that moved a hundredth of its inner radius
+    // are looked at again.
+    for (const PairContact& pc : fresh_) {
+        const RigidBody& a = bodies[pc.a];
+        const RigidBody& b = bodies[pc.b];
+        const auto moved_far = [&](std::uint32_t i) {
+            return moved[i].norm() + std::abs(turned[i]) * bodies[i].bound > 0.01 * bodies[i].inner;
+        };
+        if (!moved_far(pc.a) && !moved_far(pc.b)) continue;
+        double apart = HUGE_VAL;
+        for (int k = 0; k < pc.manifold.count; ++k) apart = std::min(apart, pc.manifold.points[k].separation);
+        if (apart <= 0) continue;
+        const Manifold now = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
+                                     Transform::of(b.x, b.angle), 0);
+        const double deep = def_.slop + 0.05 * std::min(a.inner, b.inner);
+        for (int k = 0; k < now.count; ++k) {
+            if (now.points[k].separation >= -deep) continue;
+            fast_[pc.a] = a.inv_mass > 0;
+            fast_[pc.b] = b.inv_mass > 0;
+        }
+    }
+    time_impacts(bodies, dt, settle);
     touches_.clear();
     for (PairContact& pc : fresh_) {
         double impulse = 0;
@@ -433,21 +488,42 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         }
         pc.touched = touching;
     }
+    // A pair that met at a time of impact touched too: with its contact's impulse if it has
+    // one, as a new touch if not.
+    if (!impact_touches_.empty()) {
+        const auto by_pair = [](const PairTouch& x, const PairTouch& y) {
+            return x.a != y.a ? x.a < y.a : x.b < y.b;
+        };
+        const std::size_t listed = touches_.size();
+        for (const PairTouch& t : impact_touches_) {
+            const auto end = touches_.begin() + static_cast<std::ptrdiff_t>(listed);
+            const auto at = std::lower_bound(touches_.begin(), end, t, by_pair);
+            if (at != end && at->a == t.a && at->b == t.b) {
+                at->impulse += t.impulse;
+            } else {
+                touches_.push_back(t);
+            }
+        }
+        std::sort(touches_.begin(), touches_.end(), by_pair);
+    }
     std::swap(contacts_, fresh_);
 }
 
 BodySolver::Overlap BodySolver::max_overlap(const std::vector<RigidBody>& bodies) const {
+    // Every pair the step's broad phase listed: a fast pair left to its impacts has no contact.
     Overlap deepest;
-    for (const PairContact& pc : contacts_) {
-        const RigidBody& a = bodies[pc.a];
-        const RigidBody& b = bodies[pc.b];
+    for (const std::uint64_t key : pairs_) {
+        const auto i = static_cast<std::uint32_t>(key >> 32);
+        const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
+        const RigidBody& a = bodies[i];
+        const RigidBody& b = bodies[j];
         const Manifold m = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
                                    Transform::of(b.x, b.angle), 0);
         for (int k = 0; k < m.count; ++k) {
             if (-m.points[k].separation <= deepest.depth) continue;
             deepest.depth = -m.points[k].separation;
-            deepest.a = pc.a;
-            deepest.b = pc.b;
+            deepest.a = i;
+            deepest.b = j;
         }
     }
     return deepest;

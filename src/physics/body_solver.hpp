@@ -16,6 +16,7 @@
 #include "island.hpp"
 #include "manifold.hpp"
 #include "shape.hpp"
+#include "toi.hpp"
 
 namespace discreel::physics::detail {
 
@@ -33,6 +34,7 @@ struct RigidBody {
     double friction = 0;
     Motion motion = Motion::dynamic;   // read by throws; the solver reads inv_mass
     double bound = -1;             // bounding radius, metres; < 0: not computed yet
+    double inner = -1;             // inner radius (toi.hpp), metres; < 0: not computed yet
 };
 
 struct BodySolverDef {
@@ -49,6 +51,13 @@ struct BodySolverDef {
     // A larger island whose masses differ by this factor or more iterates by blocks: each
     // contact with the others of its lighter body, solved together; it does not bounce.
     double block_mass_ratio = 100;
+    // A body that travels more than this many of its inner radii in a step is swept against
+    // whatever its path reaches and meets it at the time of impact (body_impacts.cpp): a
+    // speculative contact, made where the step starts, may miss the features that meet.
+    double impact_travel = 0.5;
+    // Impacts per such body and step at most; beyond, bodies keep the motion they have and
+    // the next step's contacts push out what overlaps.
+    int impacts_per_fast_body = 64;
 };
 
 // A pair of bodies that touched (exchanged a normal impulse) during the step.
@@ -89,6 +98,14 @@ private:
         bool touched = false;
     };
     void find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall);
+    // Sweeps the pairs with a fast body (or one fast_ marks) from the step's start to its end
+    // and takes their impacts in time order (body_impacts.cpp); approaches slower than `settle`
+    // are not impacts.
+    void time_impacts(std::vector<RigidBody>& bodies, double dt, double settle);
+    // Predicts the first impact of bodies i < j from `t_begin` into impacts_ (`after_only`:
+    // only one after t_begin).
+    void predict_impact(const std::vector<RigidBody>& bodies, std::uint32_t i, std::uint32_t j,
+                        double t_begin, double dt, bool after_only = false);
     // Groups the contacts of the islands to solve directly into islands_ (island_start_
     // delimits them, direct_ marks them) and those of larger islands of masses far apart by
     // block into blocks_ (block_start_, blocked_).
@@ -114,11 +131,12 @@ private:
     BodySolverDef def_;
     std::vector<PairContact> contacts_;     // the last step's, in (a, b) order
     std::vector<PairContact> fresh_;        // scratch
-    std::vector<std::uint64_t> pairs_;      // scratch: a << 32 | b
+    std::vector<std::uint64_t> pairs_;      // the last step's broad-phase pairs: a << 32 | b
     std::vector<std::uint32_t> order_;      // scratch: bodies by the low x of their box
     std::vector<std::array<double, 4>> boxes_;   // scratch: lo x, lo y, hi x, hi y
     std::vector<double> margin_;            // scratch: metres a body can close in the step
     std::vector<Transform> transforms_;     // scratch: each body's at the step's start
+    std::vector<double> start_angle_;       // scratch: each body's angle at the step's start
     std::vector<BlockBody> state_;          // scratch
     std::vector<V2> moved_;                 // scratch: metres each body moved this step
     std::vector<double> turned_;            // scratch: radians each body turned
@@ -141,6 +159,25 @@ private:
     std::vector<std::size_t> block_start_;
     std::vector<std::uint32_t> group_key_;    // per contact: its island root or block's body
     DirectSolver direct_solver_;
+    // Impacts between moving bodies (body_impacts.cpp): each body's motion since its latest
+    // impact, its swept box, how many impacts changed it (stale predictions name an older
+    // count), the predicted impacts as a heap, and the pairs that met.
+    struct PredictedImpact {
+        double t = 0;                        // seconds into the step
+        double gap = 0;                      // metres between the surfaces then
+        std::uint32_t a = 0, b = 0;
+        std::uint32_t version_a = 0, version_b = 0;
+    };
+    std::vector<Sweep> sweeps_;
+    std::vector<std::array<double, 4>> swept_;
+    std::vector<std::uint32_t> versions_;
+    std::vector<unsigned char> fast_;
+    std::vector<PredictedImpact> impacts_;
+    std::vector<PairTouch> impact_touches_;
+    std::vector<std::uint32_t> still_, moving_, changed_;   // scratch: see time_impacts
+    std::vector<double> moving_lo_;
+    std::vector<unsigned char> changed_flag_;
+    double settle_ = 0;                      // m/s: slower approaches are not impacts
     std::vector<double> separation_, push_;   // scratch, per point of an island
 };
 

@@ -72,8 +72,9 @@ struct ThrowDef {
 struct Envelope {
     double max_mass_ratio = 1000;             // heaviest / lightest moving body
     // Radii of the smallest moving body per step at equal masses: the disc solver times every
-    // impact between moving discs; the manifold solver (any body with a shape) only sees
-    // contacts that are near at the start of a step.
+    // impact between moving discs; the manifold solver (any body with a shape) times those of
+    // fast bodies too, but a crowd of them still sinks in where the iterations share out
+    // contacts touching at a step's start (docs/physics.md, "Limits").
     double disc_radii_per_step = 10;
     double body_radii_per_step = 2;
 
