@@ -8,13 +8,6 @@ namespace {
 
 V2 velocity_at(const BlockBody& body, const V2& r) { return body.v + body.omega * perp(r); }
 
-void apply(BlockBody& a, BlockBody& b, const BlockPoint& p, const V2& impulse) {
-    a.v -= a.inv_mass * impulse;
-    a.omega -= a.inv_inertia * cross(p.ra, impulse);
-    b.v += b.inv_mass * impulse;
-    b.omega += b.inv_inertia * cross(p.rb, impulse);
-}
-
 // The effective mass's inverse along direction d at point p: 1 / (what an impulse of 1 N s
 // along d changes the relative velocity along d by).
 double inverse_mass_along(const BlockBody& a, const BlockBody& b, const BlockPoint& p,
@@ -24,6 +17,13 @@ double inverse_mass_along(const BlockBody& a, const BlockBody& b, const BlockPoi
 }
 
 }  // namespace
+
+void apply_impulse(BlockBody& a, BlockBody& b, const BlockPoint& p, const V2& impulse) {
+    a.v -= a.inv_mass * impulse;
+    a.omega -= a.inv_inertia * cross(p.ra, impulse);
+    b.v += b.inv_mass * impulse;
+    b.omega += b.inv_inertia * cross(p.rb, impulse);
+}
 
 double normal_velocity(const BlockContact& c, const BlockPoint& p, const BlockBody& a,
                        const BlockBody& b) {
@@ -68,7 +68,7 @@ void solve_block(BlockContact& c, BlockBody& a, BlockBody& b) {
             std::clamp(p.tangent_impulse - vt * p.tangent_mass, -limit, limit);
         const double change = total - p.tangent_impulse;
         p.tangent_impulse = total;
-        apply(a, b, p, change * tangent);
+        apply_impulse(a, b, p, change * tangent);
     }
 
     if (c.count == 1) {
@@ -77,7 +77,7 @@ void solve_block(BlockContact& c, BlockBody& a, BlockBody& b) {
         if (k_n <= 0) return;
         const double vn = normal_velocity(c, p, a, b);
         const double total = std::max(0.0, p.normal_impulse - (vn - p.target) / k_n);
-        apply(a, b, p, (total - p.normal_impulse) * c.normal);
+        apply_impulse(a, b, p, (total - p.normal_impulse) * c.normal);
         p.normal_impulse = total;
         return;
     }
@@ -111,8 +111,8 @@ void solve_block(BlockContact& c, BlockBody& a, BlockBody& b) {
         found = x[1] >= 0 && k12 * x[1] + b1 >= 0;
     }
     if (!found) x = {0, 0};    // neither: both separate (or no solution: apply nothing)
-    apply(a, b, p1, (x[0] - old[0]) * n);
-    apply(a, b, p2, (x[1] - old[1]) * n);
+    apply_impulse(a, b, p1, (x[0] - old[0]) * n);
+    apply_impulse(a, b, p2, (x[1] - old[1]) * n);
     p1.normal_impulse = x[0];
     p2.normal_impulse = x[1];
 }

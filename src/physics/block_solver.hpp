@@ -38,6 +38,9 @@ struct BlockContact {
     double k11 = 0, k12 = 0, k22 = 0;
 };
 
+// Applies `impulse` (N s, on B; its opposite on A) at point p to both bodies.
+void apply_impulse(BlockBody& a, BlockBody& b, const BlockPoint& p, const V2& impulse);
+
 // The normal velocity of B relative to A at a point, m/s (positive: separating).
 double normal_velocity(const BlockContact& c, const BlockPoint& p, const BlockBody& a,
                        const BlockBody& b);

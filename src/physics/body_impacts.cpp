@@ -233,8 +233,7 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
         c.normal = m.normal;
         c.count = m.count;
         c.friction = mix_friction(a.friction, b.friction);
-        BlockBody va{a.v, a.omega, a.inv_mass, a.inv_inertia};
-        BlockBody vb{b.v, b.omega, b.inv_mass, b.inv_inertia};
+        BlockBody va = velocity_of(a), vb = velocity_of(b);
         // Closing now, and closing along the sweeps (the motion that brought them here: the
         // step's contacts may have turned them apart only after they had moved into each other).
         const BlockBody sa{sweeps_[e.a].v, sweeps_[e.a].omega, 0, 0};
@@ -262,11 +261,7 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
             const double e_mix = mix_restitution(a.restitution, b.restitution);
             for (int k = 0; k < c.count; ++k) {
                 BlockPoint& p = c.points[k];
-                const V2 bounce = e_mix * p.normal_impulse * c.normal;
-                va.v -= va.inv_mass * bounce;
-                va.omega -= va.inv_inertia * cross(p.ra, bounce);
-                vb.v += vb.inv_mass * bounce;
-                vb.omega += vb.inv_inertia * cross(p.rb, bounce);
+                apply_impulse(va, vb, p, e_mix * p.normal_impulse * c.normal);
                 p.normal_impulse *= 1 + e_mix;
             }
         }

@@ -9,25 +9,9 @@
 namespace discreel::physics::detail {
 namespace {
 
-BlockBody velocity_of(const RigidBody& b) {
-    BlockBody s;
-    s.v = b.v;
-    s.omega = b.omega;
-    s.inv_mass = b.inv_mass;
-    s.inv_inertia = b.inv_inertia;
-    return s;
-}
-
 void store(RigidBody& b, const BlockBody& s) {
     b.v = s.v;
     b.omega = s.omega;
-}
-
-void apply_impulse(BlockBody& a, BlockBody& b, const BlockPoint& p, const V2& impulse) {
-    a.v -= a.inv_mass * impulse;
-    a.omega -= a.inv_inertia * cross(p.ra, impulse);
-    b.v += b.inv_mass * impulse;
-    b.omega += b.inv_inertia * cross(p.rb, impulse);
 }
 
 V2 rotate(const V2& v, double angle) {

@@ -37,6 +37,11 @@ struct RigidBody {
     double inner = -1;             // inner radius (toi.hpp), metres; < 0: not computed yet
 };
 
+// A body's velocities and inverse masses as the block solve reads them.
+inline BlockBody velocity_of(const RigidBody& b) {
+    return BlockBody{b.v, b.omega, b.inv_mass, b.inv_inertia};
+}
+
 struct BodySolverDef {
     int iterations = 6;            // velocity iterations per step (docs/physics.md)
     int position_iterations = 3;   // overlap-removal sweeps per step
