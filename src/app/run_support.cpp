@@ -22,6 +22,7 @@ void report_error(std::ostream& err, std::string_view message) {
 
 bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err) {
     for (const scene::Diagnostic& d : loaded.diagnostics) err << d.to_string() << '\n';
+    for (const scene::Diagnostic& d : loaded.warnings) err << d.to_string() << '\n';
     return loaded.ok();
 }
 

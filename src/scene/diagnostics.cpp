@@ -11,9 +11,10 @@ namespace discreel::scene {
 
 std::string Diagnostic::to_string() const {
     // File names, keys and ids come from users: their control bytes are shown escaped.
-    if (line <= 0) return printable(file + ": " + message);  // about the file as a whole
+    const std::string text = (warning ? "warning: " : "") + message;
+    if (line <= 0) return printable(file + ": " + text);  // about the file as a whole
     return printable(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
-                     message);
+                     text);
 }
 
 namespace detail {
@@ -23,11 +24,34 @@ void Diagnostics::error(Location where, std::string message) {
     entries_.push_back({where, std::move(message)});
 }
 
-std::vector<Diagnostic> Diagnostics::finish(std::string_view file) && {
-    std::stable_sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+void Diagnostics::warn(Location where, std::string message) {
+    if (warnings_.size() >= shown) return;
+    warnings_.push_back({where, std::move(message)});
+}
+
+namespace {
+
+void sort_by_position(std::vector<Diagnostics::Entry>& entries) {
+    std::stable_sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
         if (a.where.line != b.where.line) return a.where.line < b.where.line;
         return a.where.column < b.where.column;
     });
+}
+
+}  // namespace
+
+std::vector<Diagnostic> Diagnostics::take_warnings(std::string_view file) {
+    sort_by_position(warnings_);
+    std::vector<Diagnostic> out;
+    for (Entry& e : warnings_) {
+        out.push_back({std::string(file), e.where.line, e.where.column, std::move(e.message), true});
+    }
+    warnings_.clear();
+    return out;
+}
+
+std::vector<Diagnostic> Diagnostics::finish(std::string_view file) && {
+    sort_by_position(entries_);
     std::vector<Diagnostic> out;
     const std::size_t n = std::min(entries_.size(), shown);
     out.reserve(n + 1);

@@ -26,19 +26,24 @@ public:
     static constexpr std::size_t shown = 100;
 
     void error(Location where, std::string message);
+    // What loads but leaves the measured range (Diagnostic::warning); the first `shown` kept.
+    void warn(Location where, std::string message);
     bool empty() const { return entries_.empty(); }
     std::size_t count() const { return entries_.size(); }
     bool full() const { return entries_.size() >= stop_after; }
 
     // Sorted by position (stable: problems at the same place keep the order they were found).
     std::vector<Diagnostic> finish(std::string_view file) &&;
+    // The warnings, sorted the same way; they are dropped from here.
+    std::vector<Diagnostic> take_warnings(std::string_view file);
 
-private:
     struct Entry {
         Location where;
         std::string message;
     };
-    std::vector<Entry> entries_;
+
+private:
+    std::vector<Entry> entries_, warnings_;
 };
 
 // Shortest text that reads back as the same double ("0.1", "1e-05"), whole numbers in full.

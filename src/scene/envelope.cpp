@@ -1,5 +1,7 @@
-// A scene whose masses or speeds fall outside the range the physics says it holds
-// (physics::envelope) is rejected up front rather than rendered wrong, at the value to change.
+// A scene whose masses or speeds fall outside the range in which the physics is measured to keep
+// a crowd of bodies apart (physics::envelope) is rendered all the same, with a warning at the
+// value to change: small groups of bodies hold beyond it, and which a scene makes is not known
+// before it runs.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -34,6 +36,32 @@ std::optional<Extremes> dynamic_extremes(const std::vector<Disc>& discs) {
 }
 
 double speed_of(Vec2 v) { return std::hypot(v.x, v.y); }
+
+// What a mass ratio beyond the crowd's does, and where to read more.
+std::string crowd_sinks_in(double ratio) {
+    return "where many bodies " + format_short(ratio) + " times apart in mass touch at once, "
+           "heavy ones may sink into light ones and the crowd may gain energy (docs/physics.md, "
+           "Limits)";
+}
+
+// "`speed` m/s: crowds ... stay apart up to `limit`": what the limit is in radii per step, and
+// the rate that would hold the speed. `smallest_id` names the smallest moving body when known.
+std::string too_fast(double speed, double limit, double rate, double radii_per_step,
+                     double smallest, const std::string& smallest_id, double ratio) {
+    const double needed = std::ceil(speed / (radii_per_step * smallest));
+    return format_short(speed) + " m/s: crowds of this scene's bodies are measured to stay " +
+           "apart up to " + format_short(limit) + " m/s at " + format_number(rate) + " Hz (" +
+           format_short(radii_per_step) + " radii of the smallest moving body, " +
+           (smallest_id.empty() ? "" : "'" + smallest_id + "', ") + format_number(smallest) +
+           " m, per physics step" +
+           (ratio > 1 ? " for masses differing by a factor of " + format_short(ratio)
+                      : std::string()) +
+           "); where several bodies this fast meet at once they may overlap" +
+           (needed <= 100000 ? "; physics.rate " + format_number(needed) +
+                                   " or more keeps them apart"
+                             : std::string()) +
+           " (docs/physics.md, Limits)";
+}
 
 // The moving bodies alive at one time: their masses, radii and speeds (with their slots, the
 // index in Scene::discs whose entry a message points at), kept as respawns replace bodies.
@@ -75,7 +103,6 @@ void check_respawns(Loader& loader) {
         current.push_back(&scene.discs[i]);
         alive.add(scene.discs[i], i);
     }
-    const double max_mass_ratio = physics::envelope.max_mass_ratio;
     for (std::size_t n = 0; n < scene.respawns.size(); ++n) {
         const Respawn& r = scene.respawns[n];
         for (std::size_t k = 0; k < r.bodies.size(); ++k) {
@@ -89,13 +116,11 @@ void check_respawns(Loader& loader) {
         const DiscSource& source = loader.sources[r.first];
         const std::string when = "the respawn at t = " + format_number(r.at) + " s";
         const double ratio = alive.mass_ratio();
-        if (ratio > max_mass_ratio) {
-            loader.diagnostics.error(
+        if (ratio > physics::envelope.crowd_mass_ratio) {
+            loader.diagnostics.warn(
                 source.entry, source.where + ": after " + when +
                                   ", the moving bodies differ in mass by a factor of " +
-                                  format_short(ratio) + "; moving bodies of one scene may differ "
-                                  "by a factor of at most " + format_number(max_mass_ratio) +
-                                  " (docs/physics.md, Limits)");
+                                  format_short(ratio) + "; " + crowd_sinks_in(ratio));
             return;
         }
         const double radii_per_step = physics::envelope.radii_per_step(
@@ -104,18 +129,11 @@ void check_respawns(Loader& loader) {
         const auto [speed, slot] = alive.fastest();
         if (speed > limit) {
             const DiscSource& fast = loader.sources[slot];
-            const double needed = std::ceil(speed / (radii_per_step * alive.smallest_radius()));
-            loader.diagnostics.error(
+            loader.diagnostics.warn(
                 fast.velocity_where,
-                fast.velocity_path + ": after " + when + ", " + format_short(speed) +
-                    " m/s is too fast: at most " + format_short(limit) + " m/s at " +
-                    format_number(scene.physics.rate) + " Hz, i.e. " +
-                    format_short(radii_per_step) + " radii of the smallest moving body (" +
-                    format_number(alive.smallest_radius()) +
-                    " m) per physics step; " +
-                    (needed <= 100000 ? "raise physics.rate to " + format_number(needed) + " or more"
-                                      : std::string("lower it")) +
-                    " (docs/physics.md, Limits)");
+                fast.velocity_path + ": after " + when + ", " +
+                    too_fast(speed, limit, scene.physics.rate, radii_per_step,
+                             alive.smallest_radius(), "", ratio));
             return;
         }
     }
@@ -131,49 +149,33 @@ void check_envelope(Loader& loader) {
     const Disc& light = scene.discs[extremes->lightest];
     const Disc& heavy = scene.discs[extremes->heaviest];
     const double ratio = heavy.mass / light.mass;
-    const double max_mass_ratio = physics::envelope.max_mass_ratio;
-    if (ratio > max_mass_ratio) {
+    if (ratio > physics::envelope.crowd_mass_ratio) {
+        // A crowd this far apart in mass sinks in at any speed: the speeds are not judged.
         const DiscSource& source = loader.sources[extremes->heaviest];
         // A body of `bodies:` (a shape) is a body to its author, not a disc.
         const auto noun = [](const Disc& body) { return body.shape ? "body" : "disc"; };
-        const bool discs = !heavy.shape && !light.shape;
-        d.error(source.entry,
-                source.where + ": " + noun(heavy) + " '" + heavy.id + "' (" +
-                    format_short(heavy.mass) + " kg) is " + format_short(ratio) +
-                    " times as heavy as " + noun(light) + " '" + light.id + "' (" +
-                    format_short(light.mass) + " kg, line " +
-                    std::to_string(loader.sources[extremes->lightest].entry.line) +
-                    "); moving " + (discs ? "discs" : "bodies") +
-                    " of one scene may differ in mass by a factor of at most " +
-                    format_number(max_mass_ratio) + ", beyond which heavy " +
-                    (discs ? "discs" : "bodies") + " sink into light ones (docs/physics.md, Limits)");
-        return;   // the speed limit below depends on the ratio
+        d.warn(source.entry,
+               source.where + ": " + noun(heavy) + " '" + heavy.id + "' (" +
+                   format_short(heavy.mass) + " kg) is " + format_short(ratio) +
+                   " times as heavy as " + noun(light) + " '" + light.id + "' (" +
+                   format_short(light.mass) + " kg, line " +
+                   std::to_string(loader.sources[extremes->lightest].entry.line) + "); " +
+                   crowd_sinks_in(ratio));
+        return;
     }
 
-    const double smallest = scene.discs[extremes->smallest].radius;
+    const Disc& smallest = scene.discs[extremes->smallest];
     const bool manifold = physics::uses_manifold_solver(
         std::any_of(scene.discs.begin(), scene.discs.end(),
                     [](const Disc& disc) { return disc.shape.has_value(); }),
         !scene.respawns.empty());
     const double radii_per_step = physics::envelope.radii_per_step(ratio, manifold);
     const double rate = scene.physics.rate;
-    const double limit = radii_per_step * smallest * rate;   // m/s
+    const double limit = radii_per_step * smallest.radius * rate;   // m/s
     const auto check = [&](double speed, const Location& where, const std::string& path) {
-        if (speed <= limit || d.full()) return;
-        const double needed = std::ceil(speed / (radii_per_step * smallest));
-        std::string advice = needed <= 100000
-                                 ? "raise physics.rate to " + format_number(needed) + " or more"
-                                 : "lower it";
-        d.error(where, path + ": " + format_short(speed) + " m/s is too fast for this scene: " +
-                           "at most " + format_short(limit) + " m/s at " + format_number(rate) +
-                           " Hz, i.e. " + format_short(radii_per_step) +
-                           " radii of its smallest moving disc ('" +
-                           scene.discs[extremes->smallest].id + "', " + format_number(smallest) +
-                           " m) per physics step" +
-                           (ratio > 1 ? " for masses differing by a factor of " +
-                                            format_short(ratio)
-                                      : std::string()) +
-                           "; " + advice + " (docs/physics.md, Limits)");
+        if (speed <= limit) return;
+        d.warn(where, path + ": " + too_fast(speed, limit, rate, radii_per_step, smallest.radius,
+                                             smallest.id, ratio));
     };
     // The discs of a generator share where their speed was written (a run of equal locations):
     // the fastest moving one speaks for all, once.
@@ -207,7 +209,7 @@ void check_envelope(Loader& loader) {
         }
         check(fastest, source.path_where, source.path_path);
     }
-    if (d.empty()) check_respawns(loader);
+    check_respawns(loader);
 }
 
 }  // namespace discreel::scene::detail

@@ -442,6 +442,7 @@ LoadResult load_scene_text(std::string_view original_text, std::string_view disp
                        "as the start of a comment, which hides the closing bracket; write "
                        "color: \"#rrggbb\"");
     }
+    if (d.empty()) result.warnings = d.take_warnings(display_name);
     result.diagnostics = std::move(d).finish(display_name);
     // What the stand-ins caused (a colour that is no colour) is said already.
     std::erase_if(result.diagnostics, [&](const Diagnostic& x) {

@@ -74,7 +74,8 @@ json job_json(const Job& job) {
             {"status", to_string(job.status)},
             {"progress", {{"frames_done", job.frames_done}, {"frames_total", job.frames_total}}},
             {"error", error},
-            {"output", output}};
+            {"output", output},
+            {"warnings", job.warnings}};
 }
 
 void log_line(const std::string& event, const json& fields) {
@@ -118,7 +119,9 @@ Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics
                 .frames_total = stored.frames_total,
                 .error = std::move(stored.error),
                 .output = std::move(stored.output),
+                .warnings = json::parse(stored.warnings, nullptr, false),
                 .version = 1};   // 0 means "none seen yet" to wait_change
+        if (!job.warnings.is_array()) job.warnings = json::array();
         if (!is_final(job.status)) {
             job.status = JobStatus::queued;
             jobs->queue_.push_back(job.id);
@@ -164,7 +167,7 @@ std::size_t Jobs::running() const {
     return running_;
 }
 
-Submission Jobs::submit(const JobRequest& request, int frames_total) {
+Submission Jobs::submit(const JobRequest& request, int frames_total, const json& warnings) {
     std::unique_lock lock(mutex_);
     const auto found = jobs_.find(request.id);
     if (found != jobs_.end()) {
@@ -191,7 +194,8 @@ Submission Jobs::submit(const JobRequest& request, int frames_total) {
         return busy;
     }
     // Durable before the answer: a 202 promises the job will finish.
-    if (Status stored = store_.accept(request.id, request.stored(), frames_total); !stored) {
+    if (Status stored = store_.accept(request.id, request.stored(), frames_total, warnings.dump());
+        !stored) {
         Submission failed = answer(Submitted::store_failed, nullptr);
         failed.error = stored.error().message;
         return failed;
@@ -201,6 +205,7 @@ Submission Jobs::submit(const JobRequest& request, int frames_total) {
     job.status = JobStatus::queued;
     job.frames_done = 0;
     job.frames_total = frames_total;
+    job.warnings = warnings;
     job.error.reset();
     job.output.reset();
     job.cancel = std::make_shared<std::atomic<bool>>(stopping_.load());
@@ -341,7 +346,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         if (auto* refused = std::get_if<Refusal>(&planned)) {
             return Error{refused->body["errors"][0]["message"].get<std::string>()};
         }
-        job::RenderPlan& plan = std::get<job::RenderPlan>(planned);
+        job::RenderPlan& plan = std::get<PlannedJob>(planned).plan;
         extension = request.format;
         const render::RendererDef size{.width = plan.scene.video.width,
                                        .height = plan.scene.video.height};

@@ -32,6 +32,8 @@ struct Job {
     int frames_total = 0;
     std::optional<std::string> error;
     std::optional<OutputInfo> output;
+    // The scene's warnings: [{"line", "column", "message"}, ...] (request.hpp, PlannedJob).
+    nlohmann::json warnings = nlohmann::json::array();
     std::uint64_t version = 0;                         // bumped on every change
     std::shared_ptr<std::atomic<bool>> cancel = std::make_shared<std::atomic<bool>>(false);
 };
@@ -62,7 +64,8 @@ public:
     void start_workers();
     void stop();                 // workers end; a job being rendered stays queued in the store
 
-    Submission submit(const JobRequest& request, int frames_total);
+    // `warnings`: the scene's (PlannedJob), kept with the job.
+    Submission submit(const JobRequest& request, int frames_total, const nlohmann::json& warnings);
     std::optional<nlohmann::json> get(const std::string& id);
     // The file of a succeeded job, with its facts; nullopt while there is none.
     struct Output {

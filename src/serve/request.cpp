@@ -152,8 +152,8 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
     return request;
 }
 
-std::variant<job::RenderPlan, Refusal> plan_job(const JobRequest& request,
-                                                const scene::Limits& limits) {
+std::variant<PlannedJob, Refusal> plan_job(const JobRequest& request,
+                                           const scene::Limits& limits) {
     scene::LoadResult loaded =
         scene::load_scene_text(request.scene, "scene", limits, request.render.video.duration);
     if (!loaded.ok()) {
@@ -163,12 +163,16 @@ std::variant<job::RenderPlan, Refusal> plan_job(const JobRequest& request,
         }
         return Refusal{422, json{{"errors", std::move(errors)}}};
     }
+    json warnings = json::array();
+    for (const scene::Diagnostic& d : loaded.warnings) {
+        warnings.push_back(one_error(d.line, d.column, d.message));
+    }
     auto plan = job::plan_render(std::move(loaded.scene), request.render, limits);
     if (!plan) {
         return Refusal{422, json{{"errors", json::array({one_error(nullptr, nullptr,
                                                                    plan.error().message)})}}};
     }
-    return std::move(*plan);
+    return PlannedJob{std::move(*plan), std::move(warnings)};
 }
 
 }  // namespace discreel::serve

@@ -37,10 +37,17 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
                                                     const scene::Limits& limits,
                                                     const std::string& version);
 
-// A job's scene loaded and its options planned: what the job will render, or 422 with
-// {"errors": [{"line", "column", "message"}, ...]} (line and column null for the options).
-std::variant<job::RenderPlan, Refusal> plan_job(const JobRequest& request,
-                                                const scene::Limits& limits);
+// A job's scene loaded and its options planned: what the job will render, and its scene's
+// warnings, [{"line", "column", "message"}, ...].
+struct PlannedJob {
+    job::RenderPlan plan;
+    nlohmann::json warnings = nlohmann::json::array();
+};
+
+// The job planned, or 422 with {"errors": [{"line", "column", "message"}, ...]} (line and column
+// null for the options).
+std::variant<PlannedJob, Refusal> plan_job(const JobRequest& request,
+                                           const scene::Limits& limits);
 
 const char* content_type_of(const std::string& format);
 

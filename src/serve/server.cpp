@@ -81,7 +81,7 @@ struct Server::Impl {
     std::counting_semaphore<concurrent_loads> loading{concurrent_loads};
 
     // plan_job with at most concurrent_loads scenes in memory at once.
-    std::variant<job::RenderPlan, Refusal> plan(const JobRequest& request) {
+    std::variant<PlannedJob, Refusal> plan(const JobRequest& request) {
         loading.acquire();
         struct Release {
             std::counting_semaphore<concurrent_loads>& semaphore;
@@ -103,8 +103,9 @@ void Server::Impl::post_render(const httplib::Request& req, httplib::Response& r
     const JobRequest& request = std::get<JobRequest>(parsed);
     auto planned = plan(request);
     if (auto* refused = std::get_if<Refusal>(&planned)) return reply(res, *refused);
-    const job::RenderPlan& resolved = std::get<job::RenderPlan>(planned);
-    const Submission done = jobs->submit(request, resolved.frames.last - resolved.frames.first + 1);
+    const PlannedJob& resolved = std::get<PlannedJob>(planned);
+    const Submission done = jobs->submit(
+        request, resolved.plan.frames.last - resolved.plan.frames.first + 1, resolved.warnings);
     switch (done.what) {
         case Submitted::accepted:
         case Submitted::existing:
@@ -128,7 +129,7 @@ void Server::Impl::post_validate(const httplib::Request& req, httplib::Response&
     if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(res, *refused);
     auto planned = plan(std::get<JobRequest>(parsed));
     if (auto* refused = std::get_if<Refusal>(&planned)) return reply(res, *refused);
-    reply(res, 200, {{"ok", true}});
+    reply(res, 200, {{"ok", true}, {"warnings", std::get<PlannedJob>(planned).warnings}});
 }
 
 void Server::Impl::get_output(const httplib::Request& req, httplib::Response& res) {

@@ -54,9 +54,22 @@ CREATE TABLE IF NOT EXISTS jobs (
     error TEXT,
     sha256 TEXT,
     bytes INTEGER,
-    extension TEXT
+    extension TEXT,
+    warnings TEXT
 );
 )sql";
+
+// Whether the jobs table has the warnings column: a store written before jobs had warnings
+// gets it added (NULL there: none known).
+Expected<bool> has_warnings_column(sqlite3* db) {
+    auto statement = prepare(db, "PRAGMA table_info(jobs)");
+    if (!statement) return statement.error();
+    bool found = false;
+    while (sqlite3_step(statement->get()) == SQLITE_ROW) {
+        found = found || column_text(statement->get(), 1) == "warnings";
+    }
+    return found;
+}
 
 }  // namespace
 
@@ -98,6 +111,13 @@ Expected<Store> Store::open(const std::string& path) {
                             "PRAGMA wal_autocheckpoint=64;", schema}) {
         if (Status done = store.exec(sql); !done) return done.error();
     }
+    const auto has_warnings = has_warnings_column(db);
+    if (!has_warnings) return has_warnings.error();
+    if (!*has_warnings) {
+        if (Status done = store.exec("ALTER TABLE jobs ADD COLUMN warnings TEXT;"); !done) {
+            return done.error();
+        }
+    }
     return store;
 }
 
@@ -136,7 +156,7 @@ Status Store::update(const char* sql, const std::vector<std::optional<std::strin
 
 Expected<std::vector<StoredJob>> Store::load() {
     auto statement = prepare(db_.get(),
-                             "SELECT id, status, frames_total, error, sha256, bytes, extension "
+                             "SELECT id, status, frames_total, error, sha256, bytes, extension, warnings "
                              "FROM jobs ORDER BY seq");
     if (!statement) return statement.error();
     std::vector<StoredJob> jobs;
@@ -153,6 +173,7 @@ Expected<std::vector<StoredJob>> Store::load() {
                                     .bytes = sqlite3_column_int64(row, 5),
                                     .extension = column_text(row, 6)};
         }
+        if (auto warnings = optional_text(row, 7)) job.warnings = std::move(*warnings);
         jobs.push_back(std::move(job));
     }
     if (step != SQLITE_DONE) return sqlite_error(db_.get(), "read the job store");
@@ -170,12 +191,13 @@ Expected<std::string> Store::request(const std::string& id) {
     return column_text(statement->get(), 0);
 }
 
-Status Store::accept(const std::string& id, const std::string& request, int frames_total) {
-    return update("INSERT INTO jobs (id, request, status, frames_total) "
-                  "VALUES (?1, ?2, 'queued', ?3) "
+Status Store::accept(const std::string& id, const std::string& request, int frames_total,
+                     const std::string& warnings) {
+    return update("INSERT INTO jobs (id, request, status, frames_total, warnings) "
+                  "VALUES (?1, ?2, 'queued', ?4, ?3) "
                   "ON CONFLICT(id) DO UPDATE SET status = 'queued', error = NULL, "
-                  "sha256 = NULL, bytes = NULL, extension = NULL",
-                  {id, request}, {frames_total});
+                  "sha256 = NULL, bytes = NULL, extension = NULL, warnings = ?3",
+                  {id, request, warnings}, {frames_total});
 }
 
 Status Store::set_running(const std::string& id) {

@@ -30,6 +30,7 @@ struct StoredJob {
     int frames_total = 0;
     std::optional<std::string> error;     // failed, cancelled
     std::optional<OutputInfo> output;     // succeeded
+    std::string warnings = "[]";          // the scene's warnings, a JSON array (job_json)
 };
 
 class Store {
@@ -46,8 +47,9 @@ public:
     Expected<std::string> request(const std::string& id);
 
     // Accepts a job (new, or one that failed or was cancelled before): queued, durable when
-    // this returns.
-    Status accept(const std::string& id, const std::string& request, int frames_total);
+    // this returns. `warnings`: the scene's, a JSON array.
+    Status accept(const std::string& id, const std::string& request, int frames_total,
+                  const std::string& warnings);
     Status set_running(const std::string& id);
     Status set_succeeded(const std::string& id, const OutputInfo& output);
     Status set_ended(const std::string& id, JobStatus status, const std::string& error);

@@ -304,6 +304,48 @@ TEST(CliTest, ValidateReportsEachScene) {
     EXPECT_EQ(bad.err.rfind(dir / "bad.yaml" + ":3:3: ", 0), 0u) << bad.err;
 }
 
+// A scene beyond the range a crowd holds loads with a warning and runs: two 5 cm discs head-on
+// at 1 000 m/s each at the default rate (20 radii per step) meet at the exact time
+// t* = 1.9 m / 2 000 m/s and swap velocities, so at 0.4 s each is back at 0.05 + 1 000 (0.4 - t*) m
+// from the centre.
+TEST(CliTest, ASceneBeyondTheCrowdRangeRunsWithAWarningPerSpeed) {
+    TempDir dir;
+    testing::write_file(dir / "fast.yaml", R"(version: 1
+video: {duration: 0.5, fps: 10}
+physics: {gravity: [0, 0]}
+discs:
+  - {id: left, position: [-1, 0], radius: 0.05, velocity: [1000, 0], restitution: 1}
+  - {id: right, position: [1, 0], radius: 0.05, velocity: [-1000, 0], restitution: 1}
+)");
+    const auto run = run_command({bin, "simulate", dir / "fast.yaml", "--trace", dir / "t.csv"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const std::string beyond =
+        "1000 m/s: crowds of this scene's bodies are measured to stay apart up to 240 m/s at "
+        "480 Hz (10 radii of the smallest moving body, 'left', 0.05 m, per physics step); where "
+        "several bodies this fast meet at once they may overlap; physics.rate 2000 or more keeps "
+        "them apart (docs/physics.md, Limits)\n";
+    EXPECT_EQ(run.err, dir / "fast.yaml" + ":5:59: warning: discs[0].velocity: " + beyond +
+                           dir / "fast.yaml" + ":6:59: warning: discs[1].velocity: " + beyond);
+    std::istringstream trace(read_file(dir / "t.csv"));
+    std::string row, last_left, last_right;
+    while (std::getline(trace, row)) {
+        if (row.find(",left,") != std::string::npos) last_left = row;
+        if (row.find(",right,") != std::string::npos) last_right = row;
+    }
+    // frame,t,id,x,y,angle,vx,...
+    const auto field = [](const std::string& r, int n) {
+        std::istringstream in(r);
+        std::string value;
+        for (int k = 0; k <= n; ++k) std::getline(in, value, ',');
+        return std::stod(value);
+    };
+    const double flown = 0.05 + 1000 * (0.4 - 1.9 / 2000);
+    EXPECT_NEAR(field(last_left, 3), -flown, 1e-9);
+    EXPECT_NEAR(field(last_right, 3), flown, 1e-9);
+    EXPECT_EQ(field(last_left, 6), -1000);
+    EXPECT_EQ(field(last_right, 6), 1000);
+}
+
 // --max-bodies limits discs and shapes together, generated ones included; --max-discs is the
 // same option.
 TEST(CliTest, MaxBodiesAndItsAliasMaxDiscsLimitEveryKindOfBody) {

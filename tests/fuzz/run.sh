@@ -5,7 +5,7 @@
 #
 # BUILD_DIR (default: build-fuzz next to this repository's top) holds the build, the working
 # corpus (corpus/, grown across runs) and any findings (findings/crash-*, leak-*, timeout-*,
-# oom-*). Seeds: configs/, tests/data/bad/ and tests/fuzz/seeds/, with tests/fuzz/scene.dict.
+# oom-*). Seeds: configs/, tests/data/bad/, tests/data/warn/ and tests/fuzz/seeds/, with tests/fuzz/scene.dict.
 # Environment: CXX (default clang++). Exits non-zero when the fuzzer found anything; the last
 # lines of fuzz.log then name the input, which belongs in tests/data/bad/ once fixed.
 set -euo pipefail
@@ -37,7 +37,8 @@ set +e
   -max_total_time="$SECONDS_TO_RUN" -max_len=16384 -timeout=60 -rss_limit_mb=2048 \
   -dict="$FUZZ_DIR/scene.dict" -artifact_prefix="$BUILD_DIR/findings/" \
   -print_final_stats=1 \
-  "$BUILD_DIR/corpus" "$SOURCE_DIR/configs" "$SOURCE_DIR/tests/data/bad" "$FUZZ_DIR/seeds" \
+  "$BUILD_DIR/corpus" "$SOURCE_DIR/configs" "$SOURCE_DIR/tests/data/bad" \
+  "$SOURCE_DIR/tests/data/warn" "$FUZZ_DIR/seeds" \
   >"$BUILD_DIR/fuzz.log" 2>&1
 status=$?
 set -e

@@ -4,7 +4,8 @@
     python3 tests/serve/browser_test.py DISCREEL_BIN WORK_DIR
 
 Starts the service and Chromium, then drives the page through the DevTools protocol: types a
-scene with a bad radius and expects the problem on its line, fixes it, renders, and waits
+scene with a bad radius and expects the problem on its line, then one too fast for a crowd and
+expects a warning on its line, fixes it, renders, and waits
 until the video plays. Exit 0 on pass; on failure it prints why, the page's status and
 problems, and the tail of the logs. Needs Chromium (`chromium`, or $CHROMIUM) and the
 websocket-client library (Debian: python3-websocket).
@@ -62,6 +63,9 @@ physics:
 BAD_LINE = BAD_SCENE.split("\n").index("    radius: -0.2") + 1
 assert BAD_LINE == 9, BAD_LINE
 GOOD_SCENE = BAD_SCENE.replace("radius: -0.2", "radius: 0.2")
+# Valid, but faster than a crowd of its discs holds: one warning, at the velocity.
+FAST_SCENE = GOOD_SCENE.replace("velocity: [1.5, 0]", "velocity: [2000, 0]")
+FAST_LINE = BAD_LINE + 1
 
 
 class Failure(Exception):
@@ -266,12 +270,20 @@ def run(cdp, base):
         raise Failure(f"clicking the problem selected {selected!r}, expected line {BAD_LINE}")
     found = problem["text"]
 
-    # 2. Fixed: no problems.
+    # 2. Too fast for a crowd: a warning on the velocity's line, and it would render.
+    cdp.replace_text(FAST_SCENE)
+    warning = wait_for("one warning in #problems and '1 warning'", lambda: cdp.eval(
+        f"({PROBLEMS_JS}).length === 1 && /^1 warning$/.test({STATUS_JS})") and
+        cdp.eval(PROBLEMS_JS)[0], 10)
+    if warning["line"] != str(FAST_LINE) or ": warning: " not in warning["text"]:
+        raise Failure(f"expected a warning on line {FAST_LINE}: {warning!r}")
+
+    # 3. Fixed: no problems.
     cdp.replace_text(GOOD_SCENE)
     wait_for("an empty problem list and 'No problems'", lambda: cdp.eval(
         f"({PROBLEMS_JS}).length === 0 && /no problems/i.test({STATUS_JS})"), 10)
 
-    # 3. Render, and watch the video play.
+    # 4. Render, and watch the video play.
     rendered_at = time.monotonic()
     cdp.eval("document.getElementById('render').click()")
 

@@ -237,6 +237,10 @@ TEST_F(ServeGLTest, AClipIsTheCliBytesWithProgressEventsToTheEnd) {
                                        "cli.mp4"));
 }
 
+// A scene beyond the speeds a crowd holds: it loads with one warning, at line 4, column 48.
+const std::string fast_scene = "version: 1\nvideo: {duration: 0.1, fps: 10}\ndiscs:\n"
+                               "  - {position: [0, 0], radius: 0.05, velocity: [1000, 0]}\n";
+
 TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
     ServeProcess server(bin, {"--data", dir / "data", "--max-scene-bytes", "2000"}, log);
     auto client = client_for(server.port());
@@ -246,7 +250,18 @@ TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
         return got ? std::pair{got->status, got->body} : std::pair{0, std::string()};
     };
     EXPECT_EQ(answer("/v1/validate", json{{"scene", scene_text()}}.dump()),
-              (std::pair{200, std::string("{\"ok\":true}\n")}));
+              (std::pair{200, std::string("{\"ok\":true,\"warnings\":[]}\n")}));
+    // A scene beyond what a crowd holds: accepted, its warnings at their line and column, as
+    // validate prints them, in the answer and in the job.
+    const std::string fast = fast_scene;
+    const json warnings = json::parse(R"json([{"line": 4, "column": 48, "message":
+        "discs[0].velocity: 1000 m/s: crowds of this scene's bodies are measured to stay apart up to 240 m/s at 480 Hz (10 radii of the smallest moving body, '0', 0.05 m, per physics step); where several bodies this fast meet at once they may overlap; physics.rate 2000 or more keeps them apart (docs/physics.md, Limits)"}])json");
+    const auto validated = answer("/v1/validate", json{{"scene", fast}}.dump());
+    EXPECT_EQ(validated.first, 200);
+    EXPECT_EQ(json::parse(validated.second), (json{{"ok", true}, {"warnings", warnings}}));
+    const auto accepted = answer("/v1/renders", json{{"scene", fast}, {"output", "png"}}.dump());
+    EXPECT_EQ(accepted.first, 202) << accepted.second;
+    EXPECT_EQ(json::parse(accepted.second)["warnings"], warnings);
     // A scene problem: line and column of the value, the message validate prints.
     const std::string bad = "version: 1\ndiscs:\n  - position: [0, 0]\n    radius: -1\n";
     for (const char* path : {"/v1/validate", "/v1/renders"}) {
@@ -362,6 +377,7 @@ TEST_F(ServeGLTest, EveryAcceptedJobFinishesAfterSigkillAndRestart) {
     const std::string long_scene = scene_text(7, 6.0);
     const json clip{{"scene", long_scene}, {"output", "webm"}, {"size", "320x180"}};
     std::vector<std::string> ids;
+    json warnings;   // of the last job, kept in the store
     {
         ServeProcess server(bin, {"--data", dir / "data"}, log);
         auto client = client_for(server.port());
@@ -376,6 +392,13 @@ TEST_F(ServeGLTest, EveryAcceptedJobFinishesAfterSigkillAndRestart) {
             ASSERT_EQ(queued->status, 202);
             ids.push_back(json::parse(queued->body)["id"]);
         }
+        auto warned = post(client, "/v1/renders", json{{"scene", fast_scene}, {"output", "png"}});
+        ASSERT_TRUE(warned);
+        ASSERT_EQ(warned->status, 202);
+        ids.push_back(json::parse(warned->body)["id"]);
+        warnings = json::parse(warned->body)["warnings"];
+        ASSERT_EQ(warnings.size(), 1u);
+        EXPECT_EQ(warnings[0]["line"], 4);
         // Killed while the clip is being rendered.
         const auto deadline = Clock::now() + std::chrono::seconds(30);
         while (Clock::now() < deadline) {
@@ -391,6 +414,9 @@ TEST_F(ServeGLTest, EveryAcceptedJobFinishesAfterSigkillAndRestart) {
     for (const std::string& id : ids) {
         EXPECT_EQ(wait_final(client, id, 120)["status"], "succeeded") << id;
     }
+    auto last = client.Get("/v1/renders/" + ids.back());
+    ASSERT_TRUE(last);
+    EXPECT_EQ(json::parse(last->body)["warnings"], warnings);
     auto output = client.Get("/v1/renders/" + ids[0] + "/output");
     ASSERT_TRUE(output);
     EXPECT_EQ(output->body, cli_render(dir, long_scene, {"--size", "320x180"}, "cli.webm"));

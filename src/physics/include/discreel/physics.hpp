@@ -64,13 +64,15 @@ struct ThrowDef {
     std::optional<Vec2> release;   // m/s; release velocity of a grab (default: path's)
 };
 
-// The range of masses and speeds the solvers are measured to hold (docs/physics.md, "Limits";
-// bench/limits_bench.cpp, tests/physics/extremes_test.cpp): inside it bodies stay apart and
-// energy does not rise beyond rounding. Walls hold at any mass ratio and speed; beyond it a
-// heavy body sinks into light ones, and fast bodies pass through each other. Scenes check
-// against it.
+// The range of masses and speeds in which a crowd of bodies (every body touching several at
+// once) is measured to stay apart with energy not rising beyond rounding (docs/physics.md,
+// "Limits"; bench/limits_bench.cpp, tests/physics/extremes_test.cpp). Walls hold at any mass
+// ratio and speed, and small groups of bodies in contact hold at any mass ratio (their
+// contacts are solved together); beyond it, a heavy body in a crowd sinks into light ones and
+// fast bodies of a crowd overlap. Scenes warn against it.
 struct Envelope {
-    double max_mass_ratio = 1000;             // heaviest / lightest moving body
+    // Heaviest / lightest moving body of a crowd that stays apart.
+    double crowd_mass_ratio = 1000;
     // Radii of the smallest moving body per step at equal masses: the disc solver times every
     // impact between moving discs; the manifold solver (any body with a shape) times those of
     // fast bodies too, but a crowd of them still sinks in where the iterations share out
@@ -78,10 +80,10 @@ struct Envelope {
     double disc_radii_per_step = 10;
     double body_radii_per_step = 2;
 
-    // Radii of the smallest moving body a body may travel per physics step when the moving
-    // bodies' masses differ by `mass_ratio`: 10 / ratio^(2/3) for discs alone (a light disc
-    // between heavy ones needs about pi sqrt(ratio) impacts per squeeze, out of the impact
-    // stage's budget), 2 / sqrt(ratio) for the manifold solver.
+    // Radii of the smallest moving body a body of a crowd may travel per physics step when the
+    // moving bodies' masses differ by `mass_ratio`: 10 / ratio^(2/3) for the disc solver (a
+    // light disc between heavy ones needs about pi sqrt(ratio) impacts per squeeze, out of the
+    // impact stage's budget), 2 / sqrt(ratio) for the manifold solver.
     double radii_per_step(double mass_ratio, bool manifold) const {
         return manifold ? body_radii_per_step / std::sqrt(mass_ratio)
                         : disc_radii_per_step / std::cbrt(mass_ratio * mass_ratio);

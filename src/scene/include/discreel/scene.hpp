@@ -198,13 +198,17 @@ struct Diagnostic {
     int line = 0;                  // 1-based
     int column = 0;                // 1-based
     std::string message;
+    bool warning = false;          // the scene loads all the same
 
-    std::string to_string() const; // "file:line:column: message"
+    std::string to_string() const; // "file:line:column: message", "...: warning: message"
 };
 
 struct LoadResult {
     Scene scene;                   // meaningful only when ok()
     std::vector<Diagnostic> diagnostics;  // every problem found, in file order
+    // When ok(): what the scene asks beyond the range the physics is measured to hold
+    // (docs/physics.md, "Limits"), in file order. It renders; bodies may overlap.
+    std::vector<Diagnostic> warnings;
 
     bool ok() const { return diagnostics.empty(); }
 };
