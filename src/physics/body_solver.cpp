@@ -341,6 +341,20 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
                 p.normal_impulse += impulse;
             }
         }
+        // A bounce drives its bodies into their other contacts, which did not arrive (a light
+        // body between a heavy one landing on it and the floor would leave through the floor
+        // at e times the heavy one's momentum): they are stopped again, together, which only
+        // takes energy out. Those impulses answer this bounce, not a lasting load, so they are
+        // not kept for the next step's warm start (kept, they launched light bodies there).
+        if (!direct_solver_.stop(island, state_, push_)) return;
+        point = 0;
+        for (const IslandContact& ic : island) {
+            const PairContact& pc = *pair_of(ic);
+            for (int q = 0; q < ic.contact->count; ++q, ++point) {
+                const BlockPoint& p = ic.contact->points[q];
+                apply_impulse(state_[pc.a], state_[pc.b], p, push_[point] * ic.contact->normal);
+            }
+        }
     };
     for_each_group(islands_, island_start_, bounce_together);
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
