@@ -37,11 +37,16 @@ std::optional<Extremes> dynamic_extremes(const std::vector<Disc>& discs) {
 
 double speed_of(Vec2 v) { return std::hypot(v.x, v.y); }
 
-// What a mass ratio beyond the crowd's does, and where to read more.
-std::string crowd_sinks_in(double ratio) {
+// What a mass ratio beyond the crowd's does, and where to read more. `discs`: the disc solver
+// steps the scene, whose single-precision iterations let small groups sink in a little too
+// (the manifold solver solves those exactly).
+std::string crowd_sinks_in(double ratio, bool discs) {
     return "where many bodies " + format_short(ratio) + " times apart in mass touch at once, "
-           "heavy ones may sink into light ones and the crowd may gain energy (docs/physics.md, "
-           "Limits)";
+           "heavy ones may sink into light ones and the crowd may gain energy" +
+           std::string(discs ? "; in a scene of discs alone, a heavy disc resting on a light "
+                               "one sinks into it a little too"
+                             : "") +
+           " (docs/physics.md, Limits)";
 }
 
 // "`speed` m/s: crowds ... stay apart up to `limit`": what the limit is in radii per step, and
@@ -120,7 +125,7 @@ void check_respawns(Loader& loader) {
             loader.diagnostics.warn(
                 source.entry, source.where + ": after " + when +
                                   ", the moving bodies differ in mass by a factor of " +
-                                  format_short(ratio) + "; " + crowd_sinks_in(ratio));
+                                  format_short(ratio) + "; " + crowd_sinks_in(ratio, false));
             return;
         }
         const double radii_per_step = physics::envelope.radii_per_step(
@@ -149,6 +154,10 @@ void check_envelope(Loader& loader) {
     const Disc& light = scene.discs[extremes->lightest];
     const Disc& heavy = scene.discs[extremes->heaviest];
     const double ratio = heavy.mass / light.mass;
+    const bool manifold = physics::uses_manifold_solver(
+        std::any_of(scene.discs.begin(), scene.discs.end(),
+                    [](const Disc& disc) { return disc.shape.has_value(); }),
+        !scene.respawns.empty());
     if (ratio > physics::envelope.crowd_mass_ratio) {
         // A crowd this far apart in mass sinks in at any speed: the speeds are not judged.
         const DiscSource& source = loader.sources[extremes->heaviest];
@@ -160,15 +169,11 @@ void check_envelope(Loader& loader) {
                    " times as heavy as " + noun(light) + " '" + light.id + "' (" +
                    format_short(light.mass) + " kg, line " +
                    std::to_string(loader.sources[extremes->lightest].entry.line) + "); " +
-                   crowd_sinks_in(ratio));
+                   crowd_sinks_in(ratio, !manifold));
         return;
     }
 
     const Disc& smallest = scene.discs[extremes->smallest];
-    const bool manifold = physics::uses_manifold_solver(
-        std::any_of(scene.discs.begin(), scene.discs.end(),
-                    [](const Disc& disc) { return disc.shape.has_value(); }),
-        !scene.respawns.empty());
     const double radii_per_step = physics::envelope.radii_per_step(ratio, manifold);
     const double rate = scene.physics.rate;
     const double limit = radii_per_step * smallest.radius * rate;   // m/s
