@@ -30,7 +30,7 @@ namespace {
 constexpr double impact_gap = 1.25e-4;
 
 std::array<double, 4> swept_box(const Sweep& s, double t_end) {
-    const V2 end = s.x0 + s.v * (t_end - s.t0);
+    const V2 end = s.x_at(t_end);
     return {std::min(s.x0.x(), end.x()) - s.bound, std::min(s.x0.y(), end.y()) - s.bound,
             std::max(s.x0.x(), end.x()) + s.bound, std::max(s.x0.y(), end.y()) + s.bound};
 }
@@ -159,20 +159,9 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
     // The first predictions: pairs of swept boxes that overlap, one of them fast, by a sweep
     // over the boxes' low x.
     impacts_.clear();
-    order_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(i);
-    std::sort(order_.begin(), order_.end(), [&](std::uint32_t i, std::uint32_t j) {
-        return swept_[i][0] != swept_[j][0] ? swept_[i][0] < swept_[j][0] : i < j;
+    for_each_overlapping_pair(swept_, order_, [&](std::uint32_t i, std::uint32_t j) {
+        if (fast_[i] || fast_[j]) predict_impact(bodies, std::min(i, j), std::max(i, j), 0, dt);
     });
-    for (std::size_t p = 0; p < n; ++p) {
-        const std::uint32_t i = order_[p];
-        for (std::size_t q = p + 1; q < n && swept_[order_[q]][0] <= swept_[i][2]; ++q) {
-            const std::uint32_t j = order_[q];
-            if (!fast_[i] && !fast_[j]) continue;
-            if (!boxes_overlap(swept_[i], swept_[j])) continue;
-            predict_impact(bodies, std::min(i, j), std::max(i, j), 0, dt);
-        }
-    }
 
     // What a body's new sweep may reach: the bodies that cannot move (walls, held bodies: few,
     // and a container's slabs are wide), the moving ones by their boxes' low x (a box as wide
@@ -284,13 +273,13 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
             RigidBody& body = bodies[i];
             if (body.inv_mass == 0) continue;
             Sweep& s = sweeps_[i];
-            s.x0 += s.v * (e.t - s.t0);
-            s.angle0 += s.omega * (e.t - s.t0);
+            s.x0 = s.x_at(e.t);
+            s.angle0 = s.angle_at(e.t);
             s.t0 = e.t;
             s.v = body.v = after[side]->v;
             s.omega = body.omega = after[side]->omega;
-            body.x = s.x0 + s.v * (dt - e.t);
-            body.angle = s.angle0 + s.omega * (dt - e.t);
+            body.x = s.x_at(dt);
+            body.angle = s.angle_at(dt);
             swept_[i] = swept_box(s, dt);
             ++versions_[i];
             fast_[i] = 1;   // whatever it now reaches is predicted too
@@ -319,8 +308,8 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
             RigidBody& body = bodies[i];
             if (body.inv_mass == 0) continue;
             const Sweep& s = sweeps_[i];
-            body.x = s.x0 + s.v * (e.t - s.t0);
-            body.angle = s.angle0 + s.omega * (e.t - s.t0);
+            body.x = s.x_at(e.t);
+            body.angle = s.angle_at(e.t);
             ++versions_[i];
         }
     }

@@ -26,7 +26,6 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
     boxes_.resize(n);
     margin_.resize(n);
     transforms_.resize(n);
-    order_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const RigidBody& b = bodies[i];
         // How far the body's surface can move in the step: the pair's speculative distance
@@ -43,25 +42,14 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
         }
         const double grow = b.shape.radius + margin_[i];
         boxes_[i] = {box[0] - grow, box[1] - grow, box[2] + grow, box[3] + grow};
-        order_[i] = static_cast<std::uint32_t>(i);
     }
-    std::sort(order_.begin(), order_.end(), [&](std::uint32_t i, std::uint32_t j) {
-        return boxes_[i][0] != boxes_[j][0] ? boxes_[i][0] < boxes_[j][0] : i < j;
-    });
     pairs_.clear();
-    for (std::size_t p = 0; p < n; ++p) {
-        const std::uint32_t i = order_[p];
-        const std::array<double, 4>& bi = boxes_[i];
-        for (std::size_t q = p + 1; q < n && boxes_[order_[q]][0] <= bi[2]; ++q) {
-            const std::uint32_t j = order_[q];
-            const std::array<double, 4>& bj = boxes_[j];
-            if (bj[1] > bi[3] || bi[1] > bj[3]) continue;
-            // Two bodies neither of which a contact can move (walls, pegs, held bodies).
-            if (bodies[i].inv_mass == 0 && bodies[j].inv_mass == 0) continue;
-            const std::uint64_t a = std::min(i, j), b = std::max(i, j);
-            pairs_.push_back(a << 32 | b);
-        }
-    }
+    for_each_overlapping_pair(boxes_, order_, [&](std::uint32_t i, std::uint32_t j) {
+        // Two bodies neither of which a contact can move (walls, pegs, held bodies).
+        if (bodies[i].inv_mass == 0 && bodies[j].inv_mass == 0) return;
+        const std::uint64_t a = std::min(i, j), b = std::max(i, j);
+        pairs_.push_back(a << 32 | b);
+    });
     std::sort(pairs_.begin(), pairs_.end());
 }
 

@@ -7,6 +7,8 @@
 // integrated, bounces added, and whatever overlap remains is pushed out point by point from
 // each manifold's anchors. The solver sees contact rows, never shapes: `collide` is the only
 // place shapes meet.
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -71,6 +73,30 @@ struct PairTouch {
     double impulse = 0;            // N s, the total normal impulse of its points
     bool began = false;            // it did not touch the step before
 };
+
+// Calls f(i, j) for every pair of `boxes` (min x, min y, max x, max y) that overlap, i before j
+// in the order of their low x (ties by index), found by a sweep over it. `order` is scratch,
+// left holding the boxes' indices in that order.
+template <class F>
+void for_each_overlapping_pair(const std::vector<std::array<double, 4>>& boxes,
+                               std::vector<std::uint32_t>& order, F&& f) {
+    const std::size_t n = boxes.size();
+    order.resize(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t i, std::uint32_t j) {
+        return boxes[i][0] != boxes[j][0] ? boxes[i][0] < boxes[j][0] : i < j;
+    });
+    for (std::size_t p = 0; p < n; ++p) {
+        const std::uint32_t i = order[p];
+        const std::array<double, 4>& bi = boxes[i];
+        for (std::size_t q = p + 1; q < n && boxes[order[q]][0] <= bi[2]; ++q) {
+            const std::uint32_t j = order[q];
+            const std::array<double, 4>& bj = boxes[j];
+            if (bj[1] > bi[3] || bi[1] > bj[3]) continue;
+            f(i, j);
+        }
+    }
+}
 
 class BodySolver {
 public:

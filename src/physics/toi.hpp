@@ -22,7 +22,9 @@ struct Sweep {
     double t0 = 0;           // seconds into the step
     double bound = 0;        // metres, the farthest surface point from the centroid
 
-    Transform at(double t) const { return Transform::of(x0 + v * (t - t0), angle0 + omega * (t - t0)); }
+    V2 x_at(double t) const { return x0 + v * (t - t0); }
+    double angle_at(double t) const { return angle0 + omega * (t - t0); }
+    Transform at(double t) const { return Transform::of(x_at(t), angle_at(t)); }
 };
 
 // The distance between two shapes' surfaces and the unit direction from A's closest point to
