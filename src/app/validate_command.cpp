@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
@@ -17,8 +18,13 @@ int run_validate(const ValidateOptions& o, std::ostream& out, std::ostream& err)
             const auto& bodies = loaded.scene.discs;
             const bool shaped = std::any_of(bodies.begin(), bodies.end(),
                                             [](const scene::Disc& d) { return d.shape.has_value(); });
+            // A scene with warnings is ok: they are printed above, and counted here.
+            const std::size_t warned = loaded.warnings.size();
+            const std::string warnings =
+                warned == 0 ? ""
+                            : ", " + std::to_string(warned) + (warned == 1 ? " warning" : " warnings");
             out << printable(path) << ": ok (" << bodies.size() << (shaped ? " bodies, " : " discs, ")
-                << loaded.scene.video.frame_count() << " frames)\n";
+                << loaded.scene.video.frame_count() << " frames" << warnings << ")\n";
         } else {
             all_ok = false;
         }

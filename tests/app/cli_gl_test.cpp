@@ -326,6 +326,11 @@ discs:
         "them apart (docs/physics.md, Limits)\n";
     EXPECT_EQ(run.err, dir / "fast.yaml" + ":5:59: warning: discs[0].velocity: " + beyond +
                            dir / "fast.yaml" + ":6:59: warning: discs[1].velocity: " + beyond);
+    // validate: ok, with the warnings counted.
+    const auto validated = run_command({bin, "validate", dir / "fast.yaml"});
+    EXPECT_EQ(validated.exit_code, 0);
+    EXPECT_EQ(validated.out, dir / "fast.yaml" + ": ok (2 discs, 5 frames, 2 warnings)\n");
+    EXPECT_EQ(validated.err, run.err);
     std::istringstream trace(read_file(dir / "t.csv"));
     std::string row, last_left, last_right;
     while (std::getline(trace, row)) {

@@ -277,6 +277,9 @@ def run(cdp, base):
         cdp.eval(PROBLEMS_JS)[0], 10)
     if warning["line"] != str(FAST_LINE) or ": warning: " not in warning["text"]:
         raise Failure(f"expected a warning on line {FAST_LINE}: {warning!r}")
+    if not cdp.eval(f"!!document.querySelector('#gutter .warn[data-line=\"{FAST_LINE}\"]') && "
+                    "!document.querySelector('#gutter .bad')"):
+        raise Failure(f"gutter line {FAST_LINE} is not marked as a warning (and nothing bad)")
 
     # 3. Fixed: no problems.
     cdp.replace_text(GOOD_SCENE)
