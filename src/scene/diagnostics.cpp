@@ -29,16 +29,12 @@ void Diagnostics::warn(Location where, std::string message) {
     warnings_.push_back({where, std::move(message)});
 }
 
-namespace {
-
-void sort_by_position(std::vector<Diagnostics::Entry>& entries) {
-    std::stable_sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+void Diagnostics::sort_by_position(std::vector<Entry>& entries) {
+    std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
         if (a.where.line != b.where.line) return a.where.line < b.where.line;
         return a.where.column < b.where.column;
     });
 }
-
-}  // namespace
 
 std::vector<Diagnostic> Diagnostics::take_warnings(std::string_view file) {
     sort_by_position(warnings_);

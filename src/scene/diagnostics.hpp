@@ -37,12 +37,14 @@ public:
     // The warnings, sorted the same way; they are dropped from here.
     std::vector<Diagnostic> take_warnings(std::string_view file);
 
+private:
     struct Entry {
         Location where;
         std::string message;
     };
+    // Stable: entries at the same place keep the order they were found.
+    static void sort_by_position(std::vector<Entry>& entries);
 
-private:
     std::vector<Entry> entries_, warnings_;
 };
 

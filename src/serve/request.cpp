@@ -63,6 +63,15 @@ json one_error(const json& line, const json& column, const std::string& message)
     return json{{"line", line}, {"column", column}, {"message", message}};
 }
 
+// Diagnostics as [{"line", "column", "message"}, ...].
+json placed(const std::vector<scene::Diagnostic>& diagnostics) {
+    json list = json::array();
+    for (const scene::Diagnostic& d : diagnostics) {
+        list.push_back(one_error(d.line, d.column, d.message));
+    }
+    return list;
+}
+
 }  // namespace
 
 Refusal refusal(int status, const std::string& message) {
@@ -156,17 +165,8 @@ std::variant<PlannedJob, Refusal> plan_job(const JobRequest& request,
                                            const scene::Limits& limits) {
     scene::LoadResult loaded =
         scene::load_scene_text(request.scene, "scene", limits, request.render.video.duration);
-    if (!loaded.ok()) {
-        json errors = json::array();
-        for (const scene::Diagnostic& d : loaded.diagnostics) {
-            errors.push_back(one_error(d.line, d.column, d.message));
-        }
-        return Refusal{422, json{{"errors", std::move(errors)}}};
-    }
-    json warnings = json::array();
-    for (const scene::Diagnostic& d : loaded.warnings) {
-        warnings.push_back(one_error(d.line, d.column, d.message));
-    }
+    if (!loaded.ok()) return Refusal{422, json{{"errors", placed(loaded.diagnostics)}}};
+    json warnings = placed(loaded.warnings);
     auto plan = job::plan_render(std::move(loaded.scene), request.render, limits);
     if (!plan) {
         return Refusal{422, json{{"errors", json::array({one_error(nullptr, nullptr,

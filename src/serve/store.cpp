@@ -156,8 +156,8 @@ Status Store::update(const char* sql, const std::vector<std::optional<std::strin
 
 Expected<std::vector<StoredJob>> Store::load() {
     auto statement = prepare(db_.get(),
-                             "SELECT id, status, frames_total, error, sha256, bytes, extension, warnings "
-                             "FROM jobs ORDER BY seq");
+                             "SELECT id, status, frames_total, error, sha256, bytes, extension, "
+                             "warnings FROM jobs ORDER BY seq");
     if (!statement) return statement.error();
     std::vector<StoredJob> jobs;
     int step = SQLITE_ROW;
