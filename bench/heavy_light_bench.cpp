@@ -7,8 +7,8 @@
 //   pile     64 discs (r = 0.4), every other one heavy, thrown at 2 m/s in a 10 m box
 //            (tests/physics/extremes_test.cpp), 2 s: deepest overlap (% of r) and the fastest
 //            disc at the end (m/s; about 2 when it holds).
-// "disc" is the disc solver (plain discs), "manifold" the manifold solver (circle shapes),
-// whose small islands are solved directly. Appends to bench/results/heavy_light_bench.csv.
+// "disc" is the disc solver (plain discs), "manifold" the manifold solver (circle shapes);
+// both solve small islands directly. Appends to bench/results/heavy_light_bench.csv.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

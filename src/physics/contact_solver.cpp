@@ -35,6 +35,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 #include "substep.hpp"
 
@@ -128,10 +129,13 @@ void ContactSolver::compute_masses(const Substep& s) {
     // The unit follows the bodies, not the contact list: it need not be found at every rebuild.
     if (s.bodies_version != massed_bodies_) {
         double heaviest = 0.0;
+        double lightest = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < s.disc_count; ++i) {
             heaviest = std::max(heaviest, s.bodies[i].mass);
+            if (s.bodies[i].inv_mass > 0.0) lightest = std::min(lightest, s.bodies[i].mass);
         }
         mass_unit_ = heaviest > 0.0 ? std::ldexp(1.0, std::ilogb(heaviest)) : 1.0;
+        islands_.set_masses(lightest, heaviest);
     }
     massed_contacts_ = s.contacts_version;
     massed_bodies_ = s.bodies_version;
@@ -145,6 +149,14 @@ void ContactSolver::compute_masses(const Substep& s) {
         masses_[i] = Masses{static_cast<float>(1.0 / (inverse * mass_unit_)),
                             static_cast<float>(1.0 / (3.0 * inverse * mass_unit_))};
     }
+}
+
+void ContactSolver::plan_islands(const Substep& s) {
+    row_contacts_.clear();
+    if (islands_.far_apart()) {
+        for (const Pending& p : pending_) row_contacts_.push_back(p.contact);
+    }
+    islands_.plan(s, row_contacts_);
 }
 
 void ContactSolver::begin(const Substep& s) {
@@ -220,6 +232,7 @@ void ContactSolver::solve(Substep& s, int iterations) {
     }
     for (const std::uint32_t slot : empty_lanes_) pending_of_lane_[slot] = 0;
 
+    if (islands_.far_apart()) geometry_.resize(lanes);
     build_rows(s, inv_h);
 
     for (const std::uint32_t slot : empty_lanes_) {
@@ -234,6 +247,14 @@ void ContactSolver::solve(Substep& s, int iterations) {
     }
 
     solve_rows(iterations);
+    island_rows_.clear();
+    for (const std::uint32_t k : islands_.planned()) {
+        const std::uint32_t slot = lane_of_[k];
+        const RowGeometry& g = geometry_[slot];
+        const double impulse = static_cast<double>(rows_[slot / width].normal_impulse[slot % width]);
+        island_rows_.push_back({pending_[k].contact, g.normal, g.target, impulse * mass_unit_});
+    }
+    islands_.solve(s, island_rows_);
 
     // In contact order, so that the contacts are written in one forward sweep rather than
     // scattered; each row's two impulses lie side by side in its block.
@@ -248,16 +269,23 @@ void ContactSolver::solve(Substep& s, int iterations) {
     }
     // A body no row changed gets back exactly the velocity it had (corrections of zero).
     const std::size_t disc_count = s.disc_count;
+    const bool direct = !islands_.planned().empty();
     for (std::size_t i = 0; i < disc_count; ++i) {
         Body& b = bodies[i];
         if (!b.moves()) continue;
-        const Quad dv = velocities[i].packed;
-        b.v += V2(static_cast<double>(dv[0]), static_cast<double>(dv[1]));
-        // (Only a tangential impulse changes r omega; a disc no row touched may have r = 0.)
-        b.omega += dv[2] == 0.0F ? 0.0 : static_cast<double>(dv[2]) / b.radius;
+        if (const BlockBody* solved = direct ? islands_.solved(i) : nullptr) {
+            b.v = solved->v;
+            b.omega = solved->omega;
+        } else {
+            const Quad dv = velocities[i].packed;
+            b.v += V2(static_cast<double>(dv[0]), static_cast<double>(dv[1]));
+            // (Only a tangential impulse changes r omega; a disc no row touched may have r = 0.)
+            b.omega += dv[2] == 0.0F ? 0.0 : static_cast<double>(dv[2]) / b.radius;
+        }
         b.x += (b.v_begin + b.v) * half_h + b.shift;
         b.angle += (b.omega_begin + b.omega) * half_h + b.turn;
     }
+    if (direct) islands_.finish(s);
 }
 
 // A block at a time, in lane order, half a block (four rows) at a time in double lanes: the
@@ -341,7 +369,14 @@ DISCREEL_CLONES void ContactSolver::build_rows(const Substep& s, double inv_h) {
             const Lanes bounce = -restitution * approach;
             const Lanes leave = zero < bounce ? bounce : zero;  // std::max(0.0, bounce)
             // As bounds on the corrections: less the start velocities' share.
-            bias[part] = (leave < close ? leave : close) - normal_speed;  // std::min
+            const Lanes target = leave < close ? leave : close;  // std::min
+            bias[part] = target - normal_speed;
+            if (islands_.far_apart()) {
+                const std::size_t first_lane = block * width + std::size_t{part} * half;
+                for (unsigned l = 0; l < half; ++l) {
+                    geometry_[first_lane + l] = {V2(nx[l], ny[l]), target[l]};
+                }
+            }
             slip[part] = (-ny * dvx + nx * dvy) - a_radius * a_omega - b_radius * b_omega;
             normal_x[part] = nx;
             normal_y[part] = ny;

@@ -186,11 +186,12 @@ void ImpactResolver::widen_reach(Substep& s, std::uint32_t i, double t) {
     }
 }
 
-void ImpactResolver::predict_pairs_of(const Substep& s, std::uint32_t i, double slow,
-                                      std::size_t& spent) {
+void ImpactResolver::predict_pairs_of(const Substep& s, const DiscIslands& islands,
+                                      std::uint32_t i, double slow, std::size_t& spent) {
     for (std::uint32_t e = contacts_of_start_[i]; e < contacts_of_start_[i + 1]; ++e) {
         std::uint32_t k;
         if (!active_position(contacts_of_[e], k) || predicted_[k] == events_done_) continue;
+        if (islands.in_island(contacts_of_[e])) continue;
         predicted_[k] = events_done_;
         ++spent;
         if (const std::optional<Impact> hit = find_impact(s, s.contacts[s.active[k]], slow)) {
@@ -199,7 +200,7 @@ void ImpactResolver::predict_pairs_of(const Substep& s, std::uint32_t i, double 
     }
 }
 
-void ImpactResolver::resolve(Substep& s) {
+void ImpactResolver::resolve(Substep& s, const DiscIslands& islands) {
     const double slow = slow_;
     const std::size_t budget = per_disc * std::max<std::size_t>(s.disc_count, 64);
     // Predictions, counted against the budget; the first ones cover every active pair.
@@ -207,6 +208,7 @@ void ImpactResolver::resolve(Substep& s) {
     events_.clear();
     // No body has changed since screen() passed these pairs.
     for (const std::uint32_t k : screened_) {
+        if (islands.in_island(s.active[k])) continue;
         const Contact& c = s.contacts[s.active[k]];
         if (const std::optional<Impact> hit = swept_impact(s, c, slowest_impact(s, c, slow))) {
             events_.push_back(Event{*hit, k, 0, 0});
@@ -229,7 +231,7 @@ void ImpactResolver::resolve(Substep& s) {
             if (s.bodies[i].inv_mass != 0.0) widen_reach(s, i, e.hit.t);
         }
         for (const std::uint32_t i : {c.a, c.b}) {
-            if (s.bodies[i].inv_mass != 0.0) predict_pairs_of(s, i, slow, spent);
+            if (s.bodies[i].inv_mass != 0.0) predict_pairs_of(s, islands, i, slow, spent);
         }
     }
 }

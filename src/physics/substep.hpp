@@ -12,6 +12,7 @@
 #include "contact.hpp"
 #include "discreel/clones.hpp"
 #include "geometry.hpp"
+#include "disc_islands.hpp"
 #include "simd.hpp"
 
 namespace discreel::physics::detail {
@@ -74,7 +75,8 @@ public:
             if (!surely_no_impact(s, c, slowest_impact(s, c, slow_))) screened_.push_back(k);
         }
     }
-    void resolve(Substep& s);
+    // Impacts, except of the contacts in the direct islands.
+    void resolve(Substep& s, const DiscIslands& islands);
 
 private:
     // A pair already touching at the start of the substep (gap under this fraction of the
@@ -140,7 +142,8 @@ private:
     // velocity can travel, lists its pairs of the broad phase that are now within reach.
     void widen_reach(Substep& s, std::uint32_t i, double t);
     // Predicts the impacts of body i's active pairs (each once per event) into the heap.
-    void predict_pairs_of(const Substep& s, std::uint32_t i, double slow, std::size_t& spent);
+    void predict_pairs_of(const Substep& s, const DiscIslands& islands, std::uint32_t i,
+                          double slow, std::size_t& spent);
     void push(const Substep& s, std::uint32_t k, const Impact& hit) {
         const Contact& c = s.contacts[s.active[k]];
         events_.push_back(Event{hit, k, s.bodies[c.a].strikes, s.bodies[c.b].strikes});
@@ -218,6 +221,10 @@ public:
         }
     }
     void solve(Substep& s, int iterations);
+    // After the listing, before the impacts stage: plans the direct islands
+    // (disc_islands.hpp), whose contacts the impacts stage leaves to solve().
+    void plan_islands(const Substep& s);
+    const DiscIslands& islands() const { return islands_; }
 
 private:
     // Four doubles (see simd.hpp): the row build's geometry, half a block at a time, in
@@ -311,6 +318,17 @@ private:
     std::uint64_t massed_bodies_ = ~std::uint64_t{0};
     std::vector<std::uint64_t> colours_used_;  // per disc, bit c: in a row of colour c
     std::vector<std::uint8_t> colour_of_;      // per contact
+
+    // The direct islands (disc_islands.hpp), and what their rows need of the row build in
+    // double precision, per lane of rows_ (written only while the masses are far apart).
+    DiscIslands islands_;
+    struct RowGeometry {
+        V2 normal = V2::UnitY();   // unit, from b towards a
+        double target = 0;         // m/s, the least end velocity n.(v_a - v_b)
+    };
+    std::vector<RowGeometry> geometry_;
+    std::vector<std::uint32_t> row_contacts_;  // per pending row, its contact (plan_islands)
+    std::vector<IslandRow> island_rows_;
     std::uint64_t coloured_version_ = ~std::uint64_t{0};  // the contact list colour_of_ is for
     std::vector<std::uint32_t> colour_start_;
 };

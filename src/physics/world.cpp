@@ -217,7 +217,8 @@ void World::Impl::substep(double h, bool last) {
         contact_solver.list(s, listed);
         active.insert(active.end(), listed.begin(), listed.end());
     }
-    impact_resolver.resolve(s);
+    contact_solver.plan_islands(s);
+    impact_resolver.resolve(s, contact_solver.islands());
     contact_solver.solve(s, iterations);
     projector.project(s, projection_iterations);
     // The last substep's runaways are left to end_step's pass over the discs.

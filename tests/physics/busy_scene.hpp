@@ -2,6 +2,7 @@
 // The determinism check's scene, its hash and the pinned value, shared by the GoogleTest suite
 // (determinism_test.cpp) and the standalone check (determinism_check.cpp) that the `arch` tests
 // build where GoogleTest is not at hand.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -101,6 +102,32 @@ inline WorldDef mixed_scene() {
 
 inline std::uint64_t run_mixed_scene() {
     World world(mixed_scene());
+    run_for(world, 2.0);
+    return state_hash(world);
+}
+
+// What run_heavy_light_scene() gives, pinned like busy_scene_hash.
+inline constexpr std::uint64_t heavy_light_scene_hash = 8968230803925192069ull;
+
+// 64 plain discs in a box, every other one 1 000 times heavier, thrown, landing and settling:
+// the disc solver's direct islands (src/physics/disc_islands.hpp, some 650 solves), whose
+// double-precision solve must give the same bits too.
+inline WorldDef heavy_light_scene() {
+    WorldDef def;
+    const Material material{.restitution = 0.5, .friction = 0.5};
+    def.walls.push_back(box({0, 0}, {10, 10}, material));
+    Rng rng(11);
+    for (int k = 0; k < 64; ++k) {
+        const double angle = rng.uniform(0, 6.283185307179586);
+        const Vec2 at{(1 + k % 8) * 1.1, (1 + k / 8) * 1.1};
+        def.discs.push_back(disc(at, {2 * std::cos(angle), 2 * std::sin(angle)}, 0.4,
+                                 k % 2 ? 1000.0 : 1.0, material));
+    }
+    return def;
+}
+
+inline std::uint64_t run_heavy_light_scene() {
+    World world(heavy_light_scene());
     run_for(world, 2.0);
     return state_hash(world);
 }

@@ -21,5 +21,11 @@ TEST(Determinism, MixedSceneGivesTheSameBitsEveryRun) {
     EXPECT_EQ(first, testing::mixed_scene_hash) << first;
 }
 
+TEST(Determinism, HeavyLightSceneGivesTheSameBitsEveryRun) {
+    const std::uint64_t first = testing::run_heavy_light_scene();
+    EXPECT_EQ(testing::run_heavy_light_scene(), first);
+    EXPECT_EQ(first, testing::heavy_light_scene_hash) << first;
+}
+
 }  // namespace
 }  // namespace discreel::physics

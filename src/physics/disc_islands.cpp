@@ -1,0 +1,188 @@
+#include "disc_islands.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+#include "substep.hpp"
+
+namespace discreel::physics::detail {
+namespace {
+
+// The impacts stage's: a pair this close at the start of the substep is part of a heap.
+constexpr double touching_gap = 0.005;  // of the pair's smaller radius
+
+std::uint32_t root_of(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    return i;
+}
+
+}  // namespace
+
+void DiscIslands::plan(const Substep& s, std::span<const std::uint32_t> row_contacts) {
+    for (const std::uint32_t index : marked_list_) marked_[index] = 0;
+    marked_list_.clear();
+    planned_.clear();
+    island_end_.clear();
+    if (!far_apart_) return;
+    const std::size_t discs = s.disc_count;
+    const auto moving_disc = [&](std::uint32_t i) {
+        return i < discs && s.bodies[i].inv_mass > 0.0;
+    };
+    parent_.resize(discs);
+    std::iota(parent_.begin(), parent_.end(), 0U);
+    for (const std::uint32_t index : row_contacts) {
+        const Contact& c = s.contacts[index];
+        if (moving_disc(c.a) && moving_disc(c.b)) {
+            const std::uint32_t ra = root_of(parent_, c.a);
+            const std::uint32_t rb = root_of(parent_, c.b);
+            parent_[std::max(ra, rb)] = std::min(ra, rb);
+        }
+    }
+    // Rows by island (its root, the least disc index in it), then in row order.
+    keyed_.clear();
+    for (std::uint32_t k = 0; k < row_contacts.size(); ++k) {
+        const Contact& c = s.contacts[row_contacts[k]];
+        const std::uint32_t end = moving_disc(c.a) ? c.a : c.b;
+        keyed_.push_back(std::uint64_t{root_of(parent_, end)} << 32 | k);
+    }
+    std::sort(keyed_.begin(), keyed_.end());
+    for (std::size_t first = 0; first < keyed_.size();) {
+        const std::uint64_t root = keyed_[first] >> 32;
+        std::size_t last = first;
+        double lightest = std::numeric_limits<double>::infinity(), heaviest = 0;
+        bool touching = true;
+        for (; last < keyed_.size() && (keyed_[last] >> 32) == root; ++last) {
+            const Contact& c = s.contacts[row_contacts[static_cast<std::uint32_t>(keyed_[last])]];
+            for (const std::uint32_t i : {c.a, c.b}) {
+                if (!moving_disc(i)) continue;
+                lightest = std::min(lightest, s.bodies[i].mass);
+                heaviest = std::max(heaviest, s.bodies[i].mass);
+            }
+            const double smaller = c.b < discs
+                                       ? std::min(s.bodies[c.a].radius, s.bodies[c.b].radius)
+                                       : s.bodies[c.a].radius;
+            touching = touching && c.gap <= touching_gap * smaller;
+        }
+        if (last - first <= largest && touching && heaviest >= ratio * lightest) {
+            for (std::size_t j = first; j < last; ++j) {
+                planned_.push_back(static_cast<std::uint32_t>(keyed_[j]));
+            }
+            island_end_.push_back(static_cast<std::uint32_t>(planned_.size()));
+        }
+        first = last;
+    }
+    marked_.resize(s.contacts.size(), 0);
+    for (const std::uint32_t k : planned_) {
+        marked_[row_contacts[k]] = 1;
+        marked_list_.push_back(row_contacts[k]);
+    }
+}
+
+template <class Normal>
+void DiscIslands::gather(const Substep& s, std::size_t first, std::size_t last, Normal normal) {
+    bodies_.clear();
+    state_.clear();
+    island_.clear();
+    contacts_.resize(last - first);
+    const auto local = [&](std::uint32_t i) {
+        const auto at = std::find(bodies_.begin(), bodies_.end(), i);
+        if (at != bodies_.end()) return static_cast<std::uint32_t>(at - bodies_.begin());
+        const Body& b = s.bodies[i];
+        bodies_.push_back(i);
+        state_.push_back(BlockBody{b.v, b.omega, b.inv_mass, b.inv_inertia});
+        return static_cast<std::uint32_t>(bodies_.size() - 1);
+    };
+    for (std::size_t j = first; j < last; ++j) {
+        const Contact& c = s.contacts[row_contact_[j]];
+        // The block solver's normal runs from a to b, the rows' from b to a.
+        const V2 n = normal(j);
+        BlockContact& bc = contacts_[j - first];
+        bc = BlockContact{};
+        bc.normal = -n;
+        bc.count = 1;
+        bc.friction = c.friction;
+        bc.points[0].ra = -s.bodies[c.a].radius * n;
+        bc.points[0].rb = s.bodies[c.b].radius * n;
+        const std::uint32_t a = local(c.a);
+        island_.push_back(IslandContact{a, local(c.b), &bc, static_cast<std::uint32_t>(j)});
+    }
+}
+
+void DiscIslands::solve(const Substep& s, std::span<const IslandRow> rows) {
+    for (const std::uint32_t i : solved_bodies_) solved_[i].first = false;
+    solved_bodies_.clear();
+    solved_islands_.clear();
+    if (rows.empty()) return;
+    row_contact_.resize(rows.size());
+    for (std::size_t j = 0; j < rows.size(); ++j) row_contact_[j] = rows[j].contact;
+    solved_impulse_.assign(rows.size(), 0.0);
+    solved_.resize(s.disc_count);
+    std::size_t first = 0;
+    for (const std::uint32_t last : island_end_) {
+        gather(s, first, last, [&](std::size_t j) { return rows[j].normal; });
+        // A disc of the island struck in this substep (by a pair that joined the listing
+        // after an impact elsewhere sped one of its discs up) makes the rows' targets stale:
+        // the iterations' answer stands.
+        bool struck = false;
+        for (const std::uint32_t i : bodies_) struck = struck || s.bodies[i].strikes != 0;
+        for (std::size_t j = first; j < last; ++j) {
+            BlockPoint& p = contacts_[j - first].points[0];
+            p.target = rows[j].target;
+            p.normal_impulse = rows[j].normal_impulse;
+        }
+        if (!struck && direct_.velocities(island_, state_)) {
+            solved_islands_.emplace_back(static_cast<std::uint32_t>(first), last);
+            for (std::size_t l = 0; l < bodies_.size(); ++l) {
+                const std::uint32_t i = bodies_[l];
+                if (i >= s.disc_count || s.bodies[i].inv_mass == 0.0) continue;
+                solved_[i] = {true, state_[l]};
+                solved_bodies_.push_back(i);
+            }
+            for (std::size_t j = first; j < last; ++j) {
+                solved_impulse_[j] = contacts_[j - first].points[0].normal_impulse;
+            }
+        }
+        first = last;
+    }
+}
+
+void DiscIslands::finish(Substep& s) {
+    const std::size_t discs = s.disc_count;
+    for (const auto& [first, last] : solved_islands_) {
+        for (std::size_t j = first; j < last; ++j) {
+            Contact& c = s.contacts[row_contact_[j]];
+            c.step_impulse += solved_impulse_[j] - c.normal_impulse;
+        }
+        // The rows keep a pair's end gap no smaller than its start gap, but a bounce is capped
+        // at the restitution speed, and positions advance by the mean of the start and end
+        // velocities: a heavy disc bouncing off a light one still closes on it for half the
+        // substep. What the pairs gained is pushed out, all together.
+        separation_.clear();
+        bool overlaps = false;
+        const auto now = [&](std::size_t j) {
+            const Contact& c = s.contacts[row_contact_[j]];
+            const Body& a = s.bodies[c.a];
+            return c.b < discs ? disc_disc(a.x, a.radius, s.bodies[c.b].x, s.bodies[c.b].radius)
+                               : disc_feature(a.x, a.radius, *s.feature_of(c));
+        };
+        gather(s, first, last, [&](std::size_t j) {
+            const Proximity p = now(j);
+            separation_.push_back(p.gap - std::min(s.contacts[row_contact_[j]].gap, 0.0));
+            overlaps = overlaps || separation_.back() < 0.0;
+            return p.normal;
+        });
+        if (!overlaps || !direct_.positions(island_, state_, separation_, push_)) continue;
+        for (std::size_t j = 0; j < island_.size(); ++j) {
+            const IslandContact& ic = island_[j];
+            const V2 move = push_[j] * ic.contact->normal;
+            s.bodies[bodies_[ic.a]].x -= state_[ic.a].inv_mass * move;
+            s.bodies[bodies_[ic.b]].x += state_[ic.b].inv_mass * move;
+        }
+    }
+}
+
+}  // namespace discreel::physics::detail

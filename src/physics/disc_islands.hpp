@@ -1,0 +1,94 @@
+#pragma once
+// The disc solver's small islands of discs far apart in mass, solved directly. Sequential
+// impulses pass force from one disc to the next by a fraction set by their mass ratio per
+// sweep, and the resting stage's single-precision rows cannot even hold a light disc's share
+// of a disc a million times heavier: a heavy disc on a light one sank into it every substep,
+// and a light disc between two heavy ones closing on it was squeezed into them. So an island
+// of the resting stage's rows (what rows between moving discs connect; walls and pegs end it)
+// of at most `largest` rows, joining moving discs `ratio` or more times apart in mass, all of
+// whose pairs touch at the start of the substep, is taken out of the impacts stage and, once
+// the iterations are done, solved again as one boxed LCP in double precision (island.hpp, the
+// manifold solver's), from the velocities before any row, to the rows' own targets (a
+// restitution bounce at most); its discs take those velocities instead of the iterations'.
+// Whatever overlap its pairs gained in the substep is then pushed out through the same matrix.
+//
+// Only touching islands: a pair still closing from afar is the impacts stage's, which times
+// it. The solved impulses do not warm-start the next substep: at an impact they are the
+// collision's, not a lasting load, and fed to the iterations of a crowd they launched light
+// discs (docs/tried.md).
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "block_solver.hpp"
+#include "island.hpp"
+
+namespace discreel::physics::detail {
+
+struct Substep;
+
+// One of the resting stage's rows as the direct solve takes it, in double precision.
+struct IslandRow {
+    std::uint32_t contact = 0;       // index into Substep::contacts
+    V2 normal = V2::UnitY();         // unit, from b towards a, at the predicted end
+    double target = 0;               // m/s, the least end velocity n.(v_a - v_b) it asks for
+    double normal_impulse = 0;       // N s, the iterations': the friction bounds' first guess
+};
+
+class DiscIslands {
+public:
+    static constexpr double ratio = 10.0;
+    static constexpr std::size_t largest = 16;   // rows
+
+    // Whether the moving discs differ in mass by `ratio` or more: otherwise nothing is planned.
+    void set_masses(double lightest, double heaviest) { far_apart_ = heaviest >= ratio * lightest; }
+    bool far_apart() const { return far_apart_; }
+    // After the rows are listed (row_contacts: each row's contact, in row order), before the
+    // impacts stage: the islands to solve directly.
+    void plan(const Substep& s, std::span<const std::uint32_t> row_contacts);
+    // Whether contact (index into Substep::contacts) is in a planned island.
+    bool in_island(std::uint32_t contact) const {
+        return contact < marked_.size() && marked_[contact] != 0;
+    }
+    // The planned rows (indices into the plan's row_contacts), island by island.
+    std::span<const std::uint32_t> planned() const { return planned_; }
+    // rows: the planned ones, in planned() order. Bodies hold their velocities before any row.
+    void solve(const Substep& s, std::span<const IslandRow> rows);
+    // Disc i's velocity from the direct solve, if its island was solved.
+    const BlockBody* solved(std::size_t i) const {
+        return i < solved_.size() && solved_[i].first ? &solved_[i].second : nullptr;
+    }
+    // After positions are integrated: the solved islands' pairs pushed out to no more overlap
+    // than they started the substep with; each solved row's impulse counted in the contact's
+    // step_impulse in place of the iterations' (c.normal_impulse).
+    void finish(Substep& s);
+
+private:
+    // The island of planned rows [first, last) gathered for the direct solver: bodies_ (with
+    // their velocities now) and contacts_; normal of row j: normal(j).
+    template <class Normal>
+    void gather(const Substep& s, std::size_t first, std::size_t last, Normal normal);
+
+    bool far_apart_ = false;
+    std::vector<std::uint32_t> parent_;     // per disc: union-find over the rows' moving discs
+    std::vector<std::uint64_t> keyed_;      // (root << 32) | row, sorted
+    std::vector<std::uint32_t> planned_;    // rows, island by island
+    std::vector<std::uint32_t> island_end_; // per island: its end in planned_
+    std::vector<std::uint8_t> marked_;      // per contact: 1 when in a planned island
+    std::vector<std::uint32_t> marked_list_;
+    std::vector<std::uint32_t> row_contact_;  // per planned row: its contact
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> solved_islands_;  // ranges of planned_
+    std::vector<double> solved_impulse_;    // per planned row, N s (valid in solved islands)
+    std::vector<std::pair<bool, BlockBody>> solved_;  // per disc
+    std::vector<std::uint32_t> solved_bodies_;
+    // Scratch of one island.
+    std::vector<std::uint32_t> bodies_;     // indices into Substep::bodies
+    std::vector<BlockBody> state_;
+    std::vector<BlockContact> contacts_;
+    std::vector<IslandContact> island_;
+    std::vector<double> separation_, push_;
+    DirectSolver direct_;
+};
+
+}  // namespace discreel::physics::detail
