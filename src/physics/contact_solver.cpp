@@ -151,7 +151,7 @@ void ContactSolver::compute_masses(const Substep& s) {
     }
 }
 
-void ContactSolver::plan_islands(const Substep& s) {
+void ContactSolver::plan_islands(Substep& s) {
     row_contacts_.clear();
     if (islands_.far_apart()) {
         for (const Pending& p : pending_) row_contacts_.push_back(p.contact);
@@ -273,7 +273,7 @@ void ContactSolver::solve(Substep& s, int iterations) {
     for (std::size_t i = 0; i < disc_count; ++i) {
         Body& b = bodies[i];
         if (!b.moves()) continue;
-        if (const BlockBody* solved = direct ? islands_.solved(i) : nullptr) {
+        if (const DiscIslands::Solved* solved = direct ? islands_.solved(i) : nullptr) {
             b.v = solved->v;
             b.omega = solved->omega;
         } else {
@@ -285,7 +285,7 @@ void ContactSolver::solve(Substep& s, int iterations) {
         b.x += (b.v_begin + b.v) * half_h + b.shift;
         b.angle += (b.omega_begin + b.omega) * half_h + b.turn;
     }
-    if (direct) islands_.finish(s);
+    if (direct) islands_.count_impulses(s.contacts);
 }
 
 // A block at a time, in lane order, half a block (four rows) at a time in double lanes: the

@@ -6,22 +6,25 @@
 // and a light disc between two heavy ones closing on it was squeezed into them. So an island
 // of the resting stage's rows (what rows between moving discs connect; walls and pegs end it)
 // of at most `largest` rows, joining moving discs `ratio` or more times apart in mass, all of
-// whose pairs touch at the start of the substep, is taken out of the impacts stage and, once
-// the iterations are done, solved again as one boxed LCP in double precision (island.hpp, the
-// manifold solver's), from the velocities before any row, to the rows' own targets (a
-// restitution bounce at most); its discs take those velocities instead of the iterations'.
-// Whatever overlap its pairs gained in the substep is then pushed out through the same matrix.
-//
-// Only touching islands: a pair still closing from afar is the impacts stage's, which times
-// it. The solved impulses do not warm-start the next substep: at an impact they are the
-// collision's, not a lasting load, and fed to the iterations of a crowd they launched light
-// discs (docs/tried.md).
+// whose pairs touch at the start of the substep, is solved as one boxed LCP in double
+// precision (island.hpp, the manifold solver's), twice:
+//   - in place of the impacts stage (which leaves its pairs alone): its collisions at the start
+//     of the substep, together, each pair leaving at e times its approach;
+//   - after the iterations, from the velocities before any row, to the rows' own targets (the
+//     gap at the end no smaller than at the start, a bounce at most); its discs take those
+//     velocities instead of the iterations'.
+// Newton's rule at every pair at once can add energy where several pairs of a crowd hit
+// together: a solve that would is done again without bounces. Only touching islands: a pair
+// still closing from afar is the impacts stage's, which times it. The solved impulses do not
+// warm-start the next substep: at an impact they are the collision's, not a lasting load, and
+// fed to the iterations of a crowd they launched light discs (docs/tried.md).
 #include <cstdint>
 #include <span>
 #include <utility>
 #include <vector>
 
 #include "block_solver.hpp"
+#include "contact.hpp"
 #include "island.hpp"
 
 namespace discreel::physics::detail {
@@ -46,7 +49,9 @@ public:
     bool far_apart() const { return far_apart_; }
     // After the rows are listed (row_contacts: each row's contact, in row order), before the
     // impacts stage: the islands to solve directly.
-    void plan(const Substep& s, std::span<const std::uint32_t> row_contacts);
+    // Their pairs' collisions at the start of the substep are solved here, together, in
+    // place of the impacts stage's (bodies' velocities change).
+    void plan(Substep& s, std::span<const std::uint32_t> row_contacts);
     // Whether contact (index into Substep::contacts) is in a planned island.
     bool in_island(std::uint32_t contact) const {
         return contact < marked_.size() && marked_[contact] != 0;
@@ -55,20 +60,33 @@ public:
     std::span<const std::uint32_t> planned() const { return planned_; }
     // rows: the planned ones, in planned() order. Bodies hold their velocities before any row.
     void solve(const Substep& s, std::span<const IslandRow> rows);
-    // Disc i's velocity from the direct solve, if its island was solved.
-    const BlockBody* solved(std::size_t i) const {
-        return i < solved_.size() && solved_[i].first ? &solved_[i].second : nullptr;
+    // What the direct solve gives a disc of a solved island: its velocity at the end of the
+    // substep.
+    struct Solved {
+        V2 v = V2::Zero();         // m/s
+        double omega = 0;          // rad/s
+        bool valid = false;
+    };
+    // Disc i's, if its island was solved.
+    const Solved* solved(std::size_t i) const {
+        return i < solved_.size() && solved_[i].valid ? &solved_[i] : nullptr;
     }
-    // After positions are integrated: the solved islands' pairs pushed out to no more overlap
-    // than they started the substep with; each solved row's impulse counted in the contact's
-    // step_impulse in place of the iterations' (c.normal_impulse).
-    void finish(Substep& s);
+    // Each solved row's normal impulse counted in its contact's step_impulse in place of the
+    // iterations' (c.normal_impulse, which stays the next substep's warm start).
+    void count_impulses(std::vector<Contact>& contacts) const;
 
 private:
     // The island of planned rows [first, last) gathered for the direct solver: bodies_ (with
     // their velocities now) and contacts_; normal of row j: normal(j).
     template <class Normal>
     void gather(const Substep& s, std::size_t first, std::size_t last, Normal normal);
+
+    // The planned islands' collisions: each row bounces at e times its approach.
+    void collide(Substep& s);
+    // Solves the gathered island of planned rows [first, last) into state_ with these targets
+    // (m/s, per row) and guesses_; false: not solved (state_ undefined).
+    bool solve_island(std::size_t first, std::size_t last, std::span<const double> targets);
+    double kinetic_energy() const;   // of state_
 
     bool far_apart_ = false;
     std::vector<std::uint32_t> parent_;     // per disc: union-find over the rows' moving discs
@@ -80,14 +98,14 @@ private:
     std::vector<std::uint32_t> row_contact_;  // per planned row: its contact
     std::vector<std::pair<std::uint32_t, std::uint32_t>> solved_islands_;  // ranges of planned_
     std::vector<double> solved_impulse_;    // per planned row, N s (valid in solved islands)
-    std::vector<std::pair<bool, BlockBody>> solved_;  // per disc
+    std::vector<Solved> solved_;            // per disc
     std::vector<std::uint32_t> solved_bodies_;
     // Scratch of one island.
     std::vector<std::uint32_t> bodies_;     // indices into Substep::bodies
-    std::vector<BlockBody> state_;
+    std::vector<BlockBody> state_, start_;
     std::vector<BlockContact> contacts_;
     std::vector<IslandContact> island_;
-    std::vector<double> separation_, push_;
+    std::vector<double> targets_, guesses_;  // per row: m/s, and N s (friction's first bound)
     DirectSolver direct_;
 };
 

@@ -223,7 +223,7 @@ public:
     void solve(Substep& s, int iterations);
     // After the listing, before the impacts stage: plans the direct islands
     // (disc_islands.hpp), whose contacts the impacts stage leaves to solve().
-    void plan_islands(const Substep& s);
+    void plan_islands(Substep& s);
     const DiscIslands& islands() const { return islands_; }
 
 private:
