@@ -37,16 +37,12 @@ std::optional<Extremes> dynamic_extremes(const std::vector<Disc>& discs) {
 
 double speed_of(Vec2 v) { return std::hypot(v.x, v.y); }
 
-// What a mass ratio beyond the crowd's does, and where to read more. `discs`: the disc solver
-// steps the scene, whose single-precision iterations let small groups sink in a little too
-// (the manifold solver solves those exactly).
-std::string crowd_sinks_in(double ratio, bool discs) {
+// What a mass ratio beyond the crowd's does, and where to read more (small groups hold: both
+// solvers solve them directly).
+std::string crowd_sinks_in(double ratio) {
     return "where many bodies " + format_short(ratio) + " times apart in mass touch at once, "
-           "heavy ones may sink into light ones and the crowd may gain energy" +
-           std::string(discs ? "; in a scene of discs alone, a heavy disc resting on a light "
-                               "one sinks into it a little too"
-                             : "") +
-           " (docs/physics.md, Limits)";
+           "heavy ones may sink into light ones and the crowd may gain energy "
+           "(docs/physics.md, Limits)";
 }
 
 // "`speed` m/s: crowds ... stay apart up to `limit`": what the limit is in radii per step, and
@@ -125,7 +121,7 @@ void check_respawns(Loader& loader) {
             loader.diagnostics.warn(
                 source.entry, source.where + ": after " + when +
                                   ", the moving bodies differ in mass by a factor of " +
-                                  format_short(ratio) + "; " + crowd_sinks_in(ratio, false));
+                                  format_short(ratio) + "; " + crowd_sinks_in(ratio));
             return;
         }
         const double radii_per_step = physics::envelope.radii_per_step(
@@ -169,7 +165,7 @@ void check_envelope(Loader& loader) {
                    " times as heavy as " + noun(light) + " '" + light.id + "' (" +
                    format_short(light.mass) + " kg, line " +
                    std::to_string(loader.sources[extremes->lightest].entry.line) + "); " +
-                   crowd_sinks_in(ratio, !manifold));
+                   crowd_sinks_in(ratio));
         return;
     }
 
