@@ -85,6 +85,7 @@ bool Throws::begin_step(double t0, double t1, std::vector<B>& bodies) {
         if (t0 >= path.back().t) {
             b.x = to_v2(path.back().position);
             release(b, th.def.release ? to_v2(*th.def.release) : final_velocity(path));
+            changed = true;   // its mass is back: the solver's masses of its contacts change
             th.stage = Stage::done;
             continue;
         }

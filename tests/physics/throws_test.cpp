@@ -61,7 +61,8 @@ TEST(Throws, GrabReleasesWithAnExplicitVelocity) {
     EXPECT_NEAR(world.discs()[0].velocity.x, -5.0, 1e-12);
 }
 
-TEST(Throws, HeldDiscPushesOthersOutOfItsWay) {
+// A hand carrying disc 0 along the floor at 4 m/s into disc 1, letting go at t = 1 at rest.
+WorldDef pushing_grab() {
     WorldDef def;
     const testing::Material material{.restitution = 0.2, .friction = 0.3};
     def.walls.push_back(testing::box({-5, 0}, {5, 5}, material));
@@ -72,12 +73,30 @@ TEST(Throws, HeldDiscPushesOthersOutOfItsWay) {
     grab.path = {{0.0, {-3, 0.3}}, {1.0, {1, 0.3}}};
     grab.release = Vec2{0, 0};
     def.throws.push_back(grab);
-    World world(def);
+    return def;
+}
+
+TEST(Throws, HeldDiscPushesOthersOutOfItsWay) {
+    World world(pushing_grab());
     testing::run_for(world, 1.0);
     const auto& d = world.discs();
     EXPECT_NEAR(d[0].position.x, 1.0, 1e-12);
     // The pushed disc is ahead of the hand, not overlapped by it.
     EXPECT_GE(d[1].position.x - d[0].position.x, 0.6 - 1e-3);
+}
+
+// The same hand lets go at t = 1 with the disc on the floor, at rest: its contacts get its mass
+// back at the release (held, it had none to the solver; with the contacts' masses kept from
+// then, its row against the floor was infinitely heavy and the state stopped being finite).
+// It stays where it was let go; the disc it pushed slides on, on the floor.
+TEST(Throws, ADiscReleasedOnTheFloorRestsThere) {
+    World world(pushing_grab());
+    testing::run_for(world, 1.5);
+    ASSERT_FALSE(world.failure());
+    for (const DiscState& d : world.discs()) EXPECT_NEAR(d.position.y, 0.3, 1e-3);
+    const DiscState& released = world.discs()[0];
+    EXPECT_NEAR(released.position.x, 1.0, 1e-3);
+    EXPECT_LT(std::hypot(released.velocity.x, released.velocity.y), 1e-3);
 }
 
 // The case: a disc at (1, 1) grabbed with a path starting at t = 0.5 at (3, 3). The hand
