@@ -119,9 +119,12 @@ TEST(CliPipelineGLTest, PeakMemoryIsBoundedAndFlatInClipLength) {
     // Most of the peak is Mesa's llvmpipe and LLVM; 3 frame slots at 320x180 are 0.7 MiB. The
     // bound leaves room for other Mesa builds.
     EXPECT_LT(long_peak, 200.0);
-    // Holding the clip would add 0.23 MiB per frame, 580 MiB for the extra 2 500 frames;
-    // 8 MiB allows for allocator noise.
-    EXPECT_LT(long_peak - short_peak, 8.0) << short_peak << " MiB vs " << long_peak << " MiB";
+    // Holding the clip would add 0.23 MiB per frame, 580 MiB for the extra 2 500 frames. The
+    // peak is not flat to the megabyte: measured on an idle machine, 138 MiB for clips of 10,
+    // 20 and 40 s, then a one-time step to 145-148 MiB at 60, 120 and 240 s (12.5 MiB above the
+    // 10 s clip once under load). 32 MiB allows that step and would still catch one frame in
+    // ten kept.
+    EXPECT_LT(long_peak - short_peak, 32.0) << short_peak << " MiB vs " << long_peak << " MiB";
 }
 
 // The required bound for a 1080p render: 300 MB (286.1 MiB). x264 holds most of it, for every
