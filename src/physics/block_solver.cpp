@@ -6,8 +6,6 @@
 namespace discreel::physics::detail {
 namespace {
 
-V2 velocity_at(const BlockBody& body, const V2& r) { return body.v + body.omega * perp(r); }
-
 // The effective mass's inverse along direction d at point p: 1 / (what an impulse of 1 N s
 // along d changes the relative velocity along d by).
 double inverse_mass_along(const BlockBody& a, const BlockBody& b, const BlockPoint& p,
@@ -25,9 +23,15 @@ void apply_impulse(BlockBody& a, BlockBody& b, const BlockPoint& p, const V2& im
     b.omega += b.inv_inertia * cross(p.rb, impulse);
 }
 
+V2 velocity_at(const BlockBody& body, const V2& r) { return body.v + body.omega * perp(r); }
+
+V2 relative_velocity(const BlockPoint& p, const BlockBody& a, const BlockBody& b) {
+    return velocity_at(b, p.rb) - velocity_at(a, p.ra);
+}
+
 double normal_velocity(const BlockContact& c, const BlockPoint& p, const BlockBody& a,
                        const BlockBody& b) {
-    return (velocity_at(b, p.rb) - velocity_at(a, p.ra)).dot(c.normal);
+    return relative_velocity(p, a, b).dot(c.normal);
 }
 
 void set_restitution_targets(BlockContact& c, const BlockBody& a, const BlockBody& b,

@@ -41,6 +41,11 @@ struct BlockContact {
 // Applies `impulse` (N s, on B; its opposite on A) at point p to both bodies.
 void apply_impulse(BlockBody& a, BlockBody& b, const BlockPoint& p, const V2& impulse);
 
+// The velocity of a body's material point at offset r from its centre of mass, m/s.
+V2 velocity_at(const BlockBody& body, const V2& r);
+// B's point's velocity relative to A's at point p, m/s.
+V2 relative_velocity(const BlockPoint& p, const BlockBody& a, const BlockBody& b);
+
 // The normal velocity of B relative to A at a point, m/s (positive: separating).
 double normal_velocity(const BlockContact& c, const BlockPoint& p, const BlockBody& a,
                        const BlockBody& b);

@@ -128,14 +128,17 @@ void ContactSolver::colour_contacts(const Substep& s) {
 void ContactSolver::compute_masses(const Substep& s) {
     // The unit follows the bodies, not the contact list: it need not be found at every rebuild.
     if (s.bodies_version != massed_bodies_) {
-        double heaviest = 0.0;
-        double lightest = std::numeric_limits<double>::infinity();
+        double heaviest = 0.0, heaviest_moving = 0.0;
+        double lightest_moving = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < s.disc_count; ++i) {
-            heaviest = std::max(heaviest, s.bodies[i].mass);
-            if (s.bodies[i].inv_mass > 0.0) lightest = std::min(lightest, s.bodies[i].mass);
+            const Body& b = s.bodies[i];
+            heaviest = std::max(heaviest, b.mass);
+            if (b.inv_mass == 0.0) continue;
+            heaviest_moving = std::max(heaviest_moving, b.mass);
+            lightest_moving = std::min(lightest_moving, b.mass);
         }
         mass_unit_ = heaviest > 0.0 ? std::ldexp(1.0, std::ilogb(heaviest)) : 1.0;
-        islands_.set_masses(lightest, heaviest);
+        islands_.set_masses(lightest_moving, heaviest_moving);
     }
     massed_contacts_ = s.contacts_version;
     massed_bodies_ = s.bodies_version;
@@ -252,7 +255,7 @@ void ContactSolver::solve(Substep& s, int iterations) {
         const std::uint32_t slot = lane_of_[k];
         const RowGeometry& g = geometry_[slot];
         const double impulse = static_cast<double>(rows_[slot / width].normal_impulse[slot % width]);
-        island_rows_.push_back({pending_[k].contact, g.normal, g.target, impulse * mass_unit_});
+        island_rows_.push_back({g.normal, g.target, impulse * mass_unit_});
     }
     islands_.solve(s, island_rows_);
 

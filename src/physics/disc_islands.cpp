@@ -1,20 +1,20 @@
 #include "disc_islands.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 #include "substep.hpp"
 
 namespace discreel::physics::detail {
 namespace {
 
-// The impacts stage's: a pair this close at the start of the substep is part of a heap.
-constexpr double touching_gap = 0.005;  // of the pair's smaller radius
-// What the solve's rounding may add to an island's kinetic energy, relative: a light disc
-// between two a million times heavier meeting elastically gains 6e-11 (its velocity is known
-// to about 1e-16 of the heavy ones' momentum over its mass).
-constexpr double energy_rounding = 1e-8;
+// The work a solve's rounding may show, relative to the work's scale (see solve_island): a
+// light disc between two a million times heavier meeting elastically shows 6e-11 (its velocity
+// is known to about 1e-16 of the heavy ones' momentum over its mass).
+constexpr double work_rounding = 1e-8;
 
 std::uint32_t root_of(std::vector<std::uint32_t>& parent, std::uint32_t i) {
     while (parent[i] != i) {
@@ -31,6 +31,7 @@ void DiscIslands::plan(Substep& s, std::span<const std::uint32_t> row_contacts) 
     marked_list_.clear();
     planned_.clear();
     island_end_.clear();
+    collided_.clear();
     if (!far_apart_) return;
     const std::size_t discs = s.disc_count;
     const auto moving_disc = [&](std::uint32_t i) {
@@ -91,34 +92,51 @@ void DiscIslands::plan(Substep& s, std::span<const std::uint32_t> row_contacts) 
 
 void DiscIslands::collide(Substep& s) {
     const std::size_t discs = s.disc_count;
-    std::size_t first = 0;
+    // Islands whose collision cannot be solved go back to the impacts stage: they are dropped
+    // from the plan (the rows kept are moved forward in place).
+    std::size_t first = 0, kept = 0;
+    std::size_t islands = 0;
     for (const std::uint32_t last : island_end_) {
         gather(s, first, last, [&](std::size_t j) {
             const Contact& c = s.contacts[row_contact_[j]];
             const Body& a = s.bodies[c.a];
-            return c.b < discs ? disc_disc(a.x, a.radius, s.bodies[c.b].x, s.bodies[c.b].radius).normal
-                               : disc_feature(a.x, a.radius, *s.feature_of(c)).normal;
+            return c.b < discs
+                       ? disc_disc(a.x, a.radius, s.bodies[c.b].x, s.bodies[c.b].radius).normal
+                       : disc_feature(a.x, a.radius, *s.feature_of(c)).normal;
         });
         for (std::size_t j = first; j < last; ++j) {
-            BlockContact& bc = contacts_[j - first];
+            const BlockContact& bc = contacts_[j - first];
             const IslandContact& ic = island_[j - first];
             const double approach = -normal_velocity(bc, bc.points[0], state_[ic.a], state_[ic.b]);
-            targets_[j - first] = s.contacts[row_contact_[j]].restitution * std::max(approach, 0.0);
+            targets_[j - first] =
+                s.contacts[row_contact_[j]].restitution * std::max(approach, 0.0);
         }
         if (solve_island(first, last, targets_)) {
             for (std::size_t l = 0; l < bodies_.size(); ++l) {
                 Body& b = s.bodies[bodies_[l]];
                 if (bodies_[l] >= discs || b.inv_mass == 0.0) continue;
+                if (b.v != state_[l].v || b.omega != state_[l].omega) collided_.push_back(bodies_[l]);
                 b.v = state_[l].v;
                 b.omega = state_[l].omega;
             }
             // As the impacts stage's impulses do, they count towards the step's contact events.
             for (std::size_t j = first; j < last; ++j) {
-                s.contacts[row_contact_[j]].step_impulse += contacts_[j - first].points[0].normal_impulse;
+                s.contacts[row_contact_[j]].step_impulse +=
+                    contacts_[j - first].points[0].normal_impulse;
             }
+            for (std::size_t j = first; j < last; ++j, ++kept) {
+                planned_[kept] = planned_[j];
+                row_contact_[kept] = row_contact_[j];
+            }
+            island_end_[islands++] = static_cast<std::uint32_t>(kept);
+        } else {
+            for (std::size_t j = first; j < last; ++j) marked_[row_contact_[j]] = 0;
         }
         first = last;
     }
+    planned_.resize(kept);
+    row_contact_.resize(kept);
+    island_end_.resize(islands);
 }
 
 template <class Normal>
@@ -153,21 +171,31 @@ void DiscIslands::gather(const Substep& s, std::size_t first, std::size_t last, 
     }
 }
 
-// Kinetic energy of the island's bodies, J.
-double DiscIslands::kinetic_energy() const {
-    double energy = 0;
-    for (const BlockBody& b : state_) {
-        if (b.inv_mass == 0.0) continue;
-        energy += b.v.squaredNorm() / b.inv_mass;
-        if (b.inv_inertia != 0.0) energy += b.omega * b.omega / b.inv_inertia;
+bool DiscIslands::dissipates(std::size_t count) const {
+    // The work of the impulses on the island, J: each row's impulse times the mean of its
+    // relative velocity before and after (exactly the change of kinetic energy where every
+    // body is free, and the same in any frame, so a held disc's push counts as work done).
+    double work = 0, scale = 0;
+    for (std::size_t j = 0; j < count; ++j) {
+        const IslandContact& ic = island_[j];
+        const BlockContact& c = *ic.contact;
+        const BlockPoint& p = c.points[0];
+        const V2 before = relative_velocity(p, start_[ic.a], start_[ic.b]);
+        const V2 after = relative_velocity(p, state_[ic.a], state_[ic.b]);
+        const V2 tangent = -perp(c.normal);
+        for (const auto& [impulse, direction] :
+             {std::pair{p.normal_impulse, c.normal}, std::pair{p.tangent_impulse, tangent}}) {
+            const double u0 = before.dot(direction), u1 = after.dot(direction);
+            work += impulse * (u0 + u1) / 2;
+            scale += std::abs(impulse) * (std::abs(u0) + std::abs(u1)) / 2;
+        }
     }
-    return 0.5 * energy;
+    return work <= work_rounding * scale;
 }
 
 bool DiscIslands::solve_island(std::size_t first, std::size_t last,
                                std::span<const double> targets) {
     start_ = state_;
-    const double before = kinetic_energy();
     // Every row bouncing at e times its own approach (Newton's rule, which the rows ask for)
     // can add energy where several pairs of a crowd hit at once; then the island is solved
     // again without bounces, which only takes energy out.
@@ -179,7 +207,7 @@ bool DiscIslands::solve_island(std::size_t first, std::size_t last,
         }
         state_ = start_;
         if (!direct_.velocities(island_, state_)) return false;
-        if (kinetic_energy() <= before * (1 + energy_rounding)) return true;
+        if (dissipates(last - first)) return true;
     }
     return false;
 }

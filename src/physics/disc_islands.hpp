@@ -11,10 +11,11 @@
 //   - in place of the impacts stage (which leaves its pairs alone): its collisions at the start
 //     of the substep, together, each pair leaving at e times its approach;
 //   - after the iterations, from the velocities before any row, to the rows' own targets (the
-//     gap at the end no smaller than at the start, a bounce at most); its discs take those
-//     velocities instead of the iterations'.
+//     gap at the end no smaller than at the start if that was an overlap, else no overlap; a
+//     bounce at most); its discs take those velocities instead of the iterations'.
 // Newton's rule at every pair at once can add energy where several pairs of a crowd hit
-// together: a solve that would is done again without bounces. Only touching islands: a pair
+// together: a solve whose impulses would do positive work is done again without bounces, and
+// an island whose collision still cannot be solved goes back to the impacts stage. Only touching islands: a pair
 // still closing from afar is the impacts stage's, which times it. The solved impulses do not
 // warm-start the next substep: at an impact they are the collision's, not a lasting load, and
 // fed to the iterations of a crowd they launched light discs (docs/tried.md).
@@ -33,7 +34,6 @@ struct Substep;
 
 // One of the resting stage's rows as the direct solve takes it, in double precision.
 struct IslandRow {
-    std::uint32_t contact = 0;       // index into Substep::contacts
     V2 normal = V2::UnitY();         // unit, from b towards a, at the predicted end
     double target = 0;               // m/s, the least end velocity n.(v_a - v_b) it asks for
     double normal_impulse = 0;       // N s, the iterations': the friction bounds' first guess
@@ -52,6 +52,9 @@ public:
     // Their pairs' collisions at the start of the substep are solved here, together, in
     // place of the impacts stage's (bodies' velocities change).
     void plan(Substep& s, std::span<const std::uint32_t> row_contacts);
+    // The discs whose velocity plan()'s collisions changed: the impacts stage widens their
+    // reach and predicts their other pairs, as after an impact of its own.
+    std::span<const std::uint32_t> collided() const { return collided_; }
     // Whether contact (index into Substep::contacts) is in a planned island.
     bool in_island(std::uint32_t contact) const {
         return contact < marked_.size() && marked_[contact] != 0;
@@ -86,7 +89,9 @@ private:
     // Solves the gathered island of planned rows [first, last) into state_ with these targets
     // (m/s, per row) and guesses_; false: not solved (state_ undefined).
     bool solve_island(std::size_t first, std::size_t last, std::span<const double> targets);
-    double kinetic_energy() const;   // of state_
+    // Whether the solved impulses of the gathered island's `count` rows, taking start_ to
+    // state_, do no positive work (to rounding).
+    bool dissipates(std::size_t count) const;
 
     bool far_apart_ = false;
     std::vector<std::uint32_t> parent_;     // per disc: union-find over the rows' moving discs
@@ -100,6 +105,7 @@ private:
     std::vector<double> solved_impulse_;    // per planned row, N s (valid in solved islands)
     std::vector<Solved> solved_;            // per disc
     std::vector<std::uint32_t> solved_bodies_;
+    std::vector<std::uint32_t> collided_;
     // Scratch of one island.
     std::vector<std::uint32_t> bodies_;     // indices into Substep::bodies
     std::vector<BlockBody> state_, start_;

@@ -214,10 +214,19 @@ void ImpactResolver::resolve(Substep& s, const DiscIslands& islands) {
             events_.push_back(Event{*hit, k, 0, 0});
         }
     }
-    // A settled pile has no impacts at all.
-    if (events_.empty()) return;
     std::make_heap(events_.begin(), events_.end(), later);
     if (predicted_.size() < s.active.size()) predicted_.resize(s.active.size(), never);
+    // Discs a direct island's collision sped up at the start of the substep: as after an
+    // impact here, their reach grows and their pairs outside the island are predicted.
+    if (!islands.collided().empty()) {
+        ++events_done_;
+        for (const std::uint32_t i : islands.collided()) widen_reach(s, i, 0.0);
+        for (const std::uint32_t i : islands.collided()) {
+            predict_pairs_of(s, islands, i, slow, spent);
+        }
+    }
+    // A settled pile has no impacts at all.
+    if (events_.empty()) return;
     while (!events_.empty()) {
         std::pop_heap(events_.begin(), events_.end(), later);
         const Event e = events_.back();

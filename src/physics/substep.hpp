@@ -37,6 +37,12 @@ struct Substep {
     }
 };
 
+// A pair already touching at the start of the substep (gap under this fraction of the smaller
+// radius) is part of a heap or a row, not a flight ending in a collision: the impacts stage
+// leaves it to the resting stage unless its bounce would show, and the disc solver's direct
+// islands are made of such pairs.
+inline constexpr double touching_gap = 0.005;
+
 // Applies impulse p (N s) at the contact between a and b with normal n (b towards a):
 // + p to a at -r_a n from its centre, - p to b at +r_b n from its centre.
 inline void apply_impulse(Body& a, Body& b, const V2& n, const V2& p) {
@@ -79,9 +85,6 @@ public:
     void resolve(Substep& s, const DiscIslands& islands);
 
 private:
-    // A pair already touching at the start of the substep (gap under this fraction of the
-    // smaller radius) is part of a heap or a row, not a flight ending in a collision.
-    static constexpr double touching_gap = 0.005;
     static constexpr std::uint64_t never = ~std::uint64_t{0};  // a stamp none has
     // A predicted impact of active contact k, valid while neither body has been struck since
     // the prediction (their strike counts then).
