@@ -110,8 +110,8 @@ inline std::uint64_t run_mixed_scene() {
 inline constexpr std::uint64_t heavy_light_scene_hash = 14595984683914181768ull;
 
 // 64 plain discs in a box, every other one 1 000 times heavier, thrown, landing and settling:
-// the disc solver's direct islands (src/physics/disc_islands.hpp, some 650 solves), whose
-// double-precision solve must give the same bits too.
+// the disc solver's direct islands (src/physics/disc_islands.hpp; some 300 collisions and as
+// many resting solves), whose double-precision solves must give the same bits too.
 inline WorldDef heavy_light_scene() {
     WorldDef def;
     const Material material{.restitution = 0.5, .friction = 0.5};
