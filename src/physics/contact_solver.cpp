@@ -253,9 +253,9 @@ void ContactSolver::solve(Substep& s, int iterations) {
     island_rows_.clear();
     for (const std::uint32_t k : islands_.planned()) {
         const std::uint32_t slot = lane_of_[k];
-        const RowGeometry& g = geometry_[slot];
-        const double impulse = static_cast<double>(rows_[slot / width].normal_impulse[slot % width]);
-        island_rows_.push_back({g.normal, g.target, impulse * mass_unit_});
+        IslandRow& row = island_rows_.emplace_back(geometry_[slot]);
+        row.normal_impulse =
+            static_cast<double>(rows_[slot / width].normal_impulse[slot % width]) * mass_unit_;
     }
     islands_.solve(s, island_rows_);
 
@@ -377,7 +377,7 @@ DISCREEL_CLONES void ContactSolver::build_rows(const Substep& s, double inv_h) {
             if (islands_.far_apart()) {
                 const std::size_t first_lane = block * width + std::size_t{part} * half;
                 for (unsigned l = 0; l < half; ++l) {
-                    geometry_[first_lane + l] = {V2(nx[l], ny[l]), target[l]};
+                    geometry_[first_lane + l] = {V2(nx[l], ny[l]), target[l], 0.0};
                 }
             }
             slip[part] = (-ny * dvx + nx * dvy) - a_radius * a_omega - b_radius * b_omega;

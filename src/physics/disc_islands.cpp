@@ -16,6 +16,11 @@ namespace {
 // is known to about 1e-16 of the heavy ones' momentum over its mass).
 constexpr double work_rounding = 1e-8;
 
+// Disc i moves and has a mass: walls, pegs and held discs end islands.
+bool moving_disc(const Substep& s, std::uint32_t i) {
+    return i < s.disc_count && s.bodies[i].inv_mass > 0.0;
+}
+
 std::uint32_t root_of(std::vector<std::uint32_t>& parent, std::uint32_t i) {
     while (parent[i] != i) {
         parent[i] = parent[parent[i]];
@@ -34,14 +39,12 @@ void DiscIslands::plan(Substep& s, std::span<const std::uint32_t> row_contacts) 
     collided_.clear();
     if (!far_apart_) return;
     const std::size_t discs = s.disc_count;
-    const auto moving_disc = [&](std::uint32_t i) {
-        return i < discs && s.bodies[i].inv_mass > 0.0;
-    };
+    const auto moving = [&](std::uint32_t i) { return moving_disc(s, i); };
     parent_.resize(discs);
     std::iota(parent_.begin(), parent_.end(), 0U);
     for (const std::uint32_t index : row_contacts) {
         const Contact& c = s.contacts[index];
-        if (moving_disc(c.a) && moving_disc(c.b)) {
+        if (moving(c.a) && moving(c.b)) {
             const std::uint32_t ra = root_of(parent_, c.a);
             const std::uint32_t rb = root_of(parent_, c.b);
             parent_[std::max(ra, rb)] = std::min(ra, rb);
@@ -51,7 +54,7 @@ void DiscIslands::plan(Substep& s, std::span<const std::uint32_t> row_contacts) 
     keyed_.clear();
     for (std::uint32_t k = 0; k < row_contacts.size(); ++k) {
         const Contact& c = s.contacts[row_contacts[k]];
-        const std::uint32_t end = moving_disc(c.a) ? c.a : c.b;
+        const std::uint32_t end = moving(c.a) ? c.a : c.b;
         keyed_.push_back(std::uint64_t{root_of(parent_, end)} << 32 | k);
     }
     std::sort(keyed_.begin(), keyed_.end());
@@ -63,7 +66,7 @@ void DiscIslands::plan(Substep& s, std::span<const std::uint32_t> row_contacts) 
         for (; last < keyed_.size() && (keyed_[last] >> 32) == root; ++last) {
             const Contact& c = s.contacts[row_contacts[static_cast<std::uint32_t>(keyed_[last])]];
             for (const std::uint32_t i : {c.a, c.b}) {
-                if (!moving_disc(i)) continue;
+                if (!moving(i)) continue;
                 lightest = std::min(lightest, s.bodies[i].mass);
                 heaviest = std::max(heaviest, s.bodies[i].mass);
             }
@@ -111,10 +114,10 @@ void DiscIslands::collide(Substep& s) {
             targets_[j - first] =
                 s.contacts[row_contact_[j]].restitution * std::max(approach, 0.0);
         }
-        if (solve_island(first, last, targets_)) {
+        if (solve_island()) {
             for (std::size_t l = 0; l < bodies_.size(); ++l) {
+                if (!moving_disc(s, bodies_[l])) continue;
                 Body& b = s.bodies[bodies_[l]];
-                if (bodies_[l] >= discs || b.inv_mass == 0.0) continue;
                 if (b.v != state_[l].v || b.omega != state_[l].omega) collided_.push_back(bodies_[l]);
                 b.v = state_[l].v;
                 b.omega = state_[l].omega;
@@ -171,13 +174,12 @@ void DiscIslands::gather(const Substep& s, std::size_t first, std::size_t last, 
     }
 }
 
-bool DiscIslands::dissipates(std::size_t count) const {
+bool DiscIslands::dissipates() const {
     // The work of the impulses on the island, J: each row's impulse times the mean of its
     // relative velocity before and after (exactly the change of kinetic energy where every
     // body is free, and the same in any frame, so a held disc's push counts as work done).
     double work = 0, scale = 0;
-    for (std::size_t j = 0; j < count; ++j) {
-        const IslandContact& ic = island_[j];
+    for (const IslandContact& ic : island_) {
         const BlockContact& c = *ic.contact;
         const BlockPoint& p = c.points[0];
         const V2 before = relative_velocity(p, start_[ic.a], start_[ic.b]);
@@ -193,21 +195,20 @@ bool DiscIslands::dissipates(std::size_t count) const {
     return work <= work_rounding * scale;
 }
 
-bool DiscIslands::solve_island(std::size_t first, std::size_t last,
-                               std::span<const double> targets) {
+bool DiscIslands::solve_island() {
     start_ = state_;
     // Every row bouncing at e times its own approach (Newton's rule, which the rows ask for)
     // can add energy where several pairs of a crowd hit at once; then the island is solved
     // again without bounces, which only takes energy out.
     for (const bool bounce : {true, false}) {
-        for (std::size_t j = first; j < last; ++j) {
-            BlockPoint& p = contacts_[j - first].points[0];
-            p.target = bounce ? targets[j - first] : std::min(targets[j - first], 0.0);
-            p.normal_impulse = guesses_[j - first];
+        for (std::size_t j = 0; j < contacts_.size(); ++j) {
+            BlockPoint& p = contacts_[j].points[0];
+            p.target = bounce ? targets_[j] : std::min(targets_[j], 0.0);
+            p.normal_impulse = guesses_[j];
         }
         state_ = start_;
         if (!direct_.velocities(island_, state_)) return false;
-        if (dissipates(last - first)) return true;
+        if (dissipates()) return true;
     }
     return false;
 }
@@ -231,11 +232,11 @@ void DiscIslands::solve(const Substep& s, std::span<const IslandRow> rows) {
             targets_[j - first] = rows[j].target;
             guesses_[j - first] = rows[j].normal_impulse;
         }
-        if (!struck && solve_island(first, last, targets_)) {
+        if (!struck && solve_island()) {
             solved_islands_.emplace_back(static_cast<std::uint32_t>(first), last);
             for (std::size_t l = 0; l < bodies_.size(); ++l) {
                 const std::uint32_t i = bodies_[l];
-                if (i >= s.disc_count || s.bodies[i].inv_mass == 0.0) continue;
+                if (!moving_disc(s, i)) continue;
                 solved_[i] = Solved{state_[l].v, state_[l].omega, true};
                 solved_bodies_.push_back(i);
             }

@@ -86,12 +86,12 @@ private:
 
     // The planned islands' collisions: each row bounces at e times its approach.
     void collide(Substep& s);
-    // Solves the gathered island of planned rows [first, last) into state_ with these targets
-    // (m/s, per row) and guesses_; false: not solved (state_ undefined).
-    bool solve_island(std::size_t first, std::size_t last, std::span<const double> targets);
-    // Whether the solved impulses of the gathered island's `count` rows, taking start_ to
-    // state_, do no positive work (to rounding).
-    bool dissipates(std::size_t count) const;
+    // Solves the gathered island into state_ to targets_ and from guesses_; false: not solved
+    // (state_ undefined).
+    bool solve_island();
+    // Whether the gathered island's solved impulses, taking start_ to state_, do no positive
+    // work (to rounding).
+    bool dissipates() const;
 
     bool far_apart_ = false;
     std::vector<std::uint32_t> parent_;     // per disc: union-find over the rows' moving discs

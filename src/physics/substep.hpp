@@ -11,8 +11,8 @@
 #include "body.hpp"
 #include "contact.hpp"
 #include "discreel/clones.hpp"
-#include "geometry.hpp"
 #include "disc_islands.hpp"
+#include "geometry.hpp"
 #include "simd.hpp"
 
 namespace discreel::physics::detail {
@@ -323,13 +323,10 @@ private:
     std::vector<std::uint8_t> colour_of_;      // per contact
 
     // The direct islands (disc_islands.hpp), and what their rows need of the row build in
-    // double precision, per lane of rows_ (written only while the masses are far apart).
+    // double precision, per lane of rows_ (written only while the masses are far apart; the
+    // impulse is filled in after the iterations).
     DiscIslands islands_;
-    struct RowGeometry {
-        V2 normal = V2::UnitY();   // unit, from b towards a
-        double target = 0;         // m/s, the least end velocity n.(v_a - v_b)
-    };
-    std::vector<RowGeometry> geometry_;
+    std::vector<IslandRow> geometry_;
     std::vector<std::uint32_t> row_contacts_;  // per pending row, its contact (plan_islands)
     std::vector<IslandRow> island_rows_;
     std::uint64_t coloured_version_ = ~std::uint64_t{0};  // the contact list colour_of_ is for
