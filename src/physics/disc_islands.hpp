@@ -2,8 +2,8 @@
 // The disc solver's small islands of discs far apart in mass, solved directly. Sequential
 // impulses pass force from one disc to the next by a fraction set by their mass ratio per
 // sweep, and the resting stage's single-precision rows cannot even hold a light disc's share
-// of a disc a million times heavier: a heavy disc on a light one sank into it every substep,
-// and a light disc between two heavy ones closing on it was squeezed into them. So an island
+// of a disc a million times heavier: iterated, a heavy disc on a light one sinks into it every
+// substep, and a light disc between two heavy ones closing on it is squeezed into them. An island
 // of the resting stage's rows (what rows between moving discs connect; walls and pegs end it)
 // of at most `largest` rows, joining moving discs `ratio` or more times apart in mass, all of
 // whose pairs touch at the start of the substep, is solved as one boxed LCP in double
