@@ -118,7 +118,9 @@ void DiscIslands::collide(Substep& s) {
             for (std::size_t l = 0; l < bodies_.size(); ++l) {
                 if (!moving_disc(s, bodies_[l])) continue;
                 Body& b = s.bodies[bodies_[l]];
-                if (b.v != state_[l].v || b.omega != state_[l].omega) collided_.push_back(bodies_[l]);
+                if (b.v != state_[l].v || b.omega != state_[l].omega) {
+                    collided_.push_back(bodies_[l]);
+                }
                 b.v = state_[l].v;
                 b.omega = state_[l].omega;
             }

@@ -15,10 +15,11 @@
 //     bounce at most); its discs take those velocities instead of the iterations'.
 // Newton's rule at every pair at once can add energy where several pairs of a crowd hit
 // together: a solve whose impulses would do positive work is done again without bounces, and
-// an island whose collision still cannot be solved goes back to the impacts stage. Only touching islands: a pair
-// still closing from afar is the impacts stage's, which times it. The solved impulses do not
-// warm-start the next substep: at an impact they are the collision's, not a lasting load, and
-// fed to the iterations of a crowd they launched light discs (docs/tried.md).
+// an island whose collision still cannot be solved goes back to the impacts stage. Only
+// touching islands: a pair still closing from afar is the impacts stage's, which times it. The
+// solved impulses do not warm-start the next substep: at an impact they are the collision's,
+// not a lasting load, and fed to the iterations of a crowd they launch light discs
+// (docs/tried.md).
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -45,7 +46,9 @@ public:
     static constexpr std::size_t largest = 16;   // rows
 
     // Whether the moving discs differ in mass by `ratio` or more: otherwise nothing is planned.
-    void set_masses(double lightest, double heaviest) { far_apart_ = heaviest >= ratio * lightest; }
+    void set_masses(double lightest, double heaviest) {
+        far_apart_ = heaviest >= ratio * lightest;
+    }
     bool far_apart() const { return far_apart_; }
     // After the rows are listed (row_contacts: each row's contact, in row order), before the
     // impacts stage: the islands to solve directly.
