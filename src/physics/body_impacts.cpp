@@ -104,6 +104,14 @@ void BodySolver::predict_impact(const std::vector<RigidBody>& bodies, std::uint3
     const RigidBody& b = bodies[j];
     if (a.inv_mass == 0 && b.inv_mass == 0) return;
     if (!fast_[i] && !fast_[j]) return;
+    if (predictions_left_ == 0) {
+        // Out of sweeps: whichever of the two moves stays where its sweep starts.
+        if (a.inv_mass > 0) unchecked_[i] = 1;
+        if (b.inv_mass > 0) unchecked_[j] = 1;
+        return;
+    }
+    --predictions_left_;
+    ++predictions_made_;
     ImpactQuery q;
     q.t_begin = t_begin;
     q.t_end = dt;
@@ -134,6 +142,7 @@ void BodySolver::predict_impact(const std::vector<RigidBody>& bodies, std::uint3
 
 void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double settle) {
     impact_touches_.clear();
+    predictions_made_ = 0;
     settle_ = settle;
     const std::size_t n = bodies.size();
     sweeps_.resize(n);
@@ -154,6 +163,9 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
     }
     if (fast_count == 0) return;
     versions_.assign(n, 0);
+    unchecked_.assign(n, 0);
+    predictions_left_ = static_cast<std::size_t>(def_.predictions_per_body) * n +
+                        static_cast<std::size_t>(def_.predictions_base);
     for (std::size_t i = 0; i < n; ++i) swept_[i] = swept_box(sweeps_[i], dt);
 
     // The first predictions: pairs of swept boxes that overlap, one of them fast, by a sweep
@@ -296,6 +308,18 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
                 predict_impact(bodies, std::min(i, j), std::max(i, j), e.t, dt);
             });
         }
+    }
+    // Out of sweeps: a body whose sweep was not checked against everything it reaches stays
+    // where that sweep starts (its last impact, or the step's start), losing the rest of its
+    // step; what it would have met, it meets in the next one.
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!unchecked_[i]) continue;
+        RigidBody& body = bodies[i];
+        const Sweep& s = sweeps_[i];
+        body.x = s.x_at(s.t0);
+        body.angle = s.angle_at(s.t0);
+        swept_[i] = swept_box(s, s.t0);
+        ++versions_[i];
     }
     // Out of impacts: a body still to meet something stops where it would (the rest of its
     // step is lost, as Box2D loses it at every impact), earliest first.

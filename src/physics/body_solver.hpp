@@ -65,6 +65,12 @@ struct BodySolverDef {
     // Impacts per such body and step at most; beyond, bodies keep the motion they have and
     // the next step's contacts push out what overlaps.
     int impacts_per_fast_body = 64;
+    // Sweeps (times of impact of one pair) per step at most: `predictions_per_body` for each
+    // body, plus `predictions_base`. A body whose new sweep is left unchecked once they are
+    // spent stays where its last impact put it for the rest of the step, so the work of a step
+    // is bounded however fast its bodies move and however many their paths cross.
+    int predictions_per_body = 64;
+    int predictions_base = 1024;
 };
 
 // A pair of bodies that touched (exchanged a normal impulse) during the step.
@@ -111,6 +117,8 @@ public:
         std::uint32_t a = 0, b = 0;    // the pair
     };
     Overlap max_overlap(const std::vector<RigidBody>& bodies) const;
+    // Times of impact computed during the last step (at most the budget of BodySolverDef).
+    std::size_t sweeps() const { return predictions_made_; }
     // Forgets contacts of bodies [first, last): they were replaced.
     void forget(std::size_t first, std::size_t last);
 
@@ -208,6 +216,9 @@ private:
     std::vector<std::uint32_t> still_, moving_, changed_;   // scratch: see time_impacts
     std::vector<double> moving_lo_;
     std::vector<unsigned char> changed_flag_;
+    std::vector<unsigned char> unchecked_;   // its sweep's pairs were not all predicted
+    std::size_t predictions_left_ = 0;
+    std::size_t predictions_made_ = 0;       // in the last step
     double settle_ = 0;                      // m/s: slower approaches are not impacts
     std::vector<double> separation_, push_;   // scratch, per point of an island
 };

@@ -155,6 +155,7 @@ WorldStats ShapeWorld::stats(const V2& gravity) const {
         s.max_overlap_ratio = o.depth / std::min(a, b);
     }
     s.contact_count = touching_;
+    s.sweeps = solver_.sweeps();
     return s;
 }
 

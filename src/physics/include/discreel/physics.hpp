@@ -150,6 +150,9 @@ struct WorldStats {
     double max_overlap = 0.0;       // metres, deepest overlap between two bodies right now
     double max_overlap_ratio = 0.0; // that overlap over the smaller radius involved
     std::size_t contact_count = 0;  // pairs that exchanged an impulse during the last step
+    // Times of impact of a pair of bodies computed during the last step (bodies of any shape):
+    // bounded per step, however fast the bodies (docs/physics.md, "Continuous collision").
+    std::size_t sweeps = 0;
 };
 
 // The first disc whose state stopped being finite: the scene asked for more than double
