@@ -57,6 +57,18 @@ Expected<PolygonResult> make_polygon(std::span<const Vec2> points, double roundi
     for (int i = 0; i < n; ++i) area2 += cross(v[i], v[(i + 1) % n]);
     const double eps = tiny * std::max(scale * scale, 1e-12);
     if (!(std::abs(area2) > eps)) {
+        // No area: either every point is on one line, or the outline crosses itself so that
+        // its halves cancel (a bow-tie).
+        double spread = 0;
+        for (int i = 1; i < n; ++i) {
+            for (int j = i + 1; j < n; ++j) {
+                spread = std::max(spread, std::abs(cross(v[i] - v[0], v[j] - v[0])));
+            }
+        }
+        if (spread > eps) {
+            return Error{"the polygon's outline crosses itself; list its points in order "
+                         "around it"};
+        }
         return Error{"the polygon has no area (its points are on a line)"};
     }
     if (area2 < 0) std::reverse(v.begin(), v.begin() + n);   // counter-clockwise from here on

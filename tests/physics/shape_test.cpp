@@ -95,6 +95,9 @@ TEST(ShapeTest, BadPolygonsAreRefusedWithTheReason) {
     };
     EXPECT_EQ(refuse({{0, 0}, {1, 0}}), "a polygon needs at least 3 points, got 2");
     EXPECT_EQ(refuse({{0, 0}, {1, 0}, {2, 0}}), "the polygon has no area (its points are on a line)");
+    // A bow-tie: its two halves' areas cancel, but its points are not on a line.
+    EXPECT_EQ(refuse({{0, 0}, {1, 1}, {1, 0}, {0, 1}}),
+              "the polygon's outline crosses itself; list its points in order around it");
     EXPECT_EQ(refuse({{0, 0}, {2, 0}, {1, 0.2}, {2, 2}, {0, 2}}),
               "the polygon is not convex (it turns the other way at point 2); split it into "
               "convex pieces");
