@@ -299,6 +299,7 @@ void read_scene(const Value& root, detail::Loader& loader) {
     detail::resolve_camera_follow(loader);
     if (const auto v = fields->get("style")) detail::read_style(loader, *v);
     if (const auto v = fields->get("throws")) detail::read_throws(loader, *v);
+    detail::check_ranges(loader);
     if (d.empty()) detail::check_envelope(loader);
     detail::read_golden(loader, fields->get("golden"));
 }

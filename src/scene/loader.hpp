@@ -56,6 +56,7 @@ void read_bodies(Loader& loader, const Value& value);   // after read_discs: one
 void check_discs(Loader& loader);   // ids, overlaps at t = 0
 void read_throws(Loader& loader, const Value& value);
 void read_golden(Loader& loader, const std::optional<Value>& value);
+void check_ranges(Loader& loader);     // masses, speeds and spins no scene needs (refused)
 void check_envelope(Loader& loader);   // mass ratios and speeds the solver is known to handle
 
 }  // namespace discreel::scene::detail

@@ -171,7 +171,16 @@ void read_physics(Loader& loader, const Value& value) {
     const auto fields = Fields::open(value, known, d);
     if (!fields) return;
     if (const auto gravity = fields->get("gravity"))
-        if (const auto g = read_vec2(*gravity, "[x, y]", d)) physics.gravity = *g;
+        if (const auto g = read_vec2(*gravity, "[x, y]", d)) {
+            const double length = std::hypot(g->x, g->y);
+            if (length > ranges.max_gravity) {
+                d.error(gravity->where, gravity->path + ": gravity of " + format_number(length) +
+                                            " m/s^2 is beyond any scene's; it is at most " +
+                                            format_number(ranges.max_gravity) + " m/s^2");
+            } else {
+                physics.gravity = *g;
+            }
+        }
     if (const auto rate = fields->get("rate")) {
         const auto v = read_integer(*rate, d);
         if (v && check_between(*rate, static_cast<double>(*v), 1, max_rate, d))

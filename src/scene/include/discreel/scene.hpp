@@ -44,6 +44,18 @@ inline constexpr std::size_t max_waypoints = 10'000;      // per grab path
 inline constexpr std::size_t max_golden_frames = 1'000;
 inline constexpr std::size_t max_alias_values = 1'000'000;  // values repeated by YAML aliases
 
+// What no scene needs, refused at its line (docs/scene-format.md, "Ranges"): beyond these the
+// numbers say more about a typo than about a demo. Within them, scenes beyond the measured
+// envelope of the physics load with a warning instead (physics::envelope).
+struct Ranges {
+    double min_mass = 1e-9;        // kg, of every moving body, given or from density * area
+    double max_mass = 1e12;        // kg
+    double max_gravity = 1000;     // m/s^2, the gravity vector's length (about 100 g)
+    double max_speed = 1e5;        // m/s, of a body, a throw, a release or a grab's path
+    double max_spin = 1000;        // rad/s, a body's angular velocity (about 160 turns a second)
+};
+inline constexpr Ranges ranges{};
+
 struct Color {
     std::uint8_t r = 0, g = 0, b = 0, a = 255;   // sRGB-encoded, straight alpha
     friend bool operator==(const Color&, const Color&) = default;
