@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "discreel/commit.hpp"
 #include "discreel/encode.hpp"
+#include "discreel/file_identity.hpp"
 #include "discreel/printable.hpp"
 #include "exit_codes.hpp"
 #include "run_support.hpp"
@@ -15,6 +16,14 @@ int run_concat(const ConcatOptions& o, std::ostream& out, std::ostream& err) {
     auto set = encode::find_segments(o.dir);
     if (!set) {
         report_error(err, set.error().message);
+        return exit_bad_input;
+    }
+    // The output must not be one of the files it is made from.
+    std::vector<NamedPath> inputs;
+    for (const std::string& path : set->paths) inputs.push_back({"segment", path});
+    for (const std::string& path : set->sound) inputs.push_back({"sound", path});
+    if (const auto clash = find_clash(inputs, {{"-o", o.output}})) {
+        report_error(err, *clash);
         return exit_bad_input;
     }
     auto file = OutputFile::create(o.output);

@@ -1,7 +1,10 @@
 // Segment files: their names, finding a render's set in a directory, and joining them by
 // stream copy (FFmpeg's doc/examples/remux.c, with the timestamps renumbered).
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -206,6 +209,70 @@ Expected<Checked> check_segments(const std::vector<std::string>& segments) {
     return checked;
 }
 
+// The sample frames (one per channel pair) of a 48 kHz stereo 16-bit WAV file.
+Expected<std::int64_t> sample_frames(const std::string& path) {
+    begin_libav_call();
+    AVFormatContext* raw = nullptr;
+    if (const int result = avformat_open_input(&raw, path.c_str(), nullptr, nullptr);
+        result < 0) {
+        return Error{"cannot read the sound '" + path + "': " + libav_reason(result)};
+    }
+    InputPtr input(raw);
+    const AVCodecParameters* p = input->nb_streams == 1 ? input->streams[0]->codecpar : nullptr;
+    if (p == nullptr || p->codec_id != AV_CODEC_ID_PCM_S16LE ||
+        p->sample_rate != SoundTrack::sample_rate || p->ch_layout.nb_channels != 2) {
+        return Error{"the sound '" + path + "' is not 48 kHz stereo 16-bit PCM"};
+    }
+    PacketPtr packet(av_packet_alloc());
+    if (!packet) return Error{"cannot read the sound '" + path + "': out of memory"};
+    std::int64_t bytes = 0;
+    for (;;) {
+        const int result = av_read_frame(input.get(), packet.get());
+        if (result == AVERROR_EOF) break;
+        if (result < 0) {
+            return Error{"cannot read the sound '" + path + "': " + libav_reason(result)};
+        }
+        bytes += packet->size;
+        av_packet_unref(packet.get());
+    }
+    return bytes / 4;
+}
+
+// The first sample frame of frame `frame` at `fps` (the soundtrack's own rounding).
+std::int64_t sample_of(std::int64_t frame, int fps) {
+    const std::int64_t scaled = frame * SoundTrack::sample_rate;
+    return (2 * scaled + fps) / (2 * static_cast<std::int64_t>(fps));
+}
+
+// Each segment's sound is as long as its frames (or one sound as long as all of them): a
+// cut-off file would shift every later sound early against the pictures.
+Status check_sounds(const std::vector<std::string>& sounds, const Checked& checked) {
+    const int fps = checked.signature.fps;
+    std::vector<std::int64_t> frames;
+    for (const std::vector<int>& order : checked.orders) {
+        frames.push_back(static_cast<std::int64_t>(order.size()));
+    }
+    if (sounds.size() != frames.size()) {
+        std::int64_t all = 0;
+        for (const std::int64_t n : frames) all += n;
+        frames = {all};
+    }
+    std::int64_t first = 0;
+    for (std::size_t k = 0; k < sounds.size() && k < frames.size(); ++k) {
+        const std::int64_t wanted = sample_of(first + frames[k], fps) - sample_of(first, fps);
+        auto got = sample_frames(sounds[k]);
+        if (!got) return got.error();
+        if (*got != wanted) {
+            return Error{"the sound '" + sounds[k] + "' holds " + std::to_string(*got) +
+                         " samples, and its segment's " + std::to_string(frames[k]) +
+                         " frames need " + std::to_string(wanted) + "; render segment " +
+                         std::to_string(k) + " again"};
+        }
+        first += frames[k];
+    }
+    return {};
+}
+
 // The samples of 48 kHz stereo 16-bit WAV files, one after another, fed to a SoundTrack as the
 // join needs them.
 class WavChunks {
@@ -289,6 +356,25 @@ Expected<SegmentSet> find_segments(const std::string& dir) {
                      segment_file_name(0, 3, "mp4") + ", written by render --segment K)"};
     }
     SegmentSet set{first->format, {}, {}};
+    // Each input a regular file of its own: a FIFO would block the join where no signal ends
+    // it, and two names of one file (a link) would join a segment twice.
+    std::map<std::pair<dev_t, ino_t>, std::string> seen;
+    const auto check_input = [&](const std::string& path) -> Status {
+        struct stat info {};
+        if (stat(path.c_str(), &info) != 0) {
+            return Error{"cannot read '" + path + "': " + std::strerror(errno)};
+        }
+        if (!S_ISREG(info.st_mode)) {
+            return Error{"'" + path + "' is not a regular file; segments and their sounds are "
+                         "files that render --segment wrote"};
+        }
+        const auto [at, added] = seen.emplace(std::pair{info.st_dev, info.st_ino}, path);
+        if (!added) {
+            return Error{"'" + path + "' and '" + at->second + "' are the same file; each "
+                         "segment must be its own"};
+        }
+        return {};
+    };
     for (int k = 0; k < first->count; ++k) {
         const auto it = found.find(k);
         if (it == found.end()) {
@@ -297,6 +383,7 @@ Expected<SegmentSet> find_segments(const std::string& dir) {
                          segment_file_name(k, first->count, first->format) +
                          "); render it with --segment " + std::to_string(k)};
         }
+        if (Status usable = check_input(it->second); !usable) return usable.error();
         set.paths.push_back(it->second);
         const std::string sound = std::filesystem::path(it->second).replace_extension(".wav");
         if (sounds > 0 && !std::filesystem::exists(sound)) {
@@ -304,7 +391,10 @@ Expected<SegmentSet> find_segments(const std::string& dir) {
                          segment_file_name(k, first->count, "wav") + "); render it again with "
                          "--segment " + std::to_string(k)};
         }
-        if (sounds > 0) set.sound.push_back(sound);
+        if (sounds > 0) {
+            if (Status usable = check_input(sound); !usable) return usable.error();
+            set.sound.push_back(sound);
+        }
     }
     return set;
 }
@@ -324,6 +414,7 @@ Status join_segments(const SegmentSet& set, OutputFile& file) {
     auto checked = check_segments(segments);
     if (!checked) return checked.error();
     const int fps = checked->signature.fps;
+    if (Status heard = check_sounds(set.sound, *checked); !heard) return heard;
 
     begin_libav_call();
     const auto fail = [&](const std::string& what, int code) {

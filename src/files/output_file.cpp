@@ -69,9 +69,18 @@ Expected<OutputFile> OutputFile::create(const std::string& target_path) {
             return write_error(target_path, "it is a directory; name a file inside it");
         }
         if (!S_ISREG(existing.st_mode)) {
-            // A device, FIFO or socket: written in place, never replaced.
-            const int fd = open(target.c_str(), O_WRONLY | O_CLOEXEC);
-            if (fd < 0) return write_error(target_path, errno_text(errno));
+            // A device, FIFO or socket: written in place, never replaced. Opened without
+            // waiting: a FIFO that no process reads fails at once (ENXIO) rather than blocking
+            // the run where no signal can end it; writes wait for the reader as usual.
+            const int fd = open(target.c_str(), O_WRONLY | O_CLOEXEC | O_NONBLOCK);
+            if (fd < 0) {
+                if (errno == ENXIO && S_ISFIFO(existing.st_mode)) {
+                    return write_error(target_path, "it is a FIFO that no process is reading");
+                }
+                return write_error(target_path, errno_text(errno));
+            }
+            const int flags = fcntl(fd, F_GETFL);
+            if (flags >= 0) fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
             return OutputFile(target_path, target.string(), target.string(), fd, true);
         }
     }

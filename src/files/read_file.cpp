@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <limits>
 
 namespace discreel {
 namespace {
@@ -43,7 +44,8 @@ Expected<ReadResult> read_file_bounded(const std::string& path, std::uintmax_t m
 
     ReadResult result;
     // Never more than the limit plus one byte, whatever the file claims to be or hold.
-    const std::uintmax_t wanted = max_bytes + 1;
+    const std::uintmax_t wanted =
+        max_bytes == std::numeric_limits<std::uintmax_t>::max() ? max_bytes : max_bytes + 1;
     while (result.bytes.size() < wanted) {
         const std::size_t room = static_cast<std::size_t>(
             std::min<std::uintmax_t>(chunk_size, wanted - result.bytes.size()));

@@ -2,8 +2,11 @@
 // joined by stream copy, so its bytes are the same for any --jobs and for segments rendered
 // apart (--segment K) and joined with `discreel concat`. Through the binary, so GL; ffprobe
 // and the ffmpeg CLI are the independent readers.
+#include <sys/stat.h>
+
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <sstream>
 
@@ -289,6 +292,65 @@ TEST(SegmentsGLTest, MistakesAreNamed) {
     EXPECT_FALSE(std::filesystem::exists(scene.dir / "out.mp4"));
     run = discreel({"concat", scene.dir / "none", "-o", scene.dir / "out.mp4"});
     EXPECT_EQ(run.exit_code, 2);
+}
+
+// What concat must never do: overwrite one of its own inputs, join a cut-off sound, join one
+// file twice, or wait for ever on a FIFO.
+TEST(SegmentsGLTest, ConcatRefusesWhatWouldLoseOrHangIt) {
+    Scene scene;
+    write_file(scene.path, scene_text + "audio: {enabled: true}\n");
+    const std::string dir = scene.dir / "parts";
+    for (const std::string k : {"0", "1", "2", "3", "4"}) {
+        ASSERT_EQ(discreel({"render", scene.path, "-o", dir, "--segment", k, "-q"}).exit_code, 0);
+    }
+    const std::string two = dir + "/segment-0002-of-0005.mp4";
+    const std::string kept = read_file(two);
+    auto run = discreel({"concat", dir, "-o", two});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: -o '" + two + "' is the same file as segment '" + two +
+                           "', which it would overwrite; write to another file\n");
+    EXPECT_EQ(read_file(two), kept);
+
+    // A sound cut off after 1 000 bytes: the later sounds would come early.
+    const std::string sound = dir + "/segment-0002-of-0005.wav";
+    const std::string whole_sound = read_file(sound);
+    write_file(sound, whole_sound.substr(0, 1000));
+    run = discreel({"concat", dir, "-o", scene.dir / "out.mp4"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: the sound '" + sound + "' holds 239 samples, and its "
+                       "segment's 12 frames need 24000; render segment 2 again\n");
+    write_file(sound, whole_sound);
+
+    // Two names of one file.
+    const std::string three = dir + "/segment-0003-of-0005.mp4";
+    std::filesystem::rename(three, scene.dir / "three.mp4");
+    std::filesystem::create_symlink(dir + "/segment-0001-of-0005.mp4", three);
+    run = discreel({"concat", dir, "-o", scene.dir / "out.mp4"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: '" + three + "' and '" + dir + "/segment-0001-of-0005.mp4' "
+                       "are the same file; each segment must be its own\n");
+    std::filesystem::remove(three);
+    std::filesystem::rename(scene.dir / "three.mp4", three);
+
+    // A FIFO for a segment: refused at once, not waited on.
+    const std::string four = dir + "/segment-0004-of-0005.mp4";
+    std::filesystem::remove(four);
+    ASSERT_EQ(mkfifo(four.c_str(), 0644), 0);
+    const auto started = std::chrono::steady_clock::now();
+    run = discreel({"concat", dir, "-o", scene.dir / "out.mp4"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: '" + four + "' is not a regular file; segments and their "
+                       "sounds are files that render --segment wrote\n");
+    EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(5));
+    EXPECT_FALSE(std::filesystem::exists(scene.dir / "out.mp4"));
+
+    // An output that is a FIFO nobody reads: refused at once too.
+    const std::string fifo = scene.dir / "sound.wav";
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0644), 0);
+    run = discreel({"render", scene.path, "-o", fifo});
+    EXPECT_EQ(run.exit_code, 3);
+    EXPECT_EQ(run.err, "discreel: cannot write '" + fifo +
+                           "': it is a FIFO that no process is reading\n");
 }
 
 }  // namespace
