@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <mutex>
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -171,6 +172,14 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     ProgressMeter progress(err,
                            pick_progress_style(o.quiet, o.progress, isatty(STDERR_FILENO) == 1),
                            to_write);
+    // --jobs beyond what memory holds would only swap or be killed: the job cuts it, and says.
+    const int memory_holds = job::segments_memory_holds(video.width, video.height);
+    if (o.jobs > memory_holds && job::segmented(output) && plan->segments > memory_holds &&
+        !o.quiet) {
+        err << "discreel: --jobs " << o.jobs << ": rendering " << memory_holds
+            << " segments at once, as many as the available memory holds at "
+            << video.width << 'x' << video.height << '\n';
+    }
     job::RenderDef def;
     def.scene = std::move(scene);
     def.output = sink_def;
@@ -183,8 +192,17 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     def.threaded = !o.sequential;
     def.on_progress = [&](const job::Progress& p) { progress.update(p.frames_done, p.elapsed); };
     def.should_stop = [] { return stop_signal() != 0; };
+    // Warnings of the run come from the simulating threads; they are printed once it ends,
+    // also in -q: the output is not what the scene asked for.
+    std::mutex warned_mutex;
+    std::vector<std::string> warned;
+    def.on_warning = [&](const std::string& message) {
+        std::lock_guard lock(warned_mutex);
+        warned.push_back(message);
+    };
     const auto run = job::render(def);
     progress.finish();
+    for (const std::string& message : warned) err << "discreel: warning: " << message << '\n';
     // A signal is checked first: the write it broke (SIGPIPE's EPIPE) is not the story. One
     // during the last frames may arrive after the job stopped polling.
     if (stop_signal() != 0) {

@@ -44,6 +44,9 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     def.trace = o.files.trace;
     def.events = o.files.events;
     def.should_stop = [] { return stop_signal() != 0; };
+    def.on_warning = [&err](const std::string& message) {
+        err << "discreel: warning: " << message << '\n';
+    };
     const auto run = job::simulate(def);
     if (stop_signal() != 0) {
         err << "discreel: interrupted; nothing was written\n";

@@ -26,7 +26,9 @@ Playback::~Playback() = default;
 Playback::Playback(Playback&&) noexcept = default;
 Playback& Playback::operator=(Playback&&) noexcept = default;
 
-Status Playback::advance_to(int frame) { return impl_->stepper.advance_to(frame); }
+Status Playback::advance_to(int frame, const std::function<bool()>& should_stop) {
+    return impl_->stepper.advance_to(frame, should_stop);
+}
 
 void Playback::observe(int frame) { impl_->builder.observe(frame, impl_->world.discs()); }
 
@@ -38,6 +40,8 @@ const render::FrameScene& Playback::frame_scene(int frame) {
 std::span<const physics::DiscState> Playback::discs() const { return impl_->world.discs(); }
 
 std::vector<physics::ContactEvent> Playback::take_events() { return impl_->stepper.take_events(); }
+
+std::vector<std::string> Playback::take_warnings() { return impl_->stepper.take_warnings(); }
 
 const physics::World& Playback::world() const { return impl_->world; }
 

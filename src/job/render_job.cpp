@@ -8,6 +8,7 @@
 
 #include "discreel/commit.hpp"
 #include "discreel/job.hpp"
+#include "warnings_once.hpp"
 #include "pipeline.hpp"
 #include "sample_queue.hpp"
 #include "segment_render.hpp"
@@ -146,12 +147,14 @@ Expected<RenderSummary> render(const RenderDef& def) {
     int frames_written = 0;
 
     Playback playback(scene);
+    WarningsOnce warnings(def.on_warning);
     const auto stop_asked = [&] { return def.should_stop && def.should_stop(); };
     Status simulated;   // the physics' failure, which stops the run like a cancellation
     const PipelineStages stages{
         .simulate = [&](int frame) -> const render::FrameScene* {
-            simulated = playback.advance_to(frame);
+            simulated = playback.advance_to(frame, def.should_stop);
             if (!simulated) return nullptr;
+            warnings.say(playback.take_warnings());
             outputs->record(frame, playback.time_of_frame(frame), playback.discs(),
                             playback.take_events(), playback.world().respawns_applied());
             if (frame < range.first) {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -19,6 +20,7 @@
 #include "segment_render.hpp"
 #include "side_outputs.hpp"
 #include "soundtrack.hpp"
+#include "warnings_once.hpp"
 
 namespace discreel::job {
 namespace {
@@ -38,6 +40,23 @@ int usable_cores() {
 }
 
 const Error cancelled{"cancelled; nothing was written"};
+
+// MemAvailable from /proc/meminfo, bytes; nullopt where there is none.
+std::optional<double> available_memory() {
+    std::FILE* file = std::fopen("/proc/meminfo", "r");
+    if (file == nullptr) return std::nullopt;
+    char line[256];
+    std::optional<double> found;
+    while (std::fgets(line, sizeof line, file) != nullptr) {
+        unsigned long long kib = 0;
+        if (std::sscanf(line, "MemAvailable: %llu kB", &kib) == 1) {
+            found = static_cast<double>(kib) * 1024.0;
+            break;
+        }
+    }
+    std::fclose(file);
+    return found;
+}
 
 // What the workers share: the queue of segments, progress, the first failure.
 class SegmentRun {
@@ -123,8 +142,9 @@ private:
         int reported = 0;
         const PipelineStages stages{
             .simulate = [&](int frame) -> const render::FrameScene* {
-                simulated = playback.advance_to(frame);
+                simulated = playback.advance_to(frame, def_.should_stop);
                 if (!simulated) return nullptr;
+                warnings_.say(playback.take_warnings());
                 playback.take_events();   // the recorder writes them; here they are not kept
                 if (frame < piece.first) {
                     playback.observe(frame);   // trails and the follow camera
@@ -179,9 +199,10 @@ private:
     void record(SideOutputs& outputs) {
         Playback playback(def_.scene);
         for (int frame = 0; frame <= range_.last && !stopping(); ++frame) {
-            if (Status advanced = playback.advance_to(frame); !advanced) {
+            if (Status advanced = playback.advance_to(frame, def_.should_stop); !advanced) {
                 return fail(advanced.error());
             }
+            warnings_.say(playback.take_warnings());
             outputs.record(frame, playback.time_of_frame(frame), playback.discs(),
                            playback.take_events(), playback.world().respawns_applied());
         }
@@ -195,6 +216,7 @@ private:
     std::vector<std::optional<OutputFile>> files_;   // sealed, per wanted segment
     std::atomic<std::size_t> next_{0};
     std::atomic<bool> failed_{false};
+    WarningsOnce warnings_{def_.on_warning};
     std::mutex mutex_;                       // guards what follows
     Status status_;
     StageSeconds busy_;
@@ -262,7 +284,9 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
         if (!opened) return opened.error();
         outputs.emplace(std::move(*opened));
     }
-    const int asked = def.jobs > 0 ? def.jobs : usable_cores();
+    const int asked = std::min(def.jobs > 0 ? def.jobs : usable_cores(),
+                               segments_memory_holds(def.scene.video.width,
+                                                     def.scene.video.height));
     const int workers = def.threaded ? std::clamp(asked, 1, static_cast<int>(wanted.size())) : 1;
 
     SegmentRun run(def, range, segment_sink, wanted, paths);
@@ -308,6 +332,14 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
                          .seconds = seconds_since(started),
                          .busy = run.busy(),
                          .renderer = run.renderer_info()};
+}
+
+int segments_memory_holds(int width, int height) {
+    const double each = 48.0 * (1 << 20) + 48.0 * width * height;
+    const auto available = available_memory();
+    if (!available) return 1 << 20;
+    // Three quarters: the rest is the process's own and the system's.
+    return static_cast<int>(std::clamp(0.75 * *available / each, 1.0, 1e6));
 }
 
 }  // namespace discreel::job

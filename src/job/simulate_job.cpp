@@ -3,6 +3,7 @@
 
 #include "discreel/commit.hpp"
 #include "discreel/job.hpp"
+#include "warnings_once.hpp"
 #include "side_outputs.hpp"
 
 namespace discreel::job {
@@ -14,12 +15,16 @@ Expected<SimulateSummary> simulate(const SimulateDef& def) {
     if (!outputs) return outputs.error();
 
     Playback playback(scene);
+    WarningsOnce warnings(def.on_warning);
     SimulateSummary summary;
     summary.frames = playback.frame_count();
     summary.energy_start = playback.world().energy();
     for (int frame = 0; frame < summary.frames; ++frame) {
         if (def.should_stop && def.should_stop()) return Error{"cancelled; nothing was written"};
-        if (Status stepped = playback.advance_to(frame); !stepped) return stepped.error();
+        if (Status stepped = playback.advance_to(frame, def.should_stop); !stepped) {
+            return stepped.error();
+        }
+        warnings.say(playback.take_warnings());
         const std::vector<physics::ContactEvent> events = playback.take_events();
         summary.contacts += events.size();
         outputs->record(frame, playback.time_of_frame(frame), playback.discs(), events,

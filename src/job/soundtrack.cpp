@@ -68,7 +68,9 @@ Status write_soundtrack(const scene::Scene& scene, FrameRange range, const Sampl
     Playback playback(scene);
     for (int frame = 0; frame < frame_count && position < end; ++frame) {
         if (should_stop && should_stop()) return Error{"cancelled; nothing was written"};
-        if (Status advanced = playback.advance_to(frame); !advanced) return advanced.error();
+        if (Status advanced = playback.advance_to(frame, should_stop); !advanced) {
+            return advanced.error();
+        }
         const render::Camera camera = playback.frame_scene(frame).camera;
         const double half_width = camera.height * aspect / 2;
         for (const physics::ContactEvent& event : playback.take_events()) {

@@ -32,9 +32,10 @@ public:
     Playback(Playback&&) noexcept;
     Playback& operator=(Playback&&) noexcept;
 
-    // Steps the physics until it shows `frame`; fails, naming the disc and the time, once the
-    // state is no longer finite.
-    [[nodiscard]] Status advance_to(int frame);
+    // Steps the physics until it shows `frame`; fails, naming the body and the time, once the
+    // state is no longer finite, and with "cancelled; nothing was written" as soon as
+    // `should_stop` (asked before every physics step) says so.
+    [[nodiscard]] Status advance_to(int frame, const std::function<bool()>& should_stop = {});
     // Shows the current frame to the look's memory (trails, follow camera) without drawing it:
     // every frame before a drawn one must be observed or drawn, in order.
     void observe(int frame);
@@ -44,6 +45,9 @@ public:
 
     std::span<const physics::DiscState> discs() const;
     std::vector<physics::ContactEvent> take_events();   // new contacts since the last call
+    // What went wrong without stopping the run, since the last call: a body that left the box
+    // of walls it started in (once per body, at the first frame that shows it outside).
+    std::vector<std::string> take_warnings();
     const physics::World& world() const;
     int frame_count() const;                  // round(duration * fps)
     double time_of_frame(int frame) const;    // seconds
@@ -95,7 +99,10 @@ struct RenderDef {
     // creates its own. Used by one job at a time. The bytes are the same either way.
     render::Renderer* renderer = nullptr;
     std::function<void(const Progress&)> on_progress;   // after each encoded frame
-    std::function<bool()> should_stop;       // polled per frame; true cancels, nothing written
+    // Polled before every physics step and every frame; true cancels, nothing written.
+    std::function<bool()> should_stop;
+    // Playback::take_warnings' messages, each once, from whichever thread simulates.
+    std::function<void(const std::string&)> on_warning;
 };
 
 struct RenderSummary {
@@ -105,6 +112,11 @@ struct RenderSummary {
     StageSeconds busy;
     std::string renderer;                    // GL_RENDERER and GL_VERSION
 };
+
+// How many segments of this frame size the machine's available memory (MemAvailable) holds at
+// once, each with its own playback, renderer and encoder (about 48 MiB + 48 bytes a pixel);
+// at least 1. RenderDef::jobs beyond it is cut to it.
+int segments_memory_holds(int width, int height);
 
 // Whether `output` is encoded in segments: a video file, not a stream, GIF or PNG.
 bool segmented(const encode::OutputDescription& output);
@@ -121,6 +133,7 @@ struct SimulateDef {
     scene::Scene scene;
     std::optional<std::string> trace, events;   // CSV paths, as for render
     std::function<bool()> should_stop;
+    std::function<void(const std::string&)> on_warning;   // as RenderDef's
 };
 
 struct SimulateSummary {
