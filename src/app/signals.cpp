@@ -1,5 +1,7 @@
 #include "signals.hpp"
 
+#include <unistd.h>
+
 #include <csignal>
 
 #include <atomic>
@@ -14,14 +16,29 @@ namespace {
 std::atomic<int> received{0};
 static_assert(std::atomic<int>::is_always_lock_free);
 
+// A run still going this long after its first stop signal is ended as by a second one: a
+// call that no signal interrupts (a write to a pipe nobody reads) cannot keep it alive.
+constexpr unsigned grace_seconds = 10;
+
 extern "C" void on_stop_signal(int signal_number) {
     int none = 0;
     const bool first = received.compare_exchange_strong(none, signal_number,
                                                         std::memory_order_relaxed);
-    if (first || signal_number == SIGPIPE || commit_in_progress()) return;
+    if (first) {
+        alarm(grace_seconds);
+        return;
+    }
+    if (signal_number == SIGPIPE) return;
+    if (commit_in_progress()) {
+        alarm(1);   // the commit ends in moments; then the grace's end comes again
+        return;
+    }
+    // The grace's end (SIGALRM) ends the run with the signal that asked for the stop.
+    const int ending = signal_number == SIGALRM ? received.load(std::memory_order_relaxed)
+                                                : signal_number;
     delete_temporary_files_now();
-    std::signal(signal_number, SIG_DFL);
-    std::raise(signal_number);
+    std::signal(ending, SIG_DFL);
+    std::raise(ending);
 }
 
 void catch_signal(int signal_number) {
