@@ -51,6 +51,7 @@ struct ServeOptions {
     int workers = 1;
     std::size_t max_queue = 64;
     std::optional<std::string> token_file;
+    std::vector<std::string> allow_hosts;    // Host names accepted besides the address
     double job_timeout = 600;                // seconds
     scene::Limits limits;
     std::string version;                     // discreel's, part of every job id

@@ -75,11 +75,30 @@ CLI::Validator finite_number(double low = -std::numeric_limits<double>::max(),
         "NUMBER");
 }
 
+// A whole number from `low` to `high`, checked on its text: "-1" never wraps into an unsigned
+// option, and a range error names both bounds as numbers a person typed.
+CLI::Validator whole_number(long long low, long long high) {
+    return CLI::Validator(
+        [low, high](std::string& text) -> std::string {
+            const auto value = parse_whole<long long>(text);
+            const bool digits =
+                text.find_first_not_of("0123456789", text.rfind('-', 0) == 0 ? 1 : 0) ==
+                    std::string::npos && text != "-" && !text.empty();
+            if (!value && !digits) return "expected a whole number, got '" + text + "'";
+            if (!value || *value < low || *value > high) {
+                return "must be from " + std::to_string(low) + " to " + std::to_string(high) +
+                       ", got " + text;
+            }
+            return {};
+        },
+        "N");
+}
+
 // The protective limits of docs/scene-format.md, raised (or lowered) per run.
 void add_limit_options(CLI::App& cmd, discreel::scene::Limits& limits) {
     cmd.add_option("--max-bodies,--max-discs", limits.discs,
                    "Most bodies (discs and other shapes) a scene may have")
-        ->check(CLI::PositiveNumber)
+        ->check(whole_number(1, 100'000'000))
         ->capture_default_str()
         ->group("Limits");
     cmd.add_option("--max-duration", limits.duration, "Longest video.duration, seconds")
@@ -87,17 +106,17 @@ void add_limit_options(CLI::App& cmd, discreel::scene::Limits& limits) {
         ->capture_default_str()
         ->group("Limits");
     cmd.add_option("--max-scene-bytes", limits.file_bytes, "Largest scene file, bytes")
-        ->check(CLI::PositiveNumber)
+        ->check(whole_number(1, 1LL << 32))
         ->capture_default_str()
         ->group("Limits");
     cmd.add_option("--max-scene-values", limits.values,
                    "Most YAML values (scalars, lists, mappings) a scene file may hold")
-        ->check(CLI::PositiveNumber)
+        ->check(whole_number(1, 1'000'000'000))
         ->capture_default_str()
         ->group("Limits");
     cmd.add_option("--max-substeps", limits.substeps,
                    "Most physics substeps a run may take (duration x rate x substeps)")
-        ->check(CLI::PositiveNumber)
+        ->check(whole_number(1, 1'000'000'000'000LL))
         ->capture_default_str()
         ->group("Limits");
 }
@@ -289,9 +308,10 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
                            "--segment: mp4 (default), mkv or webm")
         ->check(CLI::IsMember({"mkv", "mp4", "webm"}));
     render_cmd->add_option("--jobs", render.jobs,
-                           "Segments of a video file rendered at once (default: one per core); "
-                           "the bytes are the same for any number")
-        ->check(CLI::Range(1, 1024));
+                           "Segments of a video file rendered at once (default: one per core; "
+                           "at most what the available memory holds); the bytes are the same "
+                           "for any number")
+        ->check(whole_number(1, 1024));
     render_cmd->add_flag_function(
         "--audio,!--no-audio",
         [&render](std::int64_t count) { render.request.audio = count > 0; },
@@ -304,7 +324,7 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
                            "Render only segment K (from 0) of the video, into the directory -o "
                            "names; join them with discreel concat")
         ->option_text("K")
-        ->check(CLI::NonNegativeNumber);
+        ->check(whole_number(0, 1'000'000'000));
     render_cmd->add_flag("--lossless", render.request.lossless,
                          "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);
@@ -350,7 +370,8 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     batch_cmd->add_option("manifest", batch.manifest, "Manifest file")->required();
     batch_cmd->add_option("--index", batch.index,
                           "0-based render to run; default: SLURM_ARRAY_TASK_ID, then "
-                          "JOB_COMPLETION_INDEX");
+                          "JOB_COMPLETION_INDEX")
+        ->check(whole_number(0, 1'000'000'000));
 
     ServeOptions serve;
     serve.version = DISCREEL_VERSION;
@@ -364,15 +385,19 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     serve_cmd->add_option("--data", serve.data_dir, "Directory of the job store and outputs")
         ->capture_default_str();
     serve_cmd->add_option("--workers", serve.workers, "Jobs rendered at once")
-        ->check(CLI::Range(1, 64))
+        ->check(whole_number(1, 64))
         ->capture_default_str();
     serve_cmd->add_option("--max-queue", serve.max_queue,
                           "Jobs waiting for a worker; beyond it 429 with Retry-After")
-        ->check(CLI::Range(1, 100000))
+        ->check(whole_number(1, 100000))
         ->capture_default_str();
     serve_cmd->add_option("--token-file", serve.token_file,
                           "File holding a bearer token every /v1 request must present")
         ->option_text("FILE");
+    serve_cmd->add_option("--allow-host", serve.allow_hosts,
+                          "A Host name the server answers for besides its address (and "
+                          "localhost); repeat for more. Requests for any other get 421")
+        ->option_text("NAME");
     serve_cmd->add_option("--job-timeout", serve.job_timeout,
                           "Seconds one job may render before it fails")
         ->check(finite_number(0.001, 1e7))

@@ -389,6 +389,75 @@ TEST(HostileInputGLTest, NumbersAreRangeCheckedBeforeTheyAreConverted) {
                            "1000000000 frames, the most a clip may have\n");
 }
 
+// Numbers in options are read as the person typed them: "-1" never wraps into an unsigned
+// option, and a range error names its bounds as numbers, not a 310-digit double.
+TEST(HostileInputGLTest, OptionNumbersNeverWrapAndTheirRangesAreReadable) {
+    TempDir dir;
+    const std::string scene = tiny_scene(dir, "s");
+    const auto refused = [&](std::vector<std::string> args) {
+        args.insert(args.begin(), bin);
+        const auto run = run_command(args);
+        EXPECT_EQ(run.exit_code, 2);
+        return run.err.substr(0, run.err.find('\n'));
+    };
+    EXPECT_EQ(refused({"validate", scene, "--max-scene-bytes", "0"}),
+              "discreel: --max-scene-bytes: must be from 1 to 4294967296, got 0");
+    EXPECT_EQ(refused({"validate", scene, "--max-scene-bytes", "18446744073709551615"}),
+              "discreel: --max-scene-bytes: must be from 1 to 4294967296, got "
+              "18446744073709551615");
+    EXPECT_EQ(refused({"render", scene, "-o", dir / "p", "--segment", "-1"}),
+              "discreel: --segment: must be from 0 to 1000000000, got -1");
+    EXPECT_EQ(refused({"render", scene, "-o", dir / "a.mp4", "--jobs", "2000"}),
+              "discreel: --jobs: must be from 1 to 1024, got 2000");
+    EXPECT_EQ(refused({"batch", dir / "m.txt", "--index", "-1"}),
+              "discreel: --index: must be from 0 to 1000000000, got -1");
+    EXPECT_EQ(refused({"serve", "--workers", "0"}),
+              "discreel: --workers: must be from 1 to 64, got 0");
+    // The largest accepted limit reads files as any other does.
+    const auto run = run_command({bin, "validate", scene, "--max-scene-bytes", "4294967296"});
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+}
+
+// --jobs beyond what the available memory holds is cut to it, and the run says so.
+TEST(HostileInputGLTest, JobsBeyondWhatMemoryHoldsAreCutAndSaid) {
+    TempDir dir;
+    write_file(dir / "many.yaml", "version: 1\nvideo: {size: [64, 36], fps: 10, duration: 100, "
+                                  "segment: 0.1}\ndiscs:\n  - {position: [1, 1], radius: 0.3}\n");
+    // The output's directory is missing: the run fails once the plan is made, before any work.
+    const auto run = run_command({bin, "render", dir / "many.yaml", "-o", dir / "none/a.mp4",
+                                  "--jobs", "1024"});
+    EXPECT_EQ(run.exit_code, 3);
+    EXPECT_EQ(run.err.rfind("discreel: --jobs 1024: rendering ", 0), 0u) << run.err;
+    EXPECT_NE(run.err.find(" segments at once, as many as the available memory holds at 64x36\n"),
+              std::string::npos)
+        << run.err;
+}
+
+// A run blocked in a call that no signal interrupts (a write to a pipe that nobody reads) still
+// ends after one SIGINT: 10 s later, as the first signal asked.
+TEST(HostileInputGLTest, OneSignalEndsARunBlockedOnAPipeNobodyReads) {
+    TempDir dir;
+    int pipe_fds[2];
+    ASSERT_EQ(pipe2(pipe_fds, O_CLOEXEC), 0);
+    const pid_t pid = start({bin, "render", gas_scene, "-o", "-", "--lossless", "--size",
+                             "640x360", "--duration", "600"},
+                            dir / "err.txt", pipe_fds[1]);
+    close(pipe_fds[1]);
+    ASSERT_GT(pid, 0);
+    // The pipe fills (64 KiB: part of the first frame) and the writer waits.
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    const auto signalled = std::chrono::steady_clock::now();
+    kill(pid, SIGINT);
+    const int status = exit_status_of(pid);
+    const double waited =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+    close(pipe_fds[0]);
+    EXPECT_EQ(status, 1000 + SIGINT);
+    EXPECT_GT(waited, 8.0);
+    EXPECT_LT(waited, 14.0);
+    EXPECT_EQ(directory_entries(dir.path()), std::vector<std::string>{"err.txt"});
+}
+
 TEST(HostileInputGLTest, PhysicsWorkIsBounded) {
     TempDir dir;
     write_file(dir / "work.yaml", "version: 1\nvideo: {duration: 3600}\n"
