@@ -27,7 +27,7 @@ readonly BUILD_PACKAGES=(
   libosmesa6-dev libeigen3-dev libyaml-cpp-dev libcli11-dev
   libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcpp-httplib-dev nlohmann-json3-dev libsqlite3-dev
+  libboost-dev libcpp-httplib-dev nlohmann-json3-dev libsqlite3-dev
   ffmpeg
 )
 # Only the container test (ctest label `container`) needs these; see docs/container.md.

@@ -51,6 +51,19 @@ std::string without_path(std::string message, const std::string& path) {
     return message;
 }
 
+// What a server leaves in DATA/tmp: a job's directory, named by its 32-digit id (and, from
+// earlier versions, files named after the id). Nothing else there is the server's to delete.
+bool is_job_temporary(const std::string& name) {
+    std::string_view id = name;
+    if (!id.empty() && id.front() == '.') id.remove_prefix(1);
+    if (id.size() < 32) return false;
+    for (std::size_t i = 0; i < 32; ++i) {
+        const char c = id[i];
+        if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
+    }
+    return id.size() == 32 || id[32] == '.';
+}
+
 Submission answer(Submitted what, json job) {
     Submission submission;
     submission.what = what;
@@ -59,6 +72,28 @@ Submission answer(Submitted what, json job) {
 }
 
 }  // namespace
+
+Status check_data_dir(const std::string& dir) {
+    if (dir.empty()) {
+        return Error{"--data must name a directory; an empty one means none (use --data . for "
+                     "this one)"};
+    }
+    const std::filesystem::path data(dir);
+    std::error_code failed;
+    const auto status = std::filesystem::status(data, failed);
+    if (!std::filesystem::exists(status)) return {};   // created when the server opens it
+    if (!std::filesystem::is_directory(status)) {
+        return Error{"--data '" + dir + "' is not a directory"};
+    }
+    if (std::filesystem::exists(data / "jobs.sqlite3", failed)) return {};
+    const std::filesystem::directory_iterator entries(data, failed);
+    if (failed) return Error{"cannot read --data '" + dir + "': " + failed.message()};
+    if (entries != std::filesystem::directory_iterator()) {
+        return Error{"--data '" + dir + "' holds files but no job store (jobs.sqlite3): give "
+                     "serve a new or empty directory, or the --data of an earlier server"};
+    }
+    return {};
+}
 
 json job_json(const Job& job) {
     json output = nullptr;
@@ -95,6 +130,7 @@ Jobs::Jobs(const ServeDef& def, Metrics& metrics, Store store)
 Jobs::~Jobs() { stop(); }
 
 Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics) {
+    if (Status usable = check_data_dir(def.data_dir); !usable) return usable.error();
     const std::filesystem::path data(def.data_dir);
     std::error_code failed;
     for (const char* sub : {"outputs", "tmp"}) {
@@ -103,15 +139,22 @@ Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics
             return Error{"cannot create '" + (data / sub).string() + "': " + failed.message()};
         }
     }
-    // What a killed server was writing is rendered again from the start.
+    // Before anything in the directory is touched: one server per store.
+    auto lock = StoreLock::take(data / "serve.lock");
+    if (!lock) return lock.error();
+    // What a killed server was writing is rendered again from the start. Only what a server
+    // makes there goes: a job's own directory, named by its id.
     for (const auto& entry : std::filesystem::directory_iterator(data / "tmp", failed)) {
-        std::filesystem::remove_all(entry.path(), failed);
+        if (is_job_temporary(entry.path().filename().string())) {
+            std::filesystem::remove_all(entry.path(), failed);
+        }
     }
     auto store = Store::open((data / "jobs.sqlite3").string());
     if (!store) return store.error();
     auto loaded = store->load();
     if (!loaded) return loaded.error();
     std::unique_ptr<Jobs> jobs(new Jobs(def, metrics, std::move(*store)));
+    jobs->lock_ = std::move(*lock);
     for (StoredJob& stored : *loaded) {
         Job job{.id = stored.id,
                 .status = stored.status,
@@ -120,7 +163,7 @@ Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics
                 .error = std::move(stored.error),
                 .output = std::move(stored.output),
                 .warnings = json::parse(stored.warnings, nullptr, false),
-                .version = 1};   // 0 means "none seen yet" to wait_change
+                .version = 1};
         if (!job.warnings.is_array()) job.warnings = json::array();
         if (!is_final(job.status)) {
             job.status = JobStatus::queued;
@@ -145,6 +188,7 @@ void Jobs::stop() {
         std::lock_guard lock(mutex_);
         stopping_ = true;
         for (auto& [id, job] : jobs_) job.cancel->store(true);
+        for (const auto& [handle, watch] : watches_) watch.wake();
     }
     work_ready_.notify_all();
     changed_.notify_all();
@@ -155,6 +199,21 @@ void Jobs::stop() {
 void Jobs::changed(Job& job) {
     ++job.version;
     changed_.notify_all();
+    for (const auto& [handle, watch] : watches_) {
+        if (watch.id == job.id) watch.wake();
+    }
+}
+
+std::uint64_t Jobs::watch(const std::string& id, std::function<void()> wake) {
+    std::lock_guard lock(mutex_);
+    const std::uint64_t handle = next_watch_++;
+    watches_.emplace(handle, Watch{id, std::move(wake)});
+    return handle;
+}
+
+void Jobs::unwatch(std::uint64_t handle) {
+    std::lock_guard lock(mutex_);
+    watches_.erase(handle);
 }
 
 std::size_t Jobs::queued() const {
@@ -252,10 +311,12 @@ std::pair<int, json> Jobs::cancel(const std::string& id) {
                                                  "; there is nothing to cancel"}}}}};
     }
     if (job.status == JobStatus::queued) {
-        queue_.erase(std::remove(queue_.begin(), queue_.end(), id), queue_.end());
+        // The store first: if it cannot be written, the job stays queued, in memory as on disk.
         if (Status stored = store_.set_ended(id, JobStatus::cancelled, "cancelled"); !stored) {
-            return {503, {{"error", {{"message", stored.error().message}}}}};
+            return {503, {{"error", {{"message", "cannot cancel the job: " +
+                                                      stored.error().message}}}}};
         }
+        queue_.erase(std::remove(queue_.begin(), queue_.end(), id), queue_.end());
         job.status = JobStatus::cancelled;
         job.error = "cancelled";
         metrics_.ended("cancelled", 0);
@@ -264,22 +325,17 @@ std::pair<int, json> Jobs::cancel(const std::string& id) {
         return {200, job_json(job)};
     }
     job.cancel->store(true);
-    // The worker stops within a frame; a long frame is waited for, but not for ever.
-    changed_.wait_for(lock, std::chrono::seconds(10),
+    // The worker stops within a physics step; a slow one is waited for, but not for ever.
+    changed_.wait_for(lock, std::chrono::seconds(5),
                       [&] { return is_final(jobs_.at(id).status) || stopping_; });
     return {is_final(jobs_.at(id).status) ? 200 : 202, job_json(jobs_.at(id))};
 }
 
-std::optional<Jobs::Snapshot> Jobs::wait_change(const std::string& id, std::uint64_t seen,
-                                                std::chrono::milliseconds timeout) {
-    std::unique_lock lock(mutex_);
+std::optional<Jobs::Snapshot> Jobs::snapshot(const std::string& id) {
+    std::lock_guard lock(mutex_);
     auto found = jobs_.find(id);
     if (found == jobs_.end()) return std::nullopt;
-    if (seen != 0) {
-        changed_.wait_for(lock, timeout,
-                          [&] { return jobs_.at(id).version != seen || stopping_; });
-    }
-    const Job& job = jobs_.at(id);
+    const Job& job = found->second;
     return Snapshot{job_json(job), job.version, is_final(job.status)};
 }
 
@@ -331,9 +387,11 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         std::lock_guard lock(mutex_);
         cancel = jobs_.at(id).cancel;
     }
+    // The job's own directory: everything its render writes, temporaries included.
     const std::string tmp = (tmp_ / id).string();
+    std::error_code made;
+    std::filesystem::create_directories(tmp, made);
     std::atomic<bool> timed_out{false};   // set by whichever stage polls should_stop
-    std::optional<std::string> extension;
     const auto outcome = [&]() -> Expected<OutputInfo> {
         auto text = store_.request(id);
         if (!text) return text.error();
@@ -347,7 +405,6 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
             return Error{refused->body["errors"][0]["message"].get<std::string>()};
         }
         job::RenderPlan& plan = std::get<PlannedJob>(planned).plan;
-        extension = request.format;
         const render::RendererDef size{.width = plan.scene.video.width,
                                        .height = plan.scene.video.height};
         if (!warm || warm->def().width != size.width || warm->def().height != size.height) {
@@ -361,7 +418,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         job::RenderDef def;
         def.scene = std::move(plan.scene);
         def.output = plan.sink;
-        def.output.path = tmp + "." + request.format;
+        def.output.path = tmp + "/render." + request.format;
         def.frames = plan.frames;
         def.audio = plan.audio;
         def.renderer = &*warm;
@@ -379,17 +436,24 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
             if (Clock::now() > deadline) timed_out = true;
             return cancel->load() || timed_out.load();
         };
+        // A warning of the run (a body that left its walls) joins the scene's, placed nowhere.
+        def.on_warning = [&](const std::string& message) {
+            std::lock_guard lock(mutex_);
+            Job& job = jobs_.at(id);
+            job.warnings.push_back({{"line", nullptr}, {"column", nullptr}, {"message", message}});
+            changed(job);
+        };
         auto rendered = job::render(def);
         if (!rendered) return rendered.error();
         return keep_output(def.output.path, request.format);
     }();
     const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
     std::error_code ignored;
-    if (extension) std::filesystem::remove(tmp + "." + *extension, ignored);
+    std::filesystem::remove_all(tmp, ignored);
 
     std::lock_guard lock(mutex_);
     Job& job = jobs_.at(id);
-    if (stopping_ && !outcome) {
+    if (stopping_ && !outcome && !timed_out) {
         // Shutting down: the store still says running, so the next server renders it again.
         job.status = JobStatus::queued;
         changed(job);
@@ -405,7 +469,9 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
     } else {
         const bool cancelled = cancel->load() && !timed_out;
         job.status = cancelled ? JobStatus::cancelled : JobStatus::failed;
-        std::string message = without_path(outcome.error().message, tmp);
+        // Temporaries are named after the output's path: the job's directory stands for all.
+        std::string message = without_path(outcome.error().message, tmp + "/render");
+        message = without_path(std::move(message), tmp);
         if (timed_out) {
             std::string limit;
             append_number(limit, def_.job_timeout);

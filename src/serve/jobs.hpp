@@ -73,17 +73,21 @@ public:
         OutputInfo info;
     };
     std::optional<Output> output(const std::string& id);
-    // DELETE: 404 unknown, 409 finished, otherwise cancelled (waits for a running job to stop).
+    // DELETE: 404 unknown, 409 finished, otherwise cancelled (waits for a running job to stop,
+    // which it does within a physics step; 202 if it has not after a few seconds).
     std::pair<int, nlohmann::json> cancel(const std::string& id);
-    // Waits up to `timeout` for the job to change after `seen` (0: answers at once); the job,
-    // its version and whether it is final, or nullopt for an unknown id. Ends early on stop().
+    // The job now, its version (bumped on every change) and whether it is final; nullopt for
+    // an unknown id.
     struct Snapshot {
         nlohmann::json job;
         std::uint64_t version = 0;
         bool final = false;
     };
-    std::optional<Snapshot> wait_change(const std::string& id, std::uint64_t seen,
-                                        std::chrono::milliseconds timeout);
+    std::optional<Snapshot> snapshot(const std::string& id);
+    // Calls `wake` after every change of job `id`, and at stop(), until unwatch(the handle).
+    // `wake` runs with the jobs' lock held: it must only hand the news on (post, notify).
+    std::uint64_t watch(const std::string& id, std::function<void()> wake);
+    void unwatch(std::uint64_t handle);
     bool stopping() const { return stopping_; }
     std::size_t queued() const;
     std::size_t running() const;
@@ -97,11 +101,18 @@ private:
 
     ServeDef def_;
     Metrics& metrics_;
+    StoreLock lock_;
     Store store_;
     std::filesystem::path outputs_, tmp_;
     mutable std::mutex mutex_;   // guards what follows
     std::condition_variable work_ready_, changed_;
     std::map<std::string, Job> jobs_;
+    struct Watch {
+        std::string id;
+        std::function<void()> wake;
+    };
+    std::map<std::uint64_t, Watch> watches_;
+    std::uint64_t next_watch_ = 1;
     std::deque<std::string> queue_;
     std::size_t running_ = 0;
     double mean_seconds_ = 1;    // of recent jobs, for Retry-After

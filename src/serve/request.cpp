@@ -104,6 +104,8 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
         });
     } catch (const json::parse_error& e) {
         return refusal(400, std::string("the body is not JSON: ") + e.what());
+    } catch (const json::out_of_range& e) {   // a number beyond a double, such as 1e400
+        return refusal(400, std::string("a number in the body is out of range: ") + e.what());
     } catch (const TooDeep&) {
         return refusal(400, "the body must be one JSON object of strings and numbers");
     }

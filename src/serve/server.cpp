@@ -1,15 +1,22 @@
-// The HTTP side of discreel serve: routes, authentication, limits, logs and metrics. Jobs
-// live in jobs.cpp; this file only translates between HTTP and them.
-#include <httplib.h>
-#include <sys/socket.h>
+// The HTTP side of discreel serve: routes, authentication, host and content checks, ranges,
+// logs and metrics. Jobs live in jobs.cpp and the HTTP connections in http.cpp; this file only
+// translates between them.
+#include <fcntl.h>
+#include <malloc.h>
+#include <unistd.h>
 
-#include <cstdio>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <memory>
 #include <semaphore>
+
+#include <boost/asio/ip/address.hpp>
 
 #include "discreel/render.hpp"
 #include "discreel/serve.hpp"
 #include "discreel_web.hpp"
+#include "http.hpp"
 #include "jobs.hpp"
 #include "metrics.hpp"
 #include "request.hpp"
@@ -20,26 +27,29 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* id_pattern = "([0-9a-f]{32})";
-// Each open event stream holds one of the connection threads; the rest stay for other requests.
-constexpr int http_threads = 64;
-constexpr int max_event_streams = 48;
-// Scenes loaded at once by the connection threads (validation before a job is accepted): each
-// may take up to the scene limits' memory (docs/reliability.md), so only a few at a time.
+// Event streams hold no thread, only a connection; the cap keeps them from taking all.
+constexpr int max_event_streams = 128;
+// Scenes loaded at once for checking: each may take up to the scene limits' memory
+// (docs/reliability.md), so only a few at a time.
 constexpr std::ptrdiff_t concurrent_loads = 2;
-constexpr auto keep_alive_wait = std::chrono::seconds(15);   // between comments on a quiet stream
+// A scene text at least this long is worth giving its memory back to the system after loading.
+constexpr std::size_t large_scene = std::size_t{256} * 1024;
 
-void reply(httplib::Response& res, int status, const json& body) {
+http::Response reply(int status, const json& body) {
+    http::Response res;
     res.status = status;
-    res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace) + "\n",
-                    "application/json");
+    res.set("Content-Type", "application/json");
+    res.body = body.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
+    return res;
 }
 
-void reply(httplib::Response& res, const Refusal& refused) {
-    reply(res, refused.status, refused.body);
-}
+http::Response reply(const Refusal& refused) { return reply(refused.status, refused.body); }
 
 json error_body(const std::string& message) { return {{"error", {{"message", message}}}}; }
+
+http::Response refuse(int status, const std::string& message) {
+    return reply(status, error_body(message));
+}
 
 // Compares in time that depends only on the expected token's length, never on where the first
 // difference is.
@@ -52,255 +62,451 @@ bool same_token(std::string_view given, std::string_view expected) {
     return difference == 0;
 }
 
-const char* reason_for(int status) {
-    switch (status) {
-        case 400: return "the request is malformed";
-        case 401: return "a valid bearer token is required";
-        case 404: return "no such resource";
-        case 405: return "method not allowed";
-        case 413: return "the request body is over the scene size limit";
-        default: return "the request failed";
-    }
+std::string lower(std::string_view text) {
+    std::string out(text);
+    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
 }
 
-thread_local Clock::time_point request_started;
+// "name", "name:port", "[v6]" or "[v6]:port" -> name (brackets kept off) and port (-1: none);
+// nullopt when malformed.
+std::optional<std::pair<std::string, int>> split_host(std::string_view host) {
+    std::string name;
+    std::string_view rest;
+    if (!host.empty() && host.front() == '[') {
+        const auto close = host.find(']');
+        if (close == std::string_view::npos) return std::nullopt;
+        name = std::string(host.substr(1, close - 1));
+        rest = host.substr(close + 1);
+    } else {
+        const auto colon = host.find(':');
+        name = std::string(host.substr(0, colon));
+        rest = colon == std::string_view::npos ? std::string_view() : host.substr(colon);
+    }
+    if (name.empty()) return std::nullopt;
+    int port = -1;
+    if (!rest.empty()) {
+        if (rest.front() != ':' || rest.size() < 2 || rest.size() > 6) return std::nullopt;
+        port = 0;
+        for (const char c : rest.substr(1)) {
+            if (c < '0' || c > '9') return std::nullopt;
+            port = port * 10 + (c - '0');
+        }
+    }
+    return std::pair{lower(name), port};
+}
 
-struct FileCloser {
-    void operator()(std::FILE* file) const { std::fclose(file); }
+bool is_ip_literal(const std::string& name) {
+    boost::system::error_code failed;
+    (void)boost::asio::ip::make_address(name, failed);
+    return !failed;
+}
+
+// A Range header against a file of `size` bytes (RFC 9110, 14.2): one part to send, the whole
+// file (no header, one the server ignores, or parts that do not coalesce into one), or
+// nothing satisfiable (416).
+struct RangeAnswer {
+    enum Kind { whole, part, unsatisfiable } kind = whole;
+    std::uint64_t first = 0, last = 0;   // inclusive, for part
+};
+
+std::optional<std::uint64_t> digits_value(std::string_view text) {
+    if (text.empty() || text.size() > 18) return std::nullopt;   // 18 digits fit, with room
+    std::uint64_t value = 0;
+    for (const char c : text) {
+        if (c < '0' || c > '9') return std::nullopt;
+        value = value * 10 + static_cast<std::uint64_t>(c - '0');
+    }
+    return value;
+}
+
+std::string_view trimmed(std::string_view text) {
+    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+    return text;
+}
+
+RangeAnswer resolve_range(std::string_view header, std::uint64_t size) {
+    constexpr std::size_t max_parts = 16;   // more: the header is ignored
+    header = trimmed(header);
+    if (header.empty() || header.rfind("bytes=", 0) != 0 || size == 0) return {};
+    header.remove_prefix(6);
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> parts;
+    std::size_t specs = 0;
+    while (!header.empty()) {
+        const auto comma = header.find(',');
+        const std::string_view spec = trimmed(header.substr(0, comma));
+        header = comma == std::string_view::npos ? std::string_view() : header.substr(comma + 1);
+        if (spec.empty()) continue;
+        if (++specs > max_parts) return {};
+        const auto dash = spec.find('-');
+        if (dash == std::string_view::npos) return {};
+        const std::string_view from = spec.substr(0, dash), to = spec.substr(dash + 1);
+        if (from.empty()) {   // the last N bytes
+            const auto n = digits_value(to);
+            if (!n) return {};
+            if (*n == 0) continue;
+            parts.emplace_back(size - std::min(*n, size), size - 1);
+            continue;
+        }
+        const auto first = digits_value(from);
+        if (!first) return {};
+        std::uint64_t last = size - 1;
+        if (!to.empty()) {
+            const auto given = digits_value(to);
+            if (!given || *given < *first) return {};
+            last = std::min(*given, size - 1);
+        }
+        if (*first >= size) continue;   // unsatisfiable on its own
+        parts.emplace_back(*first, last);
+    }
+    if (specs == 0) return {};
+    if (parts.empty()) return {RangeAnswer::unsatisfiable};
+    std::sort(parts.begin(), parts.end());
+    std::pair<std::uint64_t, std::uint64_t> merged = parts.front();
+    for (std::size_t i = 1; i < parts.size(); ++i) {
+        if (parts[i].first > merged.second + 1) return {};   // disjoint: the whole file
+        merged.second = std::max(merged.second, parts[i].second);
+    }
+    return {RangeAnswer::part, merged.first, merged.second};
+}
+
+struct FdCloser {
+    void operator()(const int* fd) const {
+        if (*fd >= 0) ::close(*fd);
+        delete fd;
+    }
 };
 
 }  // namespace
 
-struct Server::Impl {
+struct Server::Impl final : http::Handler {
     ServeDef def;
     Metrics metrics;
     std::unique_ptr<Jobs> jobs;
-    httplib::Server http;
-    int port = 0;
+    std::unique_ptr<http::Server> http;
     std::atomic<int> streams{0};
     std::counting_semaphore<concurrent_loads> loading{concurrent_loads};
 
-    // plan_job with at most concurrent_loads scenes in memory at once.
+    // plan_job with at most concurrent_loads scenes in memory at once; a large scene's memory
+    // goes back to the system afterwards (glibc keeps freed memory in per-thread arenas).
     std::variant<PlannedJob, Refusal> plan(const JobRequest& request) {
         loading.acquire();
         struct Release {
             std::counting_semaphore<concurrent_loads>& semaphore;
-            ~Release() { semaphore.release(); }
-        } release{loading};
+            bool trim;
+            ~Release() {
+                if (trim) malloc_trim(0);
+                semaphore.release();
+            }
+        } release{loading, request.scene.size() >= large_scene};
         return plan_job(request, def.limits);
     }
 
-    void routes();
-    void post_render(const httplib::Request& req, httplib::Response& res);
-    void post_validate(const httplib::Request& req, httplib::Response& res);
-    void get_output(const httplib::Request& req, httplib::Response& res);
-    void get_events(const httplib::Request& req, httplib::Response& res);
+    bool allowed_host(std::string_view host) const;
+    std::optional<http::Response> check_head(const http::Request& head) override;
+    bool blocking(const http::Request& request) const override;
+    http::Response handle(http::Request& request) override;
+    void answered(const http::Request& request, int status) override;
+
+    http::Response route(http::Request& request);
+    http::Response post_render(const http::Request& req);
+    http::Response post_validate(const http::Request& req);
+    http::Response get_output(const http::Request& req, const std::string& id);
+    http::Response get_events(const std::string& id);
 };
 
-void Server::Impl::post_render(const httplib::Request& req, httplib::Response& res) {
+bool Server::Impl::allowed_host(std::string_view host) const {
+    const auto split = split_host(host);
+    if (!split) return false;
+    const auto& [name, port] = *split;
+    if (port != -1 && port != http->port()) return false;
+    if (port == -1 && http->port() != 80) return false;
+    for (const std::string& allowed : def.allow_hosts) {
+        if (lower(allowed) == name) return true;
+    }
+    boost::system::error_code failed;
+    const auto listening = boost::asio::ip::make_address(def.host, failed);
+    if (failed) return false;
+    const bool wildcard = listening.is_unspecified();
+    if (name == "localhost") return wildcard || listening.is_loopback();
+    if (!is_ip_literal(name)) return false;
+    // An address: the one listened on, or any for a wildcard listen (a name that resolves to
+    // it, the rebinding attack, is not an address).
+    return wildcard || boost::asio::ip::make_address(name) == listening;
+}
+
+std::optional<http::Response> Server::Impl::check_head(const http::Request& head) {
+    // HTTP/1.0 may leave Host out (the container's health check does); browsers, which DNS
+    // rebinding works through, always send it.
+    const std::string_view host = head.field("host");
+    if (host.empty() && head.version != 10) {
+        return refuse(400, "the request has no Host header");
+    }
+    if (!host.empty() && !allowed_host(host)) {
+        return refuse(421, "this server does not answer for host '" + std::string(host) +
+                               "' (serve --allow-host NAME adds names)");
+    }
+    if (def.token && head.path.rfind("/v1/", 0) == 0) {
+        const std::string_view header = head.field("authorization");
+        const std::string_view prefix = "Bearer ";
+        const bool bearer = header.size() > prefix.size() && header.substr(0, 7) == prefix;
+        if (!bearer || !same_token(header.substr(prefix.size()), *def.token)) {
+            http::Response res = refuse(401, "a valid bearer token is required");
+            res.set("WWW-Authenticate", "Bearer");
+            return res;
+        }
+    }
+    if (head.method == "POST") {
+        const std::string type = lower(head.field("content-type"));
+        const std::string_view media = trimmed(std::string_view(type).substr(0, type.find(';')));
+        if (media != "application/json") {
+            return refuse(415, "send the body as JSON, with Content-Type: application/json");
+        }
+    }
+    return std::nullopt;
+}
+
+bool Server::Impl::blocking(const http::Request& request) const {
+    // Scene loading, store writes and waiting for a cancelled job.
+    return request.method == "POST" || request.method == "DELETE";
+}
+
+void Server::Impl::answered(const http::Request& req, int status) {
+    metrics.answered(status);
+    // A large body and what was made of it are freed by now: back to the system with them
+    // (glibc keeps freed memory in the arena of the thread that used it).
+    if (req.body_bytes >= large_scene) malloc_trim(0);
+    if (!def.log_requests) return;
+    const double ms = req.started == Clock::time_point{}
+                          ? 0.0
+                          : std::chrono::duration<double, std::milli>(Clock::now() - req.started)
+                                .count();
+    log_line("request", {{"method", req.method},
+                         {"path", req.path},
+                         {"status", status},
+                         {"ms", std::round(ms * 10) / 10},
+                         {"remote", req.remote}});
+}
+
+http::Response Server::Impl::handle(http::Request& request) {
+    try {
+        http::Response res = route(request);
+        // The page and every answer: never inside another site's frame.
+        res.set("X-Frame-Options", "DENY");
+        res.set("X-Content-Type-Options", "nosniff");
+        return res;
+    } catch (const std::exception& e) {
+        log_line("exception", {{"message", e.what()}});
+        return refuse(500, "internal error");
+    }
+}
+
+http::Response Server::Impl::route(http::Request& req) {
+    const std::string& path = req.path;
+    const bool get = req.method == "GET" || req.method == "HEAD";
+    const auto only = [&](const char* allow) {
+        http::Response res = refuse(405, "method not allowed");
+        res.set("Allow", allow);
+        return res;
+    };
+    if (path == "/") {
+        if (!get) return only("GET, HEAD");
+        http::Response res;
+        res.set("Content-Type", "text/html; charset=utf-8");
+        res.set("Content-Security-Policy",
+                "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; "
+                "connect-src 'self'; img-src blob:; media-src blob:; frame-ancestors 'none'");
+        res.body = std::string(discreel_web::index_html);
+        return res;
+    }
+    if (path == "/healthz") {
+        if (!get) return only("GET, HEAD");
+        return reply(200, {{"ok", true}, {"queued", jobs->queued()}, {"running", jobs->running()}});
+    }
+    if (path == "/metrics") {
+        if (!get) return only("GET, HEAD");
+        http::Response res;
+        res.set("Content-Type", "text/plain; version=0.0.4; charset=utf-8");
+        res.body = metrics.text(jobs->queued(), jobs->running(), def.workers);
+        return res;
+    }
+    if (path == "/v1/renders") {
+        if (req.method != "POST") return only("POST");
+        return post_render(req);
+    }
+    if (path == "/v1/validate") {
+        if (req.method != "POST") return only("POST");
+        return post_validate(req);
+    }
+    // /v1/renders/<32 lowercase hex digits>[/output|/events]; anything else is no resource.
+    constexpr std::string_view prefix = "/v1/renders/";
+    if (path.rfind(prefix, 0) != 0 || path.size() < prefix.size() + 32) {
+        return refuse(404, "no such resource");
+    }
+    const std::string id = path.substr(prefix.size(), 32);
+    if (!std::all_of(id.begin(), id.end(),
+                     [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); })) {
+        return refuse(404, "no such resource");
+    }
+    const std::string_view rest = std::string_view(path).substr(prefix.size() + 32);
+    if (rest.empty()) {
+        if (get) {
+            if (auto job = jobs->get(id)) return reply(200, *job);
+            return refuse(404, "no job " + id);
+        }
+        if (req.method == "DELETE") {
+            const auto [status, body] = jobs->cancel(id);
+            return reply(status, body);
+        }
+        return only("GET, HEAD, DELETE");
+    }
+    if (rest == "/output") return get ? get_output(req, id) : only("GET, HEAD");
+    if (rest == "/events") return get ? get_events(id) : only("GET");
+    return refuse(404, "no such resource");
+}
+
+http::Response Server::Impl::post_render(const http::Request& req) {
     auto parsed = parse_job_request(req.body, def.limits, def.version);
-    if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(res, *refused);
+    if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(*refused);
     const JobRequest& request = std::get<JobRequest>(parsed);
     auto planned = plan(request);
-    if (auto* refused = std::get_if<Refusal>(&planned)) return reply(res, *refused);
+    if (auto* refused = std::get_if<Refusal>(&planned)) return reply(*refused);
     const PlannedJob& resolved = std::get<PlannedJob>(planned);
     const Submission done = jobs->submit(
         request, resolved.plan.frames.last - resolved.plan.frames.first + 1, resolved.warnings);
+    http::Response res;
     switch (done.what) {
         case Submitted::accepted:
         case Submitted::existing:
-            res.set_header("Location", "/v1/renders/" + request.id);
-            return reply(res, 202, done.job);
+            res = reply(202, done.job);
+            res.set("Location", "/v1/renders/" + request.id);
+            return res;
         case Submitted::cached:
-            res.set_header("Location", "/v1/renders/" + request.id);
-            return reply(res, 200, done.job);
+            res = reply(200, done.job);
+            res.set("Location", "/v1/renders/" + request.id);
+            return res;
         case Submitted::busy:
-            res.set_header("Retry-After", std::to_string(done.retry_after));
-            return reply(res, 429, error_body("the queue is full (" +
-                                              std::to_string(def.max_queue) +
-                                              " jobs); try again later"));
+            res = refuse(429, "the queue is full (" + std::to_string(def.max_queue) +
+                                  " jobs); try again later");
+            res.set("Retry-After", std::to_string(done.retry_after));
+            return res;
         case Submitted::store_failed:
-            return reply(res, 503, error_body("cannot accept the job: " + done.error));
+            return refuse(503, "cannot accept the job: " + done.error);
     }
+    return refuse(500, "internal error");
 }
 
-void Server::Impl::post_validate(const httplib::Request& req, httplib::Response& res) {
+http::Response Server::Impl::post_validate(const http::Request& req) {
     auto parsed = parse_job_request(req.body, def.limits, def.version);
-    if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(res, *refused);
+    if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(*refused);
     auto planned = plan(std::get<JobRequest>(parsed));
-    if (auto* refused = std::get_if<Refusal>(&planned)) return reply(res, *refused);
-    reply(res, 200, {{"ok", true}, {"warnings", std::get<PlannedJob>(planned).warnings}});
+    if (auto* refused = std::get_if<Refusal>(&planned)) return reply(*refused);
+    return reply(200, {{"ok", true}, {"warnings", std::get<PlannedJob>(planned).warnings}});
 }
 
-void Server::Impl::get_output(const httplib::Request& req, httplib::Response& res) {
-    const std::string id = req.matches[1];
+http::Response Server::Impl::get_output(const http::Request& req, const std::string& id) {
     const auto output = jobs->output(id);
     if (!output) {
-        if (!jobs->get(id)) return reply(res, 404, error_body("no job " + id));
-        return reply(res, 409, error_body("the job has no output (yet): see its status"));
+        if (!jobs->get(id)) return refuse(404, "no job " + id);
+        return refuse(409, "the job has no output (yet): see its status");
     }
     const std::string etag = "\"" + output->info.sha256 + "\"";
-    res.set_header("ETag", etag);
+    http::Response res;
+    res.set("ETag", etag);
     // The bytes of an id never change: clients may keep them.
-    res.set_header("Cache-Control", "private, max-age=31536000, immutable");
-    if (req.get_header_value("If-None-Match") == etag) {
+    res.set("Cache-Control", "private, max-age=31536000, immutable");
+    res.set("Accept-Ranges", "bytes");
+    if (req.field("if-none-match") == etag) {
         res.status = 304;
-        return;
+        return res;
     }
-    // cpp-httplib 0.11 slices a streamed body by the ranges it parsed as they are, past the end
-    // of the file too (announcing lengths the body does not have): a range that starts past the
-    // end is 416 here, and one that ends past it is cut at the end (RFC 9110, 14.1.2). The
-    // request is this connection's own object, made const only for handlers.
-    const auto size = static_cast<std::int64_t>(output->info.bytes);
-    for (auto& [first, last] : const_cast<httplib::Request&>(req).ranges) {
-        const bool suffix = first < 0;
-        if ((suffix && last <= 0) || (!suffix && first >= size)) {
-            res.status = 416;
-            res.set_header("Content-Range", "bytes */" + std::to_string(size));
-            return;
-        }
-        if (suffix) last = std::min<std::int64_t>(last, size);
-        if (!suffix && last >= size) last = size - 1;
+    const auto size = static_cast<std::uint64_t>(output->info.bytes);
+    const RangeAnswer range = resolve_range(req.field("range"), size);
+    if (range.kind == RangeAnswer::unsatisfiable) {
+        res.status = 416;
+        res.set("Content-Range", "bytes */" + std::to_string(size));
+        return res;
     }
-    std::shared_ptr<std::FILE> file(std::fopen(output->path.c_str(), "rb"), FileCloser{});
-    if (!file) return reply(res, 500, error_body("the output of job " + id + " is missing"));
-    res.set_header("Content-Disposition",
-                   "inline; filename=\"" + id + "." + output->info.extension + "\"");
-    res.set_content_provider(
-        static_cast<std::size_t>(output->info.bytes), content_type_of(output->info.extension),
-        [this, file](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-            char buffer[1 << 16];
-            const std::size_t want = std::min(length, sizeof buffer);
-            if (std::fseek(file.get(), static_cast<long>(offset), SEEK_SET) != 0) return false;
-            const std::size_t got = std::fread(buffer, 1, want, file.get());
-            if (got == 0) return false;
-            metrics.served(got);
-            return sink.write(buffer, got);
-        });
+    const int fd = ::open(output->path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return refuse(500, "the output of job " + id + " is missing");
+    res.set("Content-Type", content_type_of(output->info.extension));
+    res.set("Content-Disposition",
+            "inline; filename=\"" + id + "." + output->info.extension + "\"");
+    http::FileBody file{.fd = std::shared_ptr<const int>(new int(fd), FdCloser{}),
+                        .offset = 0,
+                        .length = size,
+                        .sent = [this](std::uint64_t bytes) { metrics.served(bytes); }};
+    if (range.kind == RangeAnswer::part) {
+        res.status = 206;
+        res.set("Content-Range", "bytes " + std::to_string(range.first) + "-" +
+                                     std::to_string(range.last) + "/" + std::to_string(size));
+        file.offset = range.first;
+        file.length = range.last - range.first + 1;
+    }
+    res.file = std::move(file);
+    return res;
 }
 
-void Server::Impl::get_events(const httplib::Request& req, httplib::Response& res) {
-    const std::string id = req.matches[1];
-    if (!jobs->get(id)) return reply(res, 404, error_body("no job " + id));
+namespace {
+
+// One job's changes as server-sent events: its state at once, then at every change, ending
+// after a final status or when the server stops.
+class JobEvents final : public http::EventSource {
+public:
+    JobEvents(Jobs& jobs, std::string id, std::atomic<int>& streams)
+        : jobs_(jobs), id_(std::move(id)), streams_(streams) {}
+    ~JobEvents() override {
+        if (handle_ != 0) jobs_.unwatch(handle_);
+        --streams_;
+    }
+    JobEvents(const JobEvents&) = delete;
+    JobEvents& operator=(const JobEvents&) = delete;
+
+    std::string next(bool& ended) override {
+        const auto snapshot = jobs_.snapshot(id_);
+        if (!snapshot || jobs_.stopping()) {
+            ended = true;
+            return {};
+        }
+        if (snapshot->version == seen_) return {};
+        seen_ = snapshot->version;
+        ended = snapshot->final;
+        return "event: job\ndata: " + snapshot->job.dump() + "\n\n";
+    }
+    void watch(std::function<void()> wake) override { handle_ = jobs_.watch(id_, std::move(wake)); }
+
+private:
+    Jobs& jobs_;
+    std::string id_;
+    std::atomic<int>& streams_;
+    std::uint64_t seen_ = 0, handle_ = 0;
+};
+
+}  // namespace
+
+http::Response Server::Impl::get_events(const std::string& id) {
+    if (!jobs->get(id)) return refuse(404, "no job " + id);
     if (streams.fetch_add(1) >= max_event_streams) {
         --streams;
-        res.set_header("Retry-After", "5");
-        return reply(res, 503, error_body("too many event streams are open; poll "
-                                          "GET /v1/renders/" + id + " instead"));
+        http::Response res = refuse(503, "too many event streams are open; poll "
+                                         "GET /v1/renders/" + id + " instead");
+        res.set("Retry-After", "5");
+        return res;
     }
-    res.set_header("Cache-Control", "no-store");
-    std::uint64_t seen = 0;
-    bool ended = false;
-    res.set_chunked_content_provider(
-        "text/event-stream",
-        [this, id, seen, ended](std::size_t, httplib::DataSink& sink) mutable {
-            if (ended) {
-                sink.done();
-                return true;
-            }
-            const auto snapshot = jobs->wait_change(id, seen, keep_alive_wait);
-            if (!snapshot || jobs->stopping()) {
-                sink.done();
-                return true;
-            }
-            if (snapshot->version == seen) {   // quiet: a comment keeps proxies from closing
-                static constexpr char comment[] = ": waiting\n\n";
-                return sink.write(comment, sizeof comment - 1);
-            }
-            seen = snapshot->version;
-            const std::string event = "event: job\ndata: " + snapshot->job.dump() + "\n\n";
-            ended = snapshot->final;
-            return sink.write(event.data(), event.size());
-        },
-        [this](bool) { --streams; });
-}
-
-void Server::Impl::routes() {
-    http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-        request_started = Clock::now();
-        if (!def.token || req.path.rfind("/v1/", 0) != 0) {
-            return httplib::Server::HandlerResponse::Unhandled;
-        }
-        const std::string header = req.get_header_value("Authorization");
-        const std::string_view prefix = "Bearer ";
-        const bool bearer = header.size() > prefix.size() && header.rfind(prefix, 0) == 0;
-        if (!bearer || !same_token(std::string_view(header).substr(prefix.size()), *def.token)) {
-            res.set_header("WWW-Authenticate", "Bearer");
-            reply(res, 401, error_body(reason_for(401)));
-            return httplib::Server::HandlerResponse::Handled;
-        }
-        return httplib::Server::HandlerResponse::Unhandled;
-    });
-    http.set_error_handler([](const httplib::Request&, httplib::Response& res) {
-        // 304 and 416 carry no body (a 416's would be cut by the range it refuses).
-        if (res.body.empty() && res.status != 304 && res.status != 416) {
-            reply(res, res.status, error_body(reason_for(res.status)));
-        }
-    });
-    http.set_exception_handler(
-        [](const httplib::Request&, httplib::Response& res, const std::exception_ptr& failure) {
-            std::string what = "unknown";
-            try {
-                std::rethrow_exception(failure);
-            } catch (const std::exception& e) {
-                what = e.what();
-            } catch (...) {
-            }
-            log_line("exception", {{"message", what}});
-            reply(res, 500, error_body("internal error"));
-        });
-    http.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
-        metrics.answered(res.status);
-        if (!def.log_requests) return;
-        const double ms =
-            std::chrono::duration<double, std::milli>(Clock::now() - request_started).count();
-        log_line("request", {{"method", req.method},
-                             {"path", req.path},
-                             {"status", res.status},
-                             {"ms", std::round(ms * 10) / 10},
-                             {"remote", req.remote_addr}});
-    });
-
-    http.Get("/", [](const httplib::Request&, httplib::Response& res) {
-        res.set_header("Content-Security-Policy",
-                       "default-src 'none'; script-src 'unsafe-inline'; style-src "
-                       "'unsafe-inline'; connect-src 'self'; img-src blob:; media-src blob:");
-        res.set_content(std::string(discreel_web::index_html), "text/html; charset=utf-8");
-    });
-    http.Get("/healthz", [this](const httplib::Request&, httplib::Response& res) {
-        reply(res, 200, {{"ok", true}, {"queued", jobs->queued()}, {"running", jobs->running()}});
-    });
-    http.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
-        res.set_content(metrics.text(jobs->queued(), jobs->running(), def.workers),
-                        "text/plain; version=0.0.4; charset=utf-8");
-    });
-    http.Post("/v1/renders", [this](const httplib::Request& req, httplib::Response& res) {
-        post_render(req, res);
-    });
-    http.Post("/v1/validate", [this](const httplib::Request& req, httplib::Response& res) {
-        post_validate(req, res);
-    });
-    const std::string job_path = std::string("/v1/renders/") + id_pattern;
-    http.Get(job_path, [this](const httplib::Request& req, httplib::Response& res) {
-        const std::string id = req.matches[1];
-        if (auto job = jobs->get(id)) return reply(res, 200, *job);
-        reply(res, 404, error_body("no job " + id));
-    });
-    http.Delete(job_path, [this](const httplib::Request& req, httplib::Response& res) {
-        const auto [status, body] = jobs->cancel(req.matches[1]);
-        reply(res, status, body);
-    });
-    http.Get(job_path + "/output", [this](const httplib::Request& req, httplib::Response& res) {
-        get_output(req, res);
-    });
-    http.Get(job_path + "/events", [this](const httplib::Request& req, httplib::Response& res) {
-        get_events(req, res);
-    });
+    http::Response res;
+    res.set("Content-Type", "text/event-stream");
+    res.set("Cache-Control", "no-store");
+    res.events = std::make_shared<JobEvents>(*jobs, id, streams);
+    return res;
 }
 
 Server::Server(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Server::~Server() {
-    if (impl_) stop();
+    if (impl_) {
+        stop();
+        impl_->http.reset();   // its threads end before the jobs they call go
+    }
 }
 Server::Server(Server&&) noexcept = default;
 Server& Server::operator=(Server&&) noexcept = default;
@@ -310,55 +516,33 @@ Expected<Server> Server::open(const ServeDef& def) {
     render::set_rasterizer_threads(0);
     auto impl = std::make_unique<Impl>();
     impl->def = def;
+    // A JSON body escapes the scene's text (a newline becomes \n): room for that, then the
+    // scene itself is held to the limit when parsed.
+    http::Limits limits;
+    limits.body_bytes = 2 * static_cast<std::uint64_t>(def.limits.file_bytes) + 65536;
+    limits.bodies_in_flight = std::max<std::uint64_t>(64u << 20, 8 * limits.body_bytes);
+    // The store first: its lock decides whether this server may run at all.
     auto jobs = Jobs::open(def, impl->metrics);
     if (!jobs) return jobs.error();
     impl->jobs = std::move(*jobs);
-    httplib::Server& http = impl->http;
-    http.new_task_queue = [] { return new httplib::ThreadPool(http_threads); };
-    // A JSON body escapes the scene's text (a newline becomes \n): room for that, then the
-    // scene itself is held to the limit when parsed. Past this, 413 before the body is read.
-    http.set_payload_max_length(2 * def.limits.file_bytes + 65536);
-    http.set_read_timeout(5);          // each read of a slow client
-    http.set_write_timeout(10);
-    http.set_keep_alive_timeout(5);
-    http.set_keep_alive_max_count(100);
-    impl->routes();
-    // Debian's build of cpp-httplib listens with a backlog of 5: a burst of clients connecting
-    // at once overflows it and some of their connections are reset. The listening socket passes
-    // through this hook before it is bound; listen() again afterwards raises the backlog.
-    int listening = -1;
-    http.set_socket_options([&listening](socket_t fd) {
-        listening = fd;
-        httplib::default_socket_options(fd);
-    });
-    if (def.port == 0) {
-        impl->port = http.bind_to_any_port(def.host);
-        if (impl->port < 0) return Error{"cannot listen on " + def.host + ": no free port"};
-    } else {
-        if (!http.bind_to_port(def.host, def.port)) {
-            return Error{"cannot listen on " + def.host + ":" + std::to_string(def.port) +
-                         " (in use, or not an address of this machine)"};
-        }
-        impl->port = def.port;
-    }
-    if (listening >= 0) ::listen(listening, SOMAXCONN);
-    http.set_socket_options(httplib::default_socket_options);
+    auto bound = http::Server::bind(def.host, def.port, limits, *impl);
+    if (!bound) return bound.error();
+    impl->http = std::move(*bound);
     return Server(std::move(impl));
 }
 
-int Server::port() const { return impl_->port; }
+int Server::port() const { return impl_->http->port(); }
 
 Status Server::run() {
     impl_->jobs->start_workers();
-    const bool served = impl_->http.listen_after_bind();
+    impl_->http->run();
     impl_->jobs->stop();
-    if (!served && !impl_->jobs->stopping()) return Error{"the HTTP server stopped on an error"};
     return {};
 }
 
 void Server::stop() {
     impl_->jobs->stop();
-    impl_->http.stop();
+    impl_->http->stop();
 }
 
 }  // namespace discreel::serve

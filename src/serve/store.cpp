@@ -1,6 +1,12 @@
 #include "store.hpp"
 
+#include <fcntl.h>
 #include <sqlite3.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <utility>
 
@@ -72,6 +78,38 @@ Expected<bool> has_warnings_column(sqlite3* db) {
 }
 
 }  // namespace
+
+Expected<StoreLock> StoreLock::take(const std::filesystem::path& path) {
+    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd < 0) {
+        return Error{"cannot open the store's lock '" + path.string() + "': " +
+                     std::strerror(errno)};
+    }
+    StoreLock lock(fd);
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        if (errno == EWOULDBLOCK) {
+            return Error{"another discreel serve is using the store in '" +
+                         path.parent_path().string() +
+                         "' (it holds serve.lock); stop it, or give this one another --data"};
+        }
+        return Error{"cannot lock '" + path.string() + "': " + std::strerror(errno)};
+    }
+    return lock;
+}
+
+StoreLock::~StoreLock() {
+    if (fd_ >= 0) ::close(fd_);   // closing releases the lock
+}
+
+StoreLock::StoreLock(StoreLock&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+
+StoreLock& StoreLock::operator=(StoreLock&& other) noexcept {
+    if (this != &other) {
+        if (fd_ >= 0) ::close(fd_);
+        fd_ = std::exchange(other.fd_, -1);
+    }
+    return *this;
+}
 
 const char* to_string(JobStatus status) {
     switch (status) {

@@ -2,6 +2,7 @@
 // The job store: one SQLite database in the data directory (WAL, synchronous commits), so a
 // job the server answered 202 for survives a crash of the process or the machine.
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,6 +32,23 @@ struct StoredJob {
     std::optional<std::string> error;     // failed, cancelled
     std::optional<OutputInfo> output;     // succeeded
     std::string warnings = "[]";          // the scene's warnings, a JSON array (job_json)
+};
+
+// An exclusive lock on a store (flock on DATA/serve.lock), held while the object lives: a
+// second server on the same --data is refused instead of deleting the first's files.
+class StoreLock {
+public:
+    static Expected<StoreLock> take(const std::filesystem::path& path);
+    StoreLock() = default;
+    ~StoreLock();
+    StoreLock(StoreLock&& other) noexcept;
+    StoreLock& operator=(StoreLock&& other) noexcept;
+    StoreLock(const StoreLock&) = delete;
+    StoreLock& operator=(const StoreLock&) = delete;
+
+private:
+    explicit StoreLock(int fd) : fd_(fd) {}
+    int fd_ = -1;
 };
 
 class Store {

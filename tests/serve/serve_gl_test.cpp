@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "serve_client.hpp"
 #include "serve_process.hpp"
 #include "test_support.hpp"
 
@@ -20,54 +21,20 @@ namespace discreel {
 namespace {
 
 using nlohmann::json;
+using testing::client_for;
+using testing::connect_to;
+using testing::exchange;
+using testing::metric;
+using testing::post;
 using testing::read_file;
+using testing::scene_text;
+using testing::wait_final;
 using testing::run_command;
 using testing::ServeProcess;
 using testing::TempDir;
 using Clock = std::chrono::steady_clock;
 
 const std::string bin = DISCREEL_BIN;
-
-// A small scene; `seed` changes the job id (a comment is part of the scene's text) and, through
-// the physics seed, nothing else that a still at frame 0 shows.
-std::string scene_text(int seed = 1, double duration = 1.0) {
-    return "# seed " + std::to_string(seed) +
-           "\nversion: 1\nvideo:\n  size: [320, 180]\n  fps: 30\n  duration: " +
-           std::to_string(duration) +
-           "\nphysics:\n  restitution: 0.7\nwalls:\n  - box: [[0, 0], [3.2, 1.8]]\n"
-           "discs:\n  - random:\n      count: 40\n      region: [[0.2, 0.2], [3.0, 1.6]]\n"
-           "      radius: [0.05, 0.12]\n      speed: [0, 3]\n";
-}
-
-httplib::Client client_for(int port) {
-    httplib::Client client("127.0.0.1", port);
-    client.set_connection_timeout(5);
-    client.set_read_timeout(30);
-    client.set_write_timeout(5);
-    return client;
-}
-
-httplib::Result post(httplib::Client& client, const std::string& path, const json& body,
-                     const httplib::Headers& headers = {}) {
-    return client.Post(path, headers, body.dump(), "application/json");
-}
-
-// Polls the job until it is final, at most `seconds`; the last answer.
-json wait_final(httplib::Client& client, const std::string& id, double seconds = 60,
-                const httplib::Headers& headers = {}) {
-    const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
-    json job;
-    while (Clock::now() < deadline) {
-        auto got = client.Get("/v1/renders/" + id, headers);
-        if (got && got->status == 200) {
-            job = json::parse(got->body);
-            const std::string status = job["status"];
-            if (status == "succeeded" || status == "failed" || status == "cancelled") return job;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return job;
-}
 
 // What `discreel render` writes for the same scene and options.
 std::string cli_render(const TempDir& dir, const std::string& scene,
@@ -78,13 +45,6 @@ std::string cli_render(const TempDir& dir, const std::string& scene,
     const auto run = run_command(argv);
     EXPECT_EQ(run.exit_code, 0) << run.err;
     return read_file(dir / name);
-}
-
-std::string metric(const std::string& text, const std::string& name) {
-    const auto at = text.find("\n" + name + " ");
-    if (at == std::string::npos) return "";
-    const auto start = at + name.size() + 2;
-    return text.substr(start, text.find('\n', start) - start);
 }
 
 class ServeGLTest : public ::testing::Test {
@@ -485,33 +445,6 @@ TEST_F(ServeGLTest, CancelAndTimeLimitEndJobsWithTheirReason) {
     EXPECT_TRUE(testing::directory_entries(dir.path() / "data" / "tmp").empty());
 }
 
-// Raw sockets: what no well-behaved client sends.
-int connect_to(int port) {
-    const int fd = socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(static_cast<std::uint16_t>(port));
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    timeval timeout{10, 0};
-    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-    if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) return -1;
-    return fd;
-}
-
-std::string exchange(int fd, const std::string& sent) {
-    (void)send(fd, sent.data(), sent.size(), MSG_NOSIGNAL);
-    std::string got;
-    char buffer[4096];
-    for (int reads = 0; reads < 100; ++reads) {
-        const ssize_t n = recv(fd, buffer, sizeof buffer, 0);
-        if (n <= 0) break;
-        got.append(buffer, static_cast<std::size_t>(n));
-        if (got.find("\r\n\r\n") != std::string::npos) break;   // the status and headers
-    }
-    close(fd);
-    return got;
-}
-
 TEST_F(ServeGLTest, MalformedAndSlowRequestsDoNotHoldTheServer) {
     ServeProcess server(bin, {"--data", dir / "data"}, log);
     EXPECT_EQ(exchange(connect_to(server.port()), "HELLO THERE\r\n\r\n").rfind("HTTP/1.1 400", 0),
@@ -525,10 +458,11 @@ TEST_F(ServeGLTest, MalformedAndSlowRequestsDoNotHoldTheServer) {
                   .rfind("HTTP/1.1 413", 0),
               0u);
     // A client that stops half-way through its headers: others are served meanwhile, and the
-    // server answers 400 after its read timeout (5 s).
+    // server answers 408 when the head's time (5 s) is up.
     const int slow = connect_to(server.port());
     const auto started = Clock::now();
-    (void)send(slow, "GET /healthz HTTP/1.1\r\nHost: x\r\n", 32, MSG_NOSIGNAL);
+    const std::string partial = "GET /healthz HTTP/1.1\r\nHost: x\r\n";
+    (void)send(slow, partial.data(), partial.size(), MSG_NOSIGNAL);
     auto client = client_for(server.port());
     auto health = client.Get("/healthz");
     ASSERT_TRUE(health);
@@ -538,7 +472,7 @@ TEST_F(ServeGLTest, MalformedAndSlowRequestsDoNotHoldTheServer) {
     const double waited = std::chrono::duration<double>(Clock::now() - started).count();
     close(slow);
     ASSERT_GT(n, 0);
-    EXPECT_EQ(std::string(buffer, static_cast<std::size_t>(n)).rfind("HTTP/1.1 400", 0), 0u);
+    EXPECT_EQ(std::string(buffer, static_cast<std::size_t>(n)).rfind("HTTP/1.1 408", 0), 0u);
     EXPECT_GT(waited, 4.0);
     EXPECT_LT(waited, 9.0);
 }

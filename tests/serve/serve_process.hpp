@@ -9,7 +9,10 @@
 
 #include <poll.h>
 
+#include <algorithm>
 #include <chrono>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -27,8 +30,10 @@ public:
         std::vector<std::string> argv = prefix;
         argv.push_back(bin);
         argv.push_back("serve");
-        argv.push_back("--listen");
-        argv.push_back("127.0.0.1:0");
+        if (std::find(args.begin(), args.end(), "--listen") == args.end()) {
+            argv.push_back("--listen");
+            argv.push_back("127.0.0.1:0");
+        }
         argv.insert(argv.end(), args.begin(), args.end());
         pid_ = fork();
         if (pid_ == 0) {
@@ -45,7 +50,14 @@ public:
         }
         close(out[1]);
         out_ = out[0];
-        port_ = read_port();
+        log_path_ = log_path;
+        try {
+            port_ = read_port();
+        } catch (...) {
+            stop(SIGKILL);
+            close(out_);
+            throw;
+        }
     }
     ~ServeProcess() {
         stop(SIGTERM);
@@ -55,6 +67,7 @@ public:
     ServeProcess& operator=(const ServeProcess&) = delete;
 
     int port() const { return port_; }
+    const std::string& first_line() const { return line_; }
     pid_t pid() const { return pid_; }
 
     // Sends `signal` and waits for the exit (10 s, then SIGKILL); the exit status, or -1.
@@ -88,16 +101,27 @@ private:
             if (read(out_, &c, 1) != 1) break;
             line += c;
         }
+        while (!line.empty() && line.back() == '\n') line.pop_back();
+        line_ = line;
         const auto colon = line.rfind(':');
-        if (line.rfind("listening on http://127.0.0.1:", 0) != 0 || colon == std::string::npos) {
-            throw std::runtime_error("discreel serve did not start: '" + line + "'");
+        if (line.rfind("listening on http://", 0) != 0 || colon == std::string::npos) {
+            // What it said instead, from its log, for the test's message.
+            throw std::runtime_error("discreel serve did not start: '" + line + "' " +
+                                     log_tail());
         }
         return std::stoi(line.substr(colon + 1));
+    }
+
+    std::string log_tail() const {
+        std::ifstream log(log_path_);
+        std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+        return text.size() > 2000 ? text.substr(text.size() - 2000) : text;
     }
 
     pid_t pid_ = -1;
     int out_ = -1;
     int port_ = 0;
+    std::string line_, log_path_;
 };
 
 }  // namespace discreel::testing

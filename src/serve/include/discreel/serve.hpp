@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "discreel/expected.hpp"
 #include "discreel/scene.hpp"
@@ -16,8 +17,11 @@
 namespace discreel::serve {
 
 struct ServeDef {
-    std::string host = "127.0.0.1";          // an address, not a name
+    std::string host = "127.0.0.1";          // a numeric IPv4 or IPv6 address, not a name
     int port = 8080;                         // 0: any free port (see Server::port())
+    // Host header names accepted besides the listen address (and localhost, for a loopback or
+    // wildcard address): against DNS rebinding, any other is answered 421.
+    std::vector<std::string> allow_hosts;
     std::string data_dir = "discreel-data";  // the job store and the outputs
     int workers = 1;                         // jobs rendered at once, each with a warm context
     std::size_t max_queue = 64;              // jobs waiting; beyond it 429 with Retry-After
@@ -27,6 +31,10 @@ struct ServeDef {
     std::string version;                     // discreel's, part of every job id
     bool log_requests = true;                // one JSON line per request and job transition
 };
+
+// Whether `dir` may be a server's --data: a new or empty directory, or one holding a job
+// store. A directory with other files is refused (the server cleans its own temporaries there).
+Status check_data_dir(const std::string& dir);
 
 class Server {
 public:
