@@ -157,7 +157,7 @@ serve_in_container() {
   buildah run --isolation chroot "$CONTAINER" -- bash -c "$check" || fail "the image's health check failed"
   local scene='version: 1\nvideo:\n  size: [320, 180]\ndiscs:\n  - position: [0, 0]\n    radius: 0.4\n'
   printf "$scene" >"$WORK_DIR/serve-scene.yaml"
-  id="$(curl -sf -X POST --data "{\"scene\": \"$scene\", \"output\": \"png\"}" \
+  id="$(curl -sf -X POST -H 'Content-Type: application/json' --data "{\"scene\": \"$scene\", \"output\": \"png\"}" \
     "http://127.0.0.1:$port/v1/renders" | sed -n 's/.*"id":"\([0-9a-f]*\)".*/\1/p')"
   [[ -n $id ]] || fail "the service did not accept the scene"
   for _ in $(seq 120); do
