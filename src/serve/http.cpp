@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
@@ -17,7 +18,9 @@
 #include <boost/beast/http/read.hpp>
 #include <boost/beast/http/string_body.hpp>
 #include <cctype>
+#include <ctime>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 namespace discreel::serve::http {
@@ -37,6 +40,16 @@ std::string lower(std::string_view text) {
 
 std::string status_line(int status) {
     return "HTTP/1.1 " + std::to_string(status) + " " + reason_phrase(status) + "\r\n";
+}
+
+// The response's Date (RFC 9110, 6.6.1): IMF-fixdate, as "Sun, 06 Nov 1994 08:49:37 GMT".
+std::string http_date() {
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char text[64];
+    std::strftime(text, sizeof text, "%a, %d %b %Y %H:%M:%S GMT", &utc);
+    return text;
 }
 
 Response plain(int status, const std::string& message) {
@@ -124,6 +137,9 @@ struct Server::Impl {
     asio::strand<asio::io_context::executor_type> accepting{io.get_executor()};
     tcp::acceptor acceptor{io};
     bool accept_paused = false;                   // on `accepting`
+    // Keeps io.run() going while no operation is pending (every connection's request on the
+    // blocking threads, accepting paused at the cap): the server ends only at stop().
+    std::optional<asio::executor_work_guard<asio::io_context::executor_type>> working;
     asio::thread_pool blocking;
 
     Impl(const Limits& l, Handler& h)
@@ -145,11 +161,27 @@ struct Server::Impl {
 
 namespace {
 
+// Bytes read ahead of the parser beyond the head's limit. The buffer holds what is read and not
+// yet parsed; a body is moved out of it as it is parsed, so only a line the parser cannot end (a
+// chunk's size line or trailer without its CRLF) can fill it, and that is refused.
+constexpr std::size_t read_room = 65536;
+
+// Handler::handle, with anything it throws answered 500: an exception must not leave an I/O
+// thread's run loop, which would end the server.
+Response handled(Handler& handler, Request& request) {
+    try {
+        return handler.handle(request);
+    } catch (const std::exception&) {
+        return plain(500, "internal error");
+    }
+}
+
 class Session : public std::enable_shared_from_this<Session> {
 public:
     Session(Server::Impl& server, tcp::socket socket)
         : server_(server), limits_(server.limits), socket_(std::move(socket)),
-          deadline_(socket_.get_executor()), quiet_(socket_.get_executor()) {
+          deadline_(socket_.get_executor()), quiet_(socket_.get_executor()),
+          buffer_(limits_.header_bytes + read_room) {
         error_code ignored;
         const auto peer = socket_.remote_endpoint(ignored);
         if (!ignored) remote_ = peer.address().to_string();
@@ -166,18 +198,24 @@ public:
     }
 
 private:
-    // After `after`, the pending read or write is cancelled and timed_out_ is set.
+    // After `after`, the pending read or write is cancelled and timed_out_ is set. A wait that
+    // had already expired when it was re-armed or disarmed (its handler queued, too late to
+    // cancel) carries an older generation and does nothing.
     void arm(std::chrono::milliseconds after) {
         timed_out_ = false;
+        const std::uint64_t armed = ++generation_;
         deadline_.expires_after(after);
-        deadline_.async_wait([self = shared_from_this()](error_code ec) {
-            if (ec) return;   // re-armed or disarmed
+        deadline_.async_wait([self = shared_from_this(), armed](error_code ec) {
+            if (ec || armed != self->generation_) return;   // re-armed or disarmed
             self->timed_out_ = true;
             error_code ignored;
             self->socket_.cancel(ignored);
         });
     }
-    void disarm() { deadline_.cancel(); }
+    void disarm() {
+        ++generation_;
+        deadline_.cancel();
+    }
 
     void read_head(bool first) {
         if (server_.stopped) return close();
@@ -203,7 +241,7 @@ private:
                 if (!some) return close();
                 return refuse(408, "the request's head did not arrive in time");
             }
-            if (ec == bhttp::error::header_limit) {
+            if (ec == bhttp::error::header_limit || ec == bhttp::error::buffer_overflow) {
                 return refuse(431, "the request's head is over its size limit");
             }
             if (ec == bhttp::error::body_limit) {
@@ -238,21 +276,18 @@ private:
             return refuse(505, "only HTTP/1.0 and 1.1 are served");
         }
         keep_alive_ = head.keep_alive();
-        if (auto refused = server_.handler.check_head(request_)) {
+        std::optional<Response> refused;
+        try {
+            refused = server_.handler.check_head(request_);
+        } catch (const std::exception&) {
+            refused = plain(500, "internal error");
+        }
+        if (refused) {
             keep_alive_ = false;
             return respond(std::move(*refused));
         }
         if (parser_->is_done()) return dispatch();
-        // The body's room is taken before it is read: its declared length, or the limit.
-        const std::uint64_t wanted = parser_->content_length().value_or(limits_.body_bytes);
-        if (!server_.reserve(wanted)) {
-            Response busy = plain(503, "the server is reading too many request bodies");
-            busy.set("Retry-After", "1");
-            keep_alive_ = false;
-            return respond(std::move(busy));
-        }
-        reserved_ = wanted;
-        if (lower(request_.field("expect")) == "100-continue") {
+        if (request_.version == 11 && lower(request_.field("expect")) == "100-continue") {
             continue_ = status_line(100) + "\r\n";
             arm(limits_.write_time);
             asio::async_write(socket_, asio::buffer(continue_),
@@ -267,20 +302,45 @@ private:
     }
 
     void read_body() {
-        arm(limits_.body_time);
-        bhttp::async_read(socket_, buffer_, *parser_,
-                          [self = shared_from_this()](error_code ec, std::size_t) {
-                              self->on_body(ec);
-                          });
+        body_deadline_ = std::chrono::steady_clock::now() + limits_.body_time;
+        read_more();
+    }
+
+    // A piece of the body at a time, its memory taken from the shared budget as it arrives:
+    // a connection that declares a large body and sends nothing holds nothing.
+    void read_more() {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            body_deadline_ - std::chrono::steady_clock::now());
+        arm(std::max(left, std::chrono::milliseconds(0)));
+        bhttp::async_read_some(socket_, buffer_, *parser_,
+                               [self = shared_from_this()](error_code ec, std::size_t) {
+                                   self->on_body(ec);
+                               });
     }
 
     void on_body(error_code ec) {
         disarm();
+        if (!ec) {
+            const std::uint64_t held = parser_->get().body().capacity();
+            if (held > reserved_) {
+                if (!server_.reserve(held - reserved_)) {
+                    Response busy = plain(503, "the server is reading too many request bodies");
+                    busy.set("Retry-After", "1");
+                    keep_alive_ = false;
+                    return respond(std::move(busy));
+                }
+                reserved_ = held;
+            }
+            if (!parser_->is_done()) return read_more();
+        }
         if (ec) {
             keep_alive_ = false;
             if (timed_out_) return refuse(408, "the request body did not arrive in time");
             if (ec == bhttp::error::body_limit) {
                 return refuse(413, "the request body is over the size limit");
+            }
+            if (ec == bhttp::error::buffer_overflow) {
+                return refuse(413, "the request body's framing is over its size limit");
             }
             if (ec == bhttp::error::end_of_stream || ec == asio::error::eof ||
                 ec == asio::error::connection_reset) {
@@ -295,9 +355,10 @@ private:
 
     void dispatch() {
         parser_.reset();
-        if (!server_.handler.blocking(request_)) return respond(server_.handler.handle(request_));
+        if (!server_.handler.blocking(request_)) return respond(handled(server_.handler, request_));
         asio::post(server_.blocking, [self = shared_from_this()] {
-            auto response = std::make_shared<Response>(self->server_.handler.handle(self->request_));
+            auto response =
+                std::make_shared<Response>(handled(self->server_.handler, self->request_));
             asio::post(self->socket_.get_executor(),
                        [self, response] { self->respond(std::move(*response)); });
         });
@@ -320,8 +381,12 @@ private:
         if (server_.stopped || ++served_ >= limits_.requests_per_connection) keep_alive_ = false;
         std::string text = status_line(response.status);
         for (const Field& f : response.fields) text += f.name + ": " + f.value + "\r\n";
+        text += "Date: " + http_date() + "\r\n";
         if (response.events) {
-            text += "Transfer-Encoding: chunked\r\nConnection: close\r\n\r\n";
+            // HTTP/1.0 has no chunked coding: the stream then ends when the connection does.
+            chunked_ = request_.version == 11;
+            text += chunked_ ? "Transfer-Encoding: chunked\r\nConnection: close\r\n\r\n"
+                             : "Connection: close\r\n\r\n";
             events_ = std::move(response.events);
             keep_alive_ = false;
             return write(std::move(text), [self = shared_from_this()] {
@@ -433,7 +498,12 @@ private:
     void pump() {
         if (closed_ || writing_ || !events_) return;
         bool ended = false;
-        std::string text = events_->next(ended);
+        std::string text;
+        try {
+            text = events_->next(ended);
+        } catch (const std::exception&) {
+            ended = true;
+        }
         if (server_.stopped) ended = true;
         if (!text.empty() || ended) return send_chunk(text, ended);
         quiet_.expires_after(events_->quiet);
@@ -446,12 +516,14 @@ private:
 
     void send_chunk(const std::string& text, bool last) {
         std::string framed;
-        if (!text.empty()) {
+        if (!chunked_) {
+            framed = text;
+        } else if (!text.empty()) {
             char size[32];
             std::snprintf(size, sizeof size, "%zx\r\n", text.size());
             framed = size + text + "\r\n";
         }
-        if (last) framed += "0\r\n\r\n";
+        if (last && chunked_) framed += "0\r\n\r\n";
         writing_ = true;
         out_ = std::move(framed);
         arm(limits_.write_time);
@@ -477,15 +549,18 @@ private:
     tcp::socket socket_;
     asio::steady_timer deadline_, quiet_;
     boost::beast::flat_buffer buffer_;
+    std::chrono::steady_clock::time_point body_deadline_{};
     std::optional<bhttp::request_parser<bhttp::string_body>> parser_;
     Request request_;
     std::string remote_, out_, continue_, scratch_;
     std::optional<FileBody> file_;
     std::shared_ptr<EventSource> events_;
     std::uint64_t reserved_ = 0;
+    std::uint64_t generation_ = 0;   // of the deadline's wait (arm)
     std::size_t drained_ = 0;
     int served_ = 0;
     bool keep_alive_ = false, timed_out_ = false, closed_ = false, writing_ = false;
+    bool chunked_ = true;
 };
 
 }  // namespace
@@ -526,6 +601,8 @@ Server::Server(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 Server::~Server() {
     stop();
+    // Requests still queued for the blocking threads are dropped, not handled for nobody.
+    impl_->blocking.stop();
     impl_->blocking.join();
 }
 
@@ -557,6 +634,8 @@ Expected<std::unique_ptr<Server>> Server::bind(const std::string& host, int port
 int Server::port() const { return impl_->port; }
 
 void Server::run() {
+    if (impl_->stopped) return;
+    impl_->working.emplace(impl_->io.get_executor());
     asio::post(impl_->accepting, [impl = impl_.get()] { impl->accept(); });
     std::vector<std::thread> threads;
     for (int i = 1; i < std::max(1, impl_->limits.io_threads); ++i) {
@@ -568,11 +647,14 @@ void Server::run() {
 
 void Server::stop() {
     if (impl_->stopped.exchange(true)) return;
+    // The listening socket closes first, on its strand, then the I/O threads end; before
+    // run(), nothing runs, and run() returns at once.
     asio::post(impl_->accepting, [impl = impl_.get()] {
         error_code ignored;
         impl->acceptor.close(ignored);
+        impl->working.reset();
+        impl->io.stop();
     });
-    impl_->io.stop();
 }
 
 }  // namespace discreel::serve::http

@@ -171,6 +171,7 @@ Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics
         }
         jobs->jobs_.emplace(job.id, std::move(job));
     }
+    jobs->counted();
     if (!jobs->queue_.empty()) {
         log_line("resume", {{"queued", jobs->queue_.size()}});
     }
@@ -216,14 +217,15 @@ void Jobs::unwatch(std::uint64_t handle) {
     watches_.erase(handle);
 }
 
-std::size_t Jobs::queued() const {
-    std::lock_guard lock(mutex_);
-    return queue_.size();
-}
+// Counted apart from the lock, which store writes (fsync) may hold: /healthz and /metrics
+// answer at once.
+std::size_t Jobs::queued() const { return queued_count_.load(); }
 
-std::size_t Jobs::running() const {
-    std::lock_guard lock(mutex_);
-    return running_;
+std::size_t Jobs::running() const { return running_count_.load(); }
+
+void Jobs::counted() {
+    queued_count_ = queue_.size();
+    running_count_ = running_;
 }
 
 Submission Jobs::submit(const JobRequest& request, int frames_total, const json& warnings) {
@@ -270,6 +272,7 @@ Submission Jobs::submit(const JobRequest& request, int frames_total, const json&
     job.cancel = std::make_shared<std::atomic<bool>>(stopping_.load());
     changed(job);
     queue_.push_back(request.id);
+    counted();
     metrics_.accepted();
     log_line("job", {{"id", job.id}, {"status", "queued"}});
     json accepted = job_json(job);
@@ -317,6 +320,7 @@ std::pair<int, json> Jobs::cancel(const std::string& id) {
                                                       stored.error().message}}}}};
         }
         queue_.erase(std::remove(queue_.begin(), queue_.end(), id), queue_.end());
+        counted();
         job.status = JobStatus::cancelled;
         job.error = "cancelled";
         metrics_.ended("cancelled", 0);
@@ -353,6 +357,7 @@ void Jobs::worker_loop() {
             Job& job = jobs_.at(id);
             job.status = JobStatus::running;
             ++running_;
+            counted();
             changed(job);
         }
         if (Status stored = store_.set_running(id); !stored) {
@@ -362,6 +367,7 @@ void Jobs::worker_loop() {
         run_job(id, warm);
         std::lock_guard lock(mutex_);
         --running_;
+        counted();
     }
 }
 

@@ -97,6 +97,7 @@ private:
     void worker_loop();
     void run_job(const std::string& id, std::optional<render::Renderer>& warm);
     void changed(Job& job);      // with mutex_ held
+    void counted();              // with mutex_ held: queued_count_, running_count_ from the queue
     Expected<OutputInfo> keep_output(const std::string& tmp, const std::string& extension);
 
     ServeDef def_;
@@ -115,6 +116,7 @@ private:
     std::uint64_t next_watch_ = 1;
     std::deque<std::string> queue_;
     std::size_t running_ = 0;
+    std::atomic<std::size_t> queued_count_{0}, running_count_{0};
     double mean_seconds_ = 1;    // of recent jobs, for Retry-After
     std::atomic<bool> stopping_{false};
     std::vector<std::thread> workers_;

@@ -129,7 +129,7 @@ std::string_view trimmed(std::string_view text) {
 RangeAnswer resolve_range(std::string_view header, std::uint64_t size) {
     constexpr std::size_t max_parts = 16;   // more: the header is ignored
     header = trimmed(header);
-    if (header.empty() || header.rfind("bytes=", 0) != 0 || size == 0) return {};
+    if (header.size() < 6 || lower(header.substr(0, 6)) != "bytes=" || size == 0) return {};
     header.remove_prefix(6);
     std::vector<std::pair<std::uint64_t, std::uint64_t>> parts;
     std::size_t specs = 0;
@@ -274,9 +274,6 @@ bool Server::Impl::blocking(const http::Request& request) const {
 
 void Server::Impl::answered(const http::Request& req, int status) {
     metrics.answered(status);
-    // A large body and what was made of it are freed by now: back to the system with them
-    // (glibc keeps freed memory in the arena of the thread that used it).
-    if (req.body_bytes >= large_scene) malloc_trim(0);
     if (!def.log_requests) return;
     const double ms = req.started == Clock::time_point{}
                           ? 0.0
@@ -290,6 +287,16 @@ void Server::Impl::answered(const http::Request& req, int status) {
 }
 
 http::Response Server::Impl::handle(http::Request& request) {
+    // A large body and what was made of it are freed when this returns: back to the system with
+    // them (glibc keeps freed memory in the arena of the thread that used it). Large bodies come
+    // only with POSTs, which run on the blocking threads.
+    struct Trim {
+        bool large;
+        ~Trim() {
+            if (large) malloc_trim(0);
+        }
+    } trim{request.body.size() >= large_scene};
+    request.body_bytes = request.body.size();
     try {
         http::Response res = route(request);
         // The page and every answer: never inside another site's frame.
@@ -422,7 +429,9 @@ http::Response Server::Impl::get_output(const http::Request& req, const std::str
         return res;
     }
     const auto size = static_cast<std::uint64_t>(output->info.bytes);
-    const RangeAnswer range = resolve_range(req.field("range"), size);
+    // Ranges are a GET's (RFC 9110, 14.2): HEAD describes the whole file.
+    const RangeAnswer range =
+        req.method == "GET" ? resolve_range(req.field("range"), size) : RangeAnswer{};
     if (range.kind == RangeAnswer::unsatisfiable) {
         res.status = 416;
         res.set("Content-Range", "bytes */" + std::to_string(size));
@@ -472,7 +481,9 @@ public:
         if (snapshot->version == seen_) return {};
         seen_ = snapshot->version;
         ended = snapshot->final;
-        return "event: job\ndata: " + snapshot->job.dump() + "\n\n";
+        return "event: job\ndata: " +
+               snapshot->job.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
+               "\n\n";
     }
     void watch(std::function<void()> wake) override { handle_ = jobs_.watch(id_, std::move(wake)); }
 

@@ -111,6 +111,14 @@ TEST_F(ServeHostileGLTest, AChunkedBodyIsHeldToTheSizeLimit) {
             "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n",
         chunk, std::size_t{256} << 20);
     EXPECT_EQ(refused.rfind("HTTP/1.1 413", 0), 0u) << refused;
+    // A chunk's size line that never ends (its extension grows without a CRLF): the bytes the
+    // body limit does not count are held to the read buffer's room.
+    const std::string endless = flood(
+        server.port(),
+        "POST /v1/validate HTTP/1.1\r\n" + host_line(server.port()) +
+            "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n1;x=",
+        std::string(4096, 'a'), std::size_t{64} << 20);
+    EXPECT_EQ(endless.rfind("HTTP/1.1 413", 0), 0u) << endless;
     const long after = memory_kb(server.pid(), "VmHWM");
     EXPECT_LT(after - before, 16 * 1024) << "peak grew from " << before << " to " << after
                                          << " kB";
