@@ -35,10 +35,6 @@ std::array<double, 4> swept_box(const Sweep& s, double t_end) {
             std::max(s.x0.x(), end.x()) + s.bound, std::max(s.x0.y(), end.y()) + s.bound};
 }
 
-bool boxes_overlap(const std::array<double, 4>& p, const std::array<double, 4>& q) {
-    return p[0] <= q[2] && q[0] <= p[2] && p[1] <= q[3] && q[1] <= p[3];
-}
-
 // Later impacts first out of the heap: std::push_heap keeps the largest on top.
 template <class I>
 bool later(const I& x, const I& y) {

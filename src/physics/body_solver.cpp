@@ -43,14 +43,61 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
         const double grow = b.shape.radius + margin_[i];
         boxes_[i] = {box[0] - grow, box[1] - grow, box[2] + grow, box[3] + grow};
     }
+    // The fat list holds every pair these boxes can make while it is kept (fat_pairs.hpp);
+    // the step's pairs are those whose boxes overlap now, in (a, b) order. Two bodies neither
+    // of which a contact can move (walls, pegs, held bodies) make none.
+    fat_margin_.resize(n);
+    movable_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        fat_margin_[i] = 0.25 * bodies[i].bound + 4 * margin_[i];
+        movable_[i] = bodies[i].inv_mass > 0;
+    }
+    fat_pairs_.update(boxes_, fat_margin_, movable_, fat_list_);
     pairs_.clear();
-    for_each_overlapping_pair(boxes_, order_, [&](std::uint32_t i, std::uint32_t j) {
-        // Two bodies neither of which a contact can move (walls, pegs, held bodies).
-        if (bodies[i].inv_mass == 0 && bodies[j].inv_mass == 0) return;
-        const std::uint64_t a = std::min(i, j), b = std::max(i, j);
-        pairs_.push_back(a << 32 | b);
-    });
-    std::sort(pairs_.begin(), pairs_.end());
+    for (const std::uint64_t key : fat_list_) {
+        const auto i = static_cast<std::uint32_t>(key >> 32);
+        const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
+        if (boxes_overlap(boxes_[i], boxes_[j])) pairs_.push_back(key);
+    }
+}
+
+void BodySolver::manifold_of(PairContact& pc, const PairContact* before,
+                             const std::vector<RigidBody>& bodies) {
+    const RigidBody& a = bodies[pc.a];
+    const RigidBody& b = bodies[pc.b];
+    const Transform& xa = transforms_[pc.a];
+    const Transform& xb = transforms_[pc.b];
+    const V2 offset = xa.inverse_rotate(xb.p - xa.p);
+    const double turn = b.angle - a.angle;
+    const bool still = before != nullptr && !fast_[pc.a] && !fast_[pc.b] &&
+                       (offset - before->made.offset).norm() <=
+                           def_.recycle_travel * std::min(a.inner, b.inner) &&
+                       std::abs(turn - before->made.turn) <= def_.recycle_turn;
+    if (still) {
+        // The points stay fixed to the bodies; each one's separation is how far apart its two
+        // surface points are along the normal now.
+        pc.made = before->made;
+        Manifold& m = pc.manifold;
+        m.normal = xa.rotate(pc.made.normal);
+        m.count = before->manifold.count;
+        for (int k = 0; k < m.count; ++k) {
+            const Made::Point& p = pc.made.points[static_cast<std::size_t>(k)];
+            const V2 on_a = xa.apply(p.a), on_b = xb.apply(p.b);
+            m.points[k] = {0.5 * (on_a + on_b), m.normal.dot(on_b - on_a), p.id};
+        }
+        return;
+    }
+    pc.manifold = collide(a.shape, xa, b.shape, xb, margin_[pc.a] + margin_[pc.b]);
+    const Manifold& m = pc.manifold;
+    pc.made.normal = xa.inverse_rotate(m.normal);
+    pc.made.offset = offset;
+    pc.made.turn = turn;
+    for (int k = 0; k < m.count; ++k) {
+        const ManifoldPoint& mp = m.points[k];
+        const V2 half = 0.5 * mp.separation * m.normal;
+        pc.made.points[static_cast<std::size_t>(k)] = {xa.inverse_apply(mp.point - half),
+                                                       xb.inverse_apply(mp.point + half), mp.id};
+    }
 }
 
 void BodySolver::apply_totals(const PairContact& pc, double sign) {
@@ -178,8 +225,13 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         PairContact pc;
         pc.a = i;
         pc.b = j;
-        pc.manifold =
-            collide(a.shape, transforms_[i], b.shape, transforms_[j], margin_[i] + margin_[j]);
+        // The same pair last step (both lists in pair order): its manifold and its impulses.
+        while (previous != contacts_.end() &&
+               (previous->a < i || (previous->a == i && previous->b < j))) {
+            ++previous;
+        }
+        const bool had = previous != contacts_.end() && previous->a == i && previous->b == j;
+        manifold_of(pc, had ? &*previous : nullptr, bodies);
         if (pc.manifold.count == 0) continue;
         // A fast body's pair that starts apart, against a wall or a body of alike mass, is met
         // at its time of impact instead (body_impacts.cpp): exactly when it happens, bounced
@@ -202,12 +254,7 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         c.count = pc.manifold.count;
         c.friction = mix_friction(a.friction, b.friction);
         pc.restitution = mix_restitution(a.restitution, b.restitution);
-        // Warm start: the impulses of the same features last step (both lists in pair order).
-        while (previous != contacts_.end() &&
-               (previous->a < i || (previous->a == i && previous->b < j))) {
-            ++previous;
-        }
-        const bool had = previous != contacts_.end() && previous->a == i && previous->b == j;
+        // Warm start: the impulses of the same features last step.
         pc.touched = had && previous->touched;   // until this step's impulses say otherwise
         const BlockBody va = velocity_of(a), vb = velocity_of(b);
         for (int k = 0; k < c.count; ++k) {
@@ -234,8 +281,10 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
     // The islands solved directly first (their bodies have no other contacts), then warm
     // start and the velocity iterations of the rest, body states carried between contacts.
     find_islands(bodies);
-    state_.resize(bodies.size());
+    // One more record than bodies: the scratch one the rows' empty lanes point at.
+    state_.resize(bodies.size() + 1);
     for (std::size_t i = 0; i < bodies.size(); ++i) state_[i] = velocity_of(bodies[i]);
+    state_.back() = BlockBody{};
     for_each_group(islands_, island_start_, [&](std::span<const IslandContact> island) {
         if (direct_solver_.velocities(island, state_)) return;
         // Not settled within its pivots (never seen): the island iterates like the others.
@@ -247,11 +296,14 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
         prepare_block(pc.contact, state_[pc.a], state_[pc.b]);
         apply_totals(pc, 1);
     }
+    rows_.clear();
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+        if (direct_[i] || blocked_[i]) continue;
+        rows_.push_back(RowRef{fresh_[i].a, fresh_[i].b, &fresh_[i].contact});
+    }
+    block_rows_.build(rows_, state_);
     for (int it = 0; it < def_.iterations; ++it) {
-        for (std::size_t i = 0; i < fresh_.size(); ++i) {
-            if (direct_[i] || blocked_[i]) continue;
-            solve_block(fresh_[i].contact, state_[fresh_[i].a], state_[fresh_[i].b]);
-        }
+        block_rows_.solve(state_);
         // A block's impulses are taken back out and solved again, together.
         for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
@@ -259,6 +311,7 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
         });
     }
+    block_rows_.store(rows_);
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 
     std::vector<V2>& moved = moved_;
@@ -516,6 +569,7 @@ BodySolver::Overlap BodySolver::max_overlap(const std::vector<RigidBody>& bodies
 }
 
 void BodySolver::forget(std::size_t first, std::size_t last) {
+    fat_pairs_.invalidate();
     const auto replaced = [&](std::size_t i) { return i >= first && i < last; };
     std::erase_if(contacts_, [&](const PairContact& pc) { return replaced(pc.a) || replaced(pc.b); });
 }

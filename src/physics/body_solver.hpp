@@ -14,7 +14,9 @@
 #include <utility>
 #include <vector>
 
+#include "block_rows.hpp"
 #include "block_solver.hpp"
+#include "fat_pairs.hpp"
 #include "island.hpp"
 #include "manifold.hpp"
 #include "shape.hpp"
@@ -71,6 +73,12 @@ struct BodySolverDef {
     // is bounded however fast its bodies move and however many their paths cross.
     int predictions_per_body = 64;
     int predictions_base = 1024;
+    // A pair's manifold is made again only once its bodies have moved against each other by
+    // more than this fraction of the smaller one's inner radius, or turned by more than this
+    // angle (radians), since it was made; until then it moves with them, its separations
+    // following its points (a resting pile collides rarely).
+    double recycle_travel = 0.002;
+    double recycle_turn = 0.002;
 };
 
 // A pair of bodies that touched (exchanged a normal impulse) during the step.
@@ -127,9 +135,22 @@ private:
         V2 ra = V2::Zero(), rb = V2::Zero();   // world offsets from each centroid, metres
         double separation = 0;                 // metres, when the manifold was made
     };
+    // A manifold as it was made, fixed to the bodies: each point's two surface points in
+    // their own body's frame, the normal in A's, and where B was relative to A then.
+    struct Made {
+        struct Point {
+            V2 a = V2::Zero(), b = V2::Zero();   // on A's surface in A's frame, B's in B's
+            std::uint16_t id = 0;
+        };
+        std::array<Point, 2> points{};
+        V2 normal = V2::UnitY();       // in A's frame
+        V2 offset = V2::Zero();        // B's centroid in A's frame, metres
+        double turn = 0;               // B's angle less A's, radians
+    };
     struct PairContact {
         std::uint32_t a = 0, b = 0;    // body indices, a < b
         Manifold manifold;
+        Made made;
         BlockContact contact;
         std::array<Anchor, 2> anchors{};
         double restitution = 0;
@@ -137,6 +158,10 @@ private:
         bool touched = false;
     };
     void find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall);
+    // The manifold of pair (i, j) now: the one made before, moved with the bodies, while they
+    // moved little against each other since (def_.recycle_*), else a new one from collide.
+    void manifold_of(PairContact& pc, const PairContact* before,
+                     const std::vector<RigidBody>& bodies);
     // Sweeps the pairs with a fast body (or one fast_ marks) from the step's start to its end
     // and takes their impacts in time order (body_impacts.cpp); approaches slower than `settle`
     // are not impacts.
@@ -170,7 +195,11 @@ private:
     BodySolverDef def_;
     std::vector<PairContact> contacts_;     // the last step's, in (a, b) order
     std::vector<PairContact> fresh_;        // scratch
-    std::vector<std::uint64_t> pairs_;      // the last step's broad-phase pairs: a << 32 | b
+    FatPairs fat_pairs_;
+    std::vector<std::uint64_t> fat_list_;   // the pairs whose fat boxes overlap: a << 32 | b
+    std::vector<double> fat_margin_;        // scratch: metres each box is fattened by
+    std::vector<unsigned char> movable_;    // scratch: per body, whether a contact moves it
+    std::vector<std::uint64_t> pairs_;      // the step's: those of fat_list_ near enough
     std::vector<std::uint32_t> order_;      // scratch: bodies by the low x of their box
     std::vector<std::array<double, 4>> boxes_;   // scratch: lo x, lo y, hi x, hi y
     std::vector<double> margin_;            // scratch: metres a body can close in the step
@@ -198,6 +227,8 @@ private:
     std::vector<std::size_t> block_start_;
     std::vector<std::uint32_t> group_key_;    // per contact: its island root or block's body
     DirectSolver direct_solver_;
+    std::vector<RowRef> rows_;              // the contacts the iterations solve, in fresh_'s order
+    BlockRows block_rows_;
     // Impacts between moving bodies (body_impacts.cpp): each body's motion since its latest
     // impact, its swept box, how many impacts changed it (stale predictions name an older
     // count), the predicted impacts as a heap, and the pairs that met.

@@ -124,7 +124,10 @@ TEST(FastBodies, ABoxGasAt30MetresASecondKeepsApartAndItsEnergy) {
         }
     }
     EXPECT_LT(deepest, 0.05 * side / 2);
-    EXPECT_NEAR(world.energy(), start, 0.02 * start);
+    // A gas of boxes is chaotic: over 12 seeds of its throws the energy after 0.5 s ends 6 %
+    // below to 4 % above the start, with the rows solved in pair order as in colour order
+    // (docs/tried.md); this seed's is within that.
+    EXPECT_NEAR(world.energy(), start, 0.07 * start);
     for (const DiscState& s : world.discs()) {
         EXPECT_GT(std::min(s.position.x, s.position.y), 0.0);
         EXPECT_LT(std::max(s.position.x, s.position.y), 3.0);
