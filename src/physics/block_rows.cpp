@@ -87,8 +87,6 @@ struct Ends {
 
 }  // namespace
 
-void solve_blocks(std::span<BlockRows::Block> blocks, std::span<BlockBody> bodies);
-
 void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
     const std::size_t n = bodies.size() - 1;   // the last is the scratch record
     const auto scratch = static_cast<std::uint32_t>(n);
@@ -176,8 +174,6 @@ void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> b
     }
 }
 
-void BlockRows::solve(std::span<BlockBody> bodies) { solve_blocks(blocks_, bodies); }
-
 // Built for AVX2 and for baseline x86-64 (clones.hpp): the same IEEE operations, lane by lane.
 DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks,
                                   std::span<BlockBody> bodies) {
@@ -222,6 +218,8 @@ DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks,
         scatter(bodies, r.b, b);
     }
 }
+
+void BlockRows::solve(std::span<BlockBody> bodies) { solve_blocks(blocks_, bodies); }
 
 void BlockRows::store(std::span<const RowRef> rows) const {
     for (std::size_t i = 0; i < rows.size(); ++i) {
