@@ -1,12 +1,15 @@
 // body_bench: the manifold solver's cost and accuracy on the scenes Box2D v3 is measured on
-// (../shared/FIELD_NOTES.md): a 20-box stack, the 20-row pyramid (210 boxes) and a pile of
-// 1 000 random convex polygons falling into a box. For each, at the physics rates asked for,
-// milliseconds of thread CPU time per simulated second, and for the stack and the pyramid the
-// largest sag below and drift beside each box's ideal place after 5 s. Appends to
-// bench/results/body_bench.csv (bench_results.hpp). See docs/performance.md.
+// (../shared/FIELD_NOTES.md): a 20-box stack with 1 mm gaps, the 20-row pyramid (210 boxes) and
+// 1 000 random convex polygons dropped from up to 24 m into a 12 m box (placed 0.52 m apart, so
+// none overlap at the start, as `validate` requires). For each, at the physics rates asked for:
+// milliseconds of thread CPU time per simulated second; for the stack and the pyramid the
+// largest sag below and drift beside each box's place (its start, gaps closed) and the fastest
+// box, at the end; for the polygons the deepest overlap in % of the smaller body's inscribed
+// radius and the largest rise of energy between two 60 fps frames, in % of the start. Appends
+// to bench/results/body_bench.csv (bench_results.hpp). See docs/performance.md.
 //
-//   body_bench [rate...]      default: 480, the default physics.rate (a lower rate takes
-//                             substeps of at most 1/480 s: the same work)
+//   body_bench [seconds [rate...]]   default: 5 s at 480 Hz, the default physics.rate (a lower
+//                                    rate takes substeps of at most 1/480 s: the same work)
 #include <time.h>
 
 #include <algorithm>
@@ -14,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -56,9 +60,10 @@ WorldDef floor_world(int rate, double friction) {
     return def;
 }
 
+// 1 mm between the floor and the first box and between boxes: they land on each other.
 WorldDef stack(int rate) {
     WorldDef def = floor_world(rate, 0.6);
-    for (int i = 0; i < 20; ++i) def.discs.push_back(box_at(0, 0.5 + i, 0.6));
+    for (int i = 0; i < 20; ++i) def.discs.push_back(box_at(0, 0.501 + 1.001 * i, 0.6));
     return def;
 }
 
@@ -71,8 +76,8 @@ WorldDef pyramid(int rate) {
     return def;
 }
 
-// 1 000 convex polygons of 3..8 sides, circumradius 0.1..0.25 m, dropped on a 40 x 25 grid
-// into a 12 m wide box: they land and pile up within the 5 simulated seconds.
+// 1 000 convex polygons of 3..8 sides, circumradius 0.1..0.25 m, on a grid 0.52 m apart (23
+// across, 44 high, up to 24 m) in a 12 m wide box: they fall, land and pile up.
 WorldDef polygons(int rate) {
     WorldDef def;
     def.rate = rate;
@@ -101,7 +106,7 @@ WorldDef polygons(int rate) {
         }
         DiscDef d;
         d.shape = polygon_shape(points)->shape;
-        d.position = {0.3 + 0.29 * (k % 40), 1 + 0.6 * (k / 40)};
+        d.position = {0.3 + 0.52 * (k % 23), 1 + 0.52 * (k / 23)};
         d.angle = uniform(0, 6.28);
         d.velocity = {uniform(-1, 1), uniform(-1, 1)};
         d.mass = shape_mass(*d.shape, 1).mass;
@@ -115,51 +120,112 @@ WorldDef polygons(int rate) {
 
 struct Result {
     double ms_per_second = 0;
-    double sag_mm = 0, drift_mm = 0;   // against the starting places; NaN for the pile
+    // Stack and pyramid: against each box's place (its start, less the gaps below it).
+    double sag_mm = std::nan(""), drift_mm = std::nan(""), fastest_mm_s = std::nan("");
+    // Polygons: % of the smaller body's inscribed radius, % of the starting energy.
+    double overlap_pct = std::nan(""), energy_rise_pct = std::nan("");
 };
 
-Result run(const WorldDef& def, double seconds, bool measure_places) {
-    World world(def);
-    const auto steps = static_cast<int>(std::lround(seconds * def.rate));
-    const double start = thread_seconds();
-    for (int k = 0; k < steps; ++k) world.step();
-    Result r;
-    r.ms_per_second = 1000 * (thread_seconds() - start) / seconds;
-    r.sag_mm = r.drift_mm = std::nan("");
-    if (measure_places) {
-        r.sag_mm = r.drift_mm = 0;
-        for (std::size_t i = 0; i < def.discs.size(); ++i) {
-            const Vec2 p = world.discs()[i].position;
-            r.sag_mm = std::max(r.sag_mm, 1000 * (def.discs[i].position.y - p.y));
-            r.drift_mm = std::max(r.drift_mm, 1000 * std::abs(p.x - def.discs[i].position.x));
+// The radius of the largest circle about the centroid inside the shape, metres.
+double inscribed_radius(const Shape& shape) {
+    const std::size_t n = shape.vertices.size();
+    double inner = HUGE_VAL;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 a = shape.vertices[i], b = shape.vertices[(i + 1) % n];
+        const double length = std::hypot(b.x - a.x, b.y - a.y);
+        inner = std::min(inner, std::abs(a.x * b.y - a.y * b.x) / length);
+    }
+    return inner + shape.radius;
+}
+
+// The deepest overlap of any two bodies, in % of the smaller one's inscribed radius: every
+// pair whose bounding circles meet, by the shapes' exact separation.
+double deepest_overlap_pct(const WorldDef& def, std::span<const DiscState> now,
+                           const std::vector<double>& inner) {
+    double deepest = 0;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        for (std::size_t j = i + 1; j < now.size(); ++j) {
+            const double reach = def.discs[i].radius + def.discs[j].radius;
+            const double dx = now[j].position.x - now[i].position.x;
+            const double dy = now[j].position.y - now[i].position.y;
+            if (dx * dx + dy * dy >= reach * reach) continue;
+            const double s = separation(*def.discs[i].shape, now[i].position, now[i].angle,
+                                        *def.discs[j].shape, now[j].position, now[j].angle);
+            if (s < 0) deepest = std::max(deepest, -s / std::min(inner[i], inner[j]));
         }
     }
+    return 100 * deepest;
+}
+
+Result run(const WorldDef& def, double seconds, bool pile) {
+    World world(def);
+    const auto steps = static_cast<int>(std::lround(seconds * def.rate));
+    Result r;
+    if (!pile) {
+        const double start = thread_seconds();
+        for (int k = 0; k < steps; ++k) world.step();
+        r.ms_per_second = 1000 * (thread_seconds() - start) / seconds;
+        r.sag_mm = r.drift_mm = r.fastest_mm_s = 0;
+        for (std::size_t i = 0; i < def.discs.size(); ++i) {
+            const DiscState& s = world.discs()[i];
+            // Each gap below a box closes: a stack's 1 mm gaps, none in the pyramid.
+            const double gaps = def.discs[i].position.y - std::floor(def.discs[i].position.y) - 0.5;
+            const double place = def.discs[i].position.y - gaps;
+            r.sag_mm = std::max(r.sag_mm, 1000 * (place - s.position.y));
+            r.drift_mm = std::max(r.drift_mm, 1000 * std::abs(s.position.x - def.discs[i].position.x));
+            r.fastest_mm_s = std::max(r.fastest_mm_s, 1000 * std::hypot(s.velocity.x, s.velocity.y));
+        }
+        return r;
+    }
+    // The pile: timed apart from its measures, taken every 60 fps frame.
+    std::vector<double> inner;
+    for (const DiscDef& d : def.discs) inner.push_back(inscribed_radius(*d.shape));
+    const double start_energy = world.energy();
+    double before = start_energy, timed = 0;
+    r.overlap_pct = r.energy_rise_pct = 0;
+    const int per_frame = def.rate / 60;
+    for (int k = 0; k < steps; k += per_frame) {
+        const double start = thread_seconds();
+        for (int j = 0; j < per_frame && k + j < steps; ++j) world.step();
+        timed += thread_seconds() - start;
+        const double energy = world.energy();
+        r.energy_rise_pct = std::max(r.energy_rise_pct, 100 * (energy - before) / std::abs(start_energy));
+        before = energy;
+        r.overlap_pct = std::max(r.overlap_pct, deepest_overlap_pct(def, world.discs(), inner));
+    }
+    r.ms_per_second = 1000 * timed / seconds;
     return r;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    const double seconds = argc > 1 ? std::atof(argv[1]) : 5.0;
     std::vector<int> rates;
-    for (int i = 1; i < argc; ++i) rates.push_back(std::atoi(argv[i]));
+    for (int i = 2; i < argc; ++i) rates.push_back(std::atoi(argv[i]));
     if (rates.empty()) rates = {480};
-    bench::ResultsFile results("body_bench", {"scene", "bodies", "rate", "simulated_s",
-                                              "ms_per_simulated_s", "sag_mm", "drift_mm"});
-    std::printf("%-10s %6s %5s %12s %8s %8s\n", "scene", "bodies", "rate", "ms/sim s", "sag mm",
-                "drift mm");
-    constexpr double seconds = 5.0;
+    bench::ResultsFile results("body_bench",
+                               {"scene", "bodies", "rate", "simulated_s", "ms_per_simulated_s",
+                                "sag_mm", "drift_mm", "fastest_mm_s", "overlap_pct",
+                                "energy_rise_pct"});
+    std::printf("%-10s %6s %5s %10s %8s %8s %10s %10s %10s\n", "scene", "bodies", "rate",
+                "ms/sim s", "sag mm", "drift mm", "fast mm/s", "overlap %", "rise %");
+    const auto field = [](double v, int digits) {
+        return std::isnan(v) ? std::string() : bench::csv_number(v, digits);
+    };
     for (const int rate : rates) {
         for (const std::string name : {"stack", "pyramid", "polygons"}) {
             const WorldDef def = name == "stack" ? stack(rate)
                                  : name == "pyramid" ? pyramid(rate)
                                                      : polygons(rate);
-            const Result r = run(def, seconds, name != "polygons");
-            std::printf("%-10s %6zu %5d %12.1f %8.2f %8.2f\n", name.c_str(), def.discs.size(),
-                        rate, r.ms_per_second, r.sag_mm, r.drift_mm);
+            const Result r = run(def, seconds, name == "polygons");
+            std::printf("%-10s %6zu %5d %10.1f %8.2f %8.2f %10.3f %10.2f %10.3f\n", name.c_str(),
+                        def.discs.size(), rate, r.ms_per_second, r.sag_mm, r.drift_mm,
+                        r.fastest_mm_s, r.overlap_pct, r.energy_rise_pct);
             results.append({name, std::to_string(def.discs.size()), std::to_string(rate),
                             bench::csv_number(seconds, 1), bench::csv_number(r.ms_per_second, 1),
-                            std::isnan(r.sag_mm) ? "" : bench::csv_number(r.sag_mm, 3),
-                            std::isnan(r.drift_mm) ? "" : bench::csv_number(r.drift_mm, 3)});
+                            field(r.sag_mm, 3), field(r.drift_mm, 3), field(r.fastest_mm_s, 3),
+                            field(r.overlap_pct, 2), field(r.energy_rise_pct, 3)});
         }
     }
     if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());

@@ -19,6 +19,30 @@ V2 rotate(const V2& v, double angle) {
     return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
 }
 
+// The positional impulses (kg m, along n) at two points of one manifold that bring both
+// separations, `gap` short of their allowed value (negative: too deep), to it or beyond, each
+// zero where its point separates by itself: the velocity block's complementarity problem
+// (block_solver.cpp) with the gaps in place of the velocities.
+std::array<double, 2> block_push(const RigidBody& a, const RigidBody& b, const V2& n,
+                                 const std::array<V2, 2>& ra, const std::array<V2, 2>& rb,
+                                 const std::array<double, 2>& gap) {
+    const double ra1 = cross(ra[0], n), rb1 = cross(rb[0], n);
+    const double ra2 = cross(ra[1], n), rb2 = cross(rb[1], n);
+    const double m = a.inv_mass + b.inv_mass;
+    const double k11 = m + a.inv_inertia * ra1 * ra1 + b.inv_inertia * rb1 * rb1;
+    const double k22 = m + a.inv_inertia * ra2 * ra2 + b.inv_inertia * rb2 * rb2;
+    const double k12 = m + a.inv_inertia * ra1 * ra2 + b.inv_inertia * rb1 * rb2;
+    const double det = k11 * k22 - k12 * k12;
+    const double g1 = gap[0], g2 = gap[1];
+    if (det > 1e-12 * k11 * k22) {   // both pushing
+        const std::array<double, 2> x{(-k22 * g1 + k12 * g2) / det, (k12 * g1 - k11 * g2) / det};
+        if (x[0] >= 0 && x[1] >= 0) return x;
+    }
+    if (k11 > 0 && -g1 / k11 >= 0 && k12 * (-g1 / k11) + g2 >= 0) return {-g1 / k11, 0};
+    if (k22 > 0 && -g2 / k22 >= 0 && k12 * (-g2 / k22) + g1 >= 0) return {0, -g2 / k22};
+    return {0, 0};
+}
+
 }  // namespace
 
 void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall) {
@@ -473,6 +497,28 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
             const RigidBody& a = bodies[pc.a];
             const RigidBody& b = bodies[pc.b];
             const V2& n = pc.contact.normal;
+            if (pc.contact.count == 2) {
+                // Both points at once, as the velocities are solved: pushed one at a time, the
+                // first push turns the body and the second turns it back only in part, which
+                // sets a resting stack rocking.
+                std::array<V2, 2> ra, rb;
+                std::array<double, 2> overlap{};
+                for (int k = 0; k < 2; ++k) {
+                    overlap[static_cast<std::size_t>(k)] =
+                        separation_now(pc, k, ra[static_cast<std::size_t>(k)],
+                                       rb[static_cast<std::size_t>(k)]) + def_.slop;
+                }
+                if (overlap[0] >= 0 && overlap[1] >= 0) continue;
+                const std::array<double, 2> push =
+                    block_push(a, b, n, ra, rb,
+                               {std::max(overlap[0], -def_.max_correction),
+                                std::max(overlap[1], -def_.max_correction)});
+                for (int k = 0; k < 2; ++k) {
+                    const auto q = static_cast<std::size_t>(k);
+                    if (push[q] > 0) push_apart(pc, ra[q], rb[q], push[q]);
+                }
+                continue;
+            }
             for (int k = 0; k < pc.contact.count; ++k) {
                 V2 ra, rb;
                 const double overlap = separation_now(pc, k, ra, rb) + def_.slop;
