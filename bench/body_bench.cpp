@@ -36,8 +36,8 @@ double thread_seconds() {
     return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) / 1e9;
 }
 
-DiscDef box_at(double x, double y, double friction) {
-    DiscDef d;
+BodyDef box_at(double x, double y, double friction) {
+    BodyDef d;
     d.shape = *box_shape(1, 1);
     d.position = {x, y};
     d.mass = 1;
@@ -63,7 +63,7 @@ WorldDef floor_world(int rate, double friction) {
 // 1 mm between the floor and the first box and between boxes: they land on each other.
 WorldDef stack(int rate) {
     WorldDef def = floor_world(rate, 0.6);
-    for (int i = 0; i < 20; ++i) def.discs.push_back(box_at(0, 0.501 + 1.001 * i, 0.6));
+    for (int i = 0; i < 20; ++i) def.bodies.push_back(box_at(0, 0.501 + 1.001 * i, 0.6));
     return def;
 }
 
@@ -71,7 +71,7 @@ WorldDef pyramid(int rate) {
     WorldDef def = floor_world(rate, 0.6);
     for (int row = 0; row < 20; ++row) {
         const int n = 20 - row;
-        for (int i = 0; i < n; ++i) def.discs.push_back(box_at(i - (n - 1) / 2.0, 0.5 + row, 0.6));
+        for (int i = 0; i < n; ++i) def.bodies.push_back(box_at(i - (n - 1) / 2.0, 0.5 + row, 0.6));
     }
     return def;
 }
@@ -104,7 +104,7 @@ WorldDef polygons(int rate) {
             const double a = 2 * std::numbers::pi * (i + uniform(-0.3, 0.3)) / sides;
             points.push_back({size * std::cos(a), size * std::sin(a)});
         }
-        DiscDef d;
+        BodyDef d;
         d.shape = polygon_shape(points)->shape;
         d.position = {0.3 + 0.52 * (k % 23), 1 + 0.52 * (k / 23)};
         d.angle = uniform(0, 6.28);
@@ -113,7 +113,7 @@ WorldDef polygons(int rate) {
         d.radius = bounding_radius(*d.shape);
         d.restitution = 0.3;
         d.friction = 0.4;
-        def.discs.push_back(d);
+        def.bodies.push_back(d);
     }
     return def;
 }
@@ -140,17 +140,17 @@ double inscribed_radius(const Shape& shape) {
 
 // The deepest overlap of any two bodies, in % of the smaller one's inscribed radius: every
 // pair whose bounding circles meet, by the shapes' exact separation.
-double deepest_overlap_pct(const WorldDef& def, std::span<const DiscState> now,
+double deepest_overlap_pct(const WorldDef& def, std::span<const BodyState> now,
                            const std::vector<double>& inner) {
     double deepest = 0;
     for (std::size_t i = 0; i < now.size(); ++i) {
         for (std::size_t j = i + 1; j < now.size(); ++j) {
-            const double reach = def.discs[i].radius + def.discs[j].radius;
+            const double reach = def.bodies[i].radius + def.bodies[j].radius;
             const double dx = now[j].position.x - now[i].position.x;
             const double dy = now[j].position.y - now[i].position.y;
             if (dx * dx + dy * dy >= reach * reach) continue;
-            const double s = separation(*def.discs[i].shape, now[i].position, now[i].angle,
-                                        *def.discs[j].shape, now[j].position, now[j].angle);
+            const double s = separation(*def.bodies[i].shape, now[i].position, now[i].angle,
+                                        *def.bodies[j].shape, now[j].position, now[j].angle);
             if (s < 0) deepest = std::max(deepest, -s / std::min(inner[i], inner[j]));
         }
     }
@@ -166,20 +166,20 @@ Result run(const WorldDef& def, double seconds, bool pile) {
         for (int k = 0; k < steps; ++k) world.step();
         r.ms_per_second = 1000 * (thread_seconds() - start) / seconds;
         r.sag_mm = r.drift_mm = r.fastest_mm_s = 0;
-        for (std::size_t i = 0; i < def.discs.size(); ++i) {
-            const DiscState& s = world.discs()[i];
+        for (std::size_t i = 0; i < def.bodies.size(); ++i) {
+            const BodyState& s = world.bodies()[i];
             // Each gap below a box closes: a stack's 1 mm gaps, none in the pyramid.
-            const double gaps = def.discs[i].position.y - std::floor(def.discs[i].position.y) - 0.5;
-            const double place = def.discs[i].position.y - gaps;
+            const double gaps = def.bodies[i].position.y - std::floor(def.bodies[i].position.y) - 0.5;
+            const double place = def.bodies[i].position.y - gaps;
             r.sag_mm = std::max(r.sag_mm, 1000 * (place - s.position.y));
-            r.drift_mm = std::max(r.drift_mm, 1000 * std::abs(s.position.x - def.discs[i].position.x));
+            r.drift_mm = std::max(r.drift_mm, 1000 * std::abs(s.position.x - def.bodies[i].position.x));
             r.fastest_mm_s = std::max(r.fastest_mm_s, 1000 * std::hypot(s.velocity.x, s.velocity.y));
         }
         return r;
     }
     // The pile: timed apart from its measures, taken every 60 fps frame.
     std::vector<double> inner;
-    for (const DiscDef& d : def.discs) inner.push_back(inscribed_radius(*d.shape));
+    for (const BodyDef& d : def.bodies) inner.push_back(inscribed_radius(*d.shape));
     const double start_energy = world.energy();
     double before = start_energy, timed = 0;
     r.overlap_pct = r.energy_rise_pct = 0;
@@ -191,7 +191,7 @@ Result run(const WorldDef& def, double seconds, bool pile) {
         const double energy = world.energy();
         r.energy_rise_pct = std::max(r.energy_rise_pct, 100 * (energy - before) / std::abs(start_energy));
         before = energy;
-        r.overlap_pct = std::max(r.overlap_pct, deepest_overlap_pct(def, world.discs(), inner));
+        r.overlap_pct = std::max(r.overlap_pct, deepest_overlap_pct(def, world.bodies(), inner));
     }
     r.ms_per_second = 1000 * timed / seconds;
     return r;
@@ -220,9 +220,9 @@ int main(int argc, char** argv) {
                                                      : polygons(rate);
             const Result r = run(def, seconds, name == "polygons");
             std::printf("%-10s %6zu %5d %10.1f %8.2f %8.2f %10.3f %10.2f %10.3f\n", name.c_str(),
-                        def.discs.size(), rate, r.ms_per_second, r.sag_mm, r.drift_mm,
+                        def.bodies.size(), rate, r.ms_per_second, r.sag_mm, r.drift_mm,
                         r.fastest_mm_s, r.overlap_pct, r.energy_rise_pct);
-            results.append({name, std::to_string(def.discs.size()), std::to_string(rate),
+            results.append({name, std::to_string(def.bodies.size()), std::to_string(rate),
                             bench::csv_number(seconds, 1), bench::csv_number(r.ms_per_second, 1),
                             field(r.sag_mm, 3), field(r.drift_mm, 3), field(r.fastest_mm_s, 3),
                             field(r.overlap_pct, 2), field(r.energy_rise_pct, 3)});

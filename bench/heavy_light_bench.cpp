@@ -28,9 +28,9 @@ namespace {
 using namespace discreel;
 using namespace discreel::physics;
 
-DiscDef disc(Vec2 position, Vec2 velocity, double radius, double mass, bool manifold,
+BodyDef disc(Vec2 position, Vec2 velocity, double radius, double mass, bool manifold,
              double restitution = 0.0, double friction = 0.5) {
-    DiscDef d;
+    BodyDef d;
     d.position = position;
     d.velocity = velocity;
     d.radius = radius;
@@ -63,8 +63,8 @@ double deepest(World& world, double seconds) {
 double rest(double ratio, bool manifold) {
     WorldDef def;
     def.walls.push_back(box({-5, 0}, {5, 10}, 0.0));
-    def.discs.push_back(disc({0, 0.5}, {}, 0.5, 1, manifold));
-    def.discs.push_back(disc({0, 1.5}, {}, 0.5, ratio, manifold));
+    def.bodies.push_back(disc({0, 0.5}, {}, 0.5, 1, manifold));
+    def.bodies.push_back(disc({0, 1.5}, {}, 0.5, ratio, manifold));
     World world(def);
     return 100 * deepest(world, 3) / 0.5;
 }
@@ -72,9 +72,9 @@ double rest(double ratio, bool manifold) {
 double squeeze(double ratio, bool manifold) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs.push_back(disc({-1.5, 0}, {3, 0}, 0.5, ratio, manifold, 0, 0));
-    def.discs.push_back(disc({0, 0}, {}, 0.5, 1, manifold, 0, 0));
-    def.discs.push_back(disc({1.5, 0}, {-3, 0}, 0.5, ratio, manifold, 0, 0));
+    def.bodies.push_back(disc({-1.5, 0}, {3, 0}, 0.5, ratio, manifold, 0, 0));
+    def.bodies.push_back(disc({0, 0}, {}, 0.5, 1, manifold, 0, 0));
+    def.bodies.push_back(disc({1.5, 0}, {-3, 0}, 0.5, ratio, manifold, 0, 0));
     World world(def);
     return 100 * deepest(world, 1) / 0.5;
 }
@@ -92,7 +92,7 @@ Pile pile(double ratio, bool manifold, int seed) {
     for (int k = 0; k < 64; ++k) {
         const double angle = rng.uniform(0, 2 * 3.141592653589793);
         const int column = k % 8, row = k / 8;
-        def.discs.push_back(disc({(1 + column) * 1.1, (1 + row) * 1.1},
+        def.bodies.push_back(disc({(1 + column) * 1.1, (1 + row) * 1.1},
                                  {2 * std::cos(angle), 2 * std::sin(angle)}, 0.4,
                                  k % 2 ? ratio : 1.0, manifold, 0.5, 0.5));
     }
@@ -110,7 +110,7 @@ Pile pile(double ratio, bool manifold, int seed) {
         }
     }
     p.overlap_pct = 100 * depth / 0.4;
-    for (const DiscState& s : world.discs()) {
+    for (const BodyState& s : world.bodies()) {
         p.fastest = std::max(p.fastest, std::hypot(s.velocity.x, s.velocity.y));
     }
     if (world.failure()) p.fastest = HUGE_VAL;

@@ -45,7 +45,7 @@ Case run(bool boxes, double ratio, double radii_per_step) {
     const double speed = radii_per_step * r * rate;
     for (int k = 0; k < 64; ++k) {
         const double angle = rng.uniform(0, 2 * 3.141592653589793);
-        DiscDef d;
+        BodyDef d;
         d.position = {(1 + k % 8) * 1.1, (1 + k / 8) * 1.1};
         d.velocity = {speed * std::cos(angle), speed * std::sin(angle)};
         d.radius = r;
@@ -56,7 +56,7 @@ Case run(bool boxes, double ratio, double radii_per_step) {
             d.shape = *box_shape(2 * r, 2 * r);
             d.radius = bounding_radius(*d.shape);
         }
-        def.discs.push_back(d);
+        def.bodies.push_back(d);
     }
     const auto begin = std::chrono::steady_clock::now();
     World world(def);
@@ -74,7 +74,7 @@ Case run(bool boxes, double ratio, double radii_per_step) {
         }
     }
     c.failed = world.failure().has_value();
-    for (const DiscState& s : world.discs()) {
+    for (const BodyState& s : world.bodies()) {
         const bool in = s.position.x > 0 && s.position.x < side && s.position.y > 0 &&
                         s.position.y < side;
         c.outside += in ? 0 : 1;

@@ -60,14 +60,14 @@ physics::WorldDef pile(int n, const Settings& settings) {
     def.walls.push_back(box);
     std::uint64_t seed = settings.seed;
     for (int k = 0; k < n; ++k) {
-        physics::DiscDef d;
+        physics::BodyDef d;
         d.position = {spacing * (0.5 + k % columns), spacing * (0.5 + k / columns)};
         d.velocity = {uniform(seed, -0.5, 0.5), uniform(seed, -0.5, 0.5)};
         d.radius = r;
         d.mass = 3.141592653589793 * r * r;
         d.restitution = 0.5;
         d.friction = 0.6;
-        def.discs.push_back(d);
+        def.bodies.push_back(d);
     }
     return def;
 }

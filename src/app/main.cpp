@@ -96,7 +96,7 @@ CLI::Validator whole_number(long long low, long long high) {
 
 // The protective limits of docs/scene-format.md, raised (or lowered) per run.
 void add_limit_options(CLI::App& cmd, discreel::scene::Limits& limits) {
-    cmd.add_option("--max-bodies,--max-discs", limits.discs,
+    cmd.add_option("--max-bodies,--max-discs", limits.bodies,
                    "Most bodies (discs and other shapes) a scene may have")
         ->check(whole_number(1, 100'000'000))
         ->capture_default_str()

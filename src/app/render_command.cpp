@@ -158,7 +158,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     if (o.verbose) {
         err << "discreel: " << scene.video.width << 'x' << scene.video.height << ", "
             << scene.video.fps << " fps, frames " << frames.first << ".." << frames.last
-            << ", " << scene.discs.size() << " discs; " << output.format << ", "
+            << ", " << scene.bodies.size() << " discs; " << output.format << ", "
             << describe_encoder(sink_def, job::segmented(output)) << "; "
             << (o.sequential ? "one thread" : "simulate, render and encode threads");
         if (job::segmented(output)) {

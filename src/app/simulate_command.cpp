@@ -34,11 +34,11 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     if (!check_distinct_files({{"the scene", o.scene_path}}, output_paths, err))
         return exit_bad_input;
     const std::string name = scene.name;
-    const std::size_t discs = scene.discs.size(), walls = scene.walls.size(),
+    const std::size_t discs = scene.bodies.size(), walls = scene.walls.size(),
                       throws = scene.throws.size();
     const int fps = scene.video.fps, rate = scene.physics.rate;
-    const bool shaped = std::any_of(scene.discs.begin(), scene.discs.end(),
-                                    [](const scene::Disc& d) { return d.shape.has_value(); });
+    const bool shaped = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                                    [](const scene::Body& d) { return d.shape.has_value(); });
     job::SimulateDef def;
     def.scene = std::move(scene);
     def.trace = o.files.trace;

@@ -15,9 +15,9 @@ int run_validate(const ValidateOptions& o, std::ostream& out, std::ostream& err)
     for (const std::string& path : o.scene_paths) {
         const auto loaded = scene::load_scene_file(path, o.limits);
         if (report_diagnostics(loaded, err)) {
-            const auto& bodies = loaded.scene.discs;
+            const auto& bodies = loaded.scene.bodies;
             const bool shaped = std::any_of(bodies.begin(), bodies.end(),
-                                            [](const scene::Disc& d) { return d.shape.has_value(); });
+                                            [](const scene::Body& d) { return d.shape.has_value(); });
             // A scene with warnings is ok: they are printed above, and counted here.
             const std::size_t warned = loaded.warnings.size();
             const std::string warnings =

@@ -4,8 +4,8 @@ namespace discreel::job {
 
 namespace {
 
-physics::DiscDef body_of(const scene::Disc& d) {
-    physics::DiscDef disc;
+physics::BodyDef body_of(const scene::Body& d) {
+    physics::BodyDef disc;
     disc.position = d.position;
     disc.velocity = d.velocity;
     disc.angle = d.angle;
@@ -27,13 +27,13 @@ physics::WorldDef build_world(const scene::Scene& scene) {
     def.rate = scene.physics.rate;
     def.substeps = scene.physics.substeps;
     def.iterations = scene.physics.iterations;
-    def.discs.reserve(scene.discs.size());
-    for (const scene::Disc& d : scene.discs) def.discs.push_back(body_of(d));
+    def.bodies.reserve(scene.bodies.size());
+    for (const scene::Body& d : scene.bodies) def.bodies.push_back(body_of(d));
     for (const scene::Respawn& r : scene.respawns) {
         physics::RespawnDef respawn;
         respawn.at = r.at;
         respawn.first = r.first;
-        for (const scene::Disc& d : r.bodies) respawn.bodies.push_back(body_of(d));
+        for (const scene::Body& d : r.bodies) respawn.bodies.push_back(body_of(d));
         def.respawns.push_back(std::move(respawn));
     }
     def.walls.reserve(scene.walls.size());
@@ -51,7 +51,7 @@ physics::WorldDef build_world(const scene::Scene& scene) {
     def.throws.reserve(scene.throws.size());
     for (const scene::Throw& t : scene.throws) {
         physics::ThrowDef th;
-        th.disc = t.disc;
+        th.body = t.body;
         th.at = t.at;
         th.velocity = t.velocity;
         th.release = t.release;

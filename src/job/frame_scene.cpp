@@ -82,7 +82,7 @@ render::Camera fit_camera(const scene::Scene& scene) {
         box.add(w.b, w.thickness);
     }
     if (box.empty()) {
-        for (const scene::Disc& d : scene.discs) box.add(d.position, d.radius);
+        for (const scene::Body& d : scene.bodies) box.add(d.position, d.radius);
     }
     render::Camera camera;
     if (box.empty()) {
@@ -117,22 +117,22 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
                                        static_cast<float>(w.thickness / 2), to_rgba(w.color)});
         }
     }
-    slots_.resize(scene.discs.size());
-    trail_radius_.resize(scene.discs.size());
-    fill_.resize(scene.discs.size());
-    for (std::size_t i = 0; i < scene.discs.size(); ++i) {
-        const bool polygon = scene.discs[i].shape.has_value();
+    slots_.resize(scene.bodies.size());
+    trail_radius_.resize(scene.bodies.size());
+    fill_.resize(scene.bodies.size());
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        const bool polygon = scene.bodies[i].shape.has_value();
         std::size_t& count = polygon ? polygon_count_ : disc_count_;
         slots_[i] = {polygon, count++};
     }
     frame_.discs.resize(disc_count_);
     frame_.polygons.resize(polygon_count_);
-    for (std::size_t i = 0; i < scene.discs.size(); ++i) set_look(i, scene.discs[i]);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) set_look(i, scene.bodies[i]);
 
     const scene::Trails& trails = scene.style.trails;
     if (trails.enabled) {
-        for (std::size_t i = 0; i < scene.discs.size(); ++i)
-            if (!scene.discs[i].is_static) trailed_.push_back(i);
+        for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+            if (!scene.bodies[i].is_static) trailed_.push_back(i);
     }
     if (!trailed_.empty()) {
         const auto wanted =
@@ -143,7 +143,7 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
     }
 }
 
-void FrameSceneBuilder::set_look(std::size_t body, const scene::Disc& d) {
+void FrameSceneBuilder::set_look(std::size_t body, const scene::Body& d) {
     const Slot slot = slots_[body];
     fill_[body] = to_rgba(d.color);
     trail_radius_[body] = static_cast<float>(scene_.style.trails.width * d.radius);
@@ -181,7 +181,7 @@ void FrameSceneBuilder::respawned(std::size_t applied) {
     }
 }
 
-void FrameSceneBuilder::observe(int frame, std::span<const physics::DiscState> discs) {
+void FrameSceneBuilder::observe(int frame, std::span<const physics::BodyState> discs) {
     if (const auto follow = scene_.camera.follow; follow && *follow < discs.size()) {
         const Vec2 target = discs[*follow].position;
         const double lag = scene_.camera.follow_lag;
@@ -209,7 +209,7 @@ void FrameSceneBuilder::observe(int frame, std::span<const physics::DiscState> d
 }
 
 const render::FrameScene& FrameSceneBuilder::build(int frame,
-                                                   std::span<const physics::DiscState> discs) {
+                                                   std::span<const physics::BodyState> discs) {
     observe(frame, discs);
     for (std::size_t i = 0; i < discs.size(); ++i) {
         const auto x = static_cast<float>(discs[i].position.x);
@@ -266,12 +266,12 @@ void FrameSceneBuilder::add_trails() {
     }
 }
 
-void FrameSceneBuilder::add_arrows(std::span<const physics::DiscState> discs) {
+void FrameSceneBuilder::add_arrows(std::span<const physics::BodyState> discs) {
     frame_.arrows.clear();
     const scene::VelocityArrows& style = scene_.style.velocity_arrows;
     if (!style.enabled) return;
     for (std::size_t i = 0; i < discs.size(); ++i) {
-        if (scene_.discs[i].is_static) continue;
+        if (scene_.bodies[i].is_static) continue;
         const Vec2 tail = discs[i].position;
         const Vec2 v = discs[i].velocity;
         frame_.arrows.push_back({static_cast<float>(tail.x), static_cast<float>(tail.y),

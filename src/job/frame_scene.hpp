@@ -26,25 +26,25 @@ public:
 
     // Frames must be shown in order, each once, starting at 0; a frame that is not drawn is
     // still observed, so that trails and the follow camera see it. Frame n is at t = n / fps.
-    void observe(int frame, std::span<const physics::DiscState> discs);
+    void observe(int frame, std::span<const physics::BodyState> discs);
 
     // observe() and the frame description of that state. The returned reference stays valid
     // until the next call.
-    const render::FrameScene& build(int frame, std::span<const physics::DiscState> discs);
+    const render::FrameScene& build(int frame, std::span<const physics::BodyState> discs);
 
     // The world has carried out the first `applied` of the scene's respawns: later frames
     // draw the new bodies' shapes and colours.
     void respawned(std::size_t applied);
 
 private:
-    // Where body i is drawn: frame_.discs or frame_.polygons, at `slot`.
+    // Where body i is drawn: frame_.bodies or frame_.polygons, at `slot`.
     struct Slot {
         bool polygon = false;
         std::size_t slot = 0;
     };
-    void set_look(std::size_t body, const scene::Disc& d);
+    void set_look(std::size_t body, const scene::Body& d);
     void add_trails();
-    void add_arrows(std::span<const physics::DiscState> discs);
+    void add_arrows(std::span<const physics::BodyState> discs);
     void add_clock(int frame);
 
     const scene::Scene& scene_;

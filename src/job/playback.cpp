@@ -30,14 +30,14 @@ Status Playback::advance_to(int frame, const std::function<bool()>& should_stop)
     return impl_->stepper.advance_to(frame, should_stop);
 }
 
-void Playback::observe(int frame) { impl_->builder.observe(frame, impl_->world.discs()); }
+void Playback::observe(int frame) { impl_->builder.observe(frame, impl_->world.bodies()); }
 
 const render::FrameScene& Playback::frame_scene(int frame) {
     impl_->builder.respawned(impl_->world.respawns_applied());
-    return impl_->builder.build(frame, impl_->world.discs());
+    return impl_->builder.build(frame, impl_->world.bodies());
 }
 
-std::span<const physics::DiscState> Playback::discs() const { return impl_->world.discs(); }
+std::span<const physics::BodyState> Playback::bodies() const { return impl_->world.bodies(); }
 
 std::vector<physics::ContactEvent> Playback::take_events() { return impl_->stepper.take_events(); }
 

@@ -30,7 +30,7 @@ std::vector<encode::Rgb> scene_colours(const scene::Scene& scene) {
     const auto add = [&](const scene::Color& c) { colours.push_back({c.r, c.g, c.b}); };
     add(scene.video.background);
     for (const auto& wall : scene.walls) add(wall.color);
-    for (const auto& disc : scene.discs) add(disc.color);
+    for (const auto& disc : scene.bodies) add(disc.color);
     return colours;
 }
 
@@ -155,7 +155,7 @@ Expected<RenderSummary> render(const RenderDef& def) {
             simulated = playback.advance_to(frame, def.should_stop);
             if (!simulated) return nullptr;
             warnings.say(playback.take_warnings());
-            outputs->record(frame, playback.time_of_frame(frame), playback.discs(),
+            outputs->record(frame, playback.time_of_frame(frame), playback.bodies(),
                             playback.take_events(), playback.world().respawns_applied());
             if (frame < range.first) {
                 playback.observe(frame);   // trails and the follow camera

@@ -203,7 +203,7 @@ private:
                 return fail(advanced.error());
             }
             warnings_.say(playback.take_warnings());
-            outputs.record(frame, playback.time_of_frame(frame), playback.discs(),
+            outputs.record(frame, playback.time_of_frame(frame), playback.bodies(),
                            playback.take_events(), playback.world().respawns_applied());
         }
     }

@@ -19,7 +19,7 @@ Expected<SideOutputs> SideOutputs::open(const std::optional<std::string>& trace,
     return outputs;
 }
 
-void SideOutputs::record(int frame, double t, std::span<const physics::DiscState> discs,
+void SideOutputs::record(int frame, double t, std::span<const physics::BodyState> discs,
                          std::span<const physics::ContactEvent> events, std::size_t respawns) {
     if (trace_) trace_->write_frame(frame, t, discs, respawns);
     if (events_) events_->write(events);

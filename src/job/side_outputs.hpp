@@ -21,7 +21,7 @@ public:
                                       const scene::Scene& scene);
 
     // `respawns`: World::respawns_applied() at that frame.
-    void record(int frame, double t, std::span<const physics::DiscState> discs,
+    void record(int frame, double t, std::span<const physics::BodyState> discs,
                 std::span<const physics::ContactEvent> events, std::size_t respawns);
     // Writes what is buffered and seals the files; then files() are ready to be committed
     // together with the run's other outputs.

@@ -27,7 +27,7 @@ Expected<SimulateSummary> simulate(const SimulateDef& def) {
         warnings.say(playback.take_warnings());
         const std::vector<physics::ContactEvent> events = playback.take_events();
         summary.contacts += events.size();
-        outputs->record(frame, playback.time_of_frame(frame), playback.discs(), events,
+        outputs->record(frame, playback.time_of_frame(frame), playback.bodies(), events,
                         playback.world().respawns_applied());
         const physics::WorldStats stats = playback.world().stats();
         if (stats.max_overlap > summary.deepest.max_overlap) summary.deepest = stats;

@@ -25,8 +25,8 @@ struct Body {
 
 std::vector<Body> bodies_of(const physics::WorldDef& world) {
     std::vector<Body> bodies;
-    bodies.reserve(world.discs.size());
-    for (const physics::DiscDef& disc : world.discs) {
+    bodies.reserve(world.bodies.size());
+    for (const physics::BodyDef& disc : world.bodies) {
         bodies.push_back({disc.shape ? physics::bounding_radius(*disc.shape) : disc.radius,
                           disc.is_static ? std::numeric_limits<double>::infinity() : disc.mass});
     }
@@ -75,12 +75,12 @@ Status write_soundtrack(const scene::Scene& scene, FrameRange range, const Sampl
         const double half_width = camera.height * aspect / 2;
         for (const physics::ContactEvent& event : playback.take_events()) {
             const Body& body = bodies[event.a];
-            const bool disc = event.other_kind == physics::ContactEvent::Other::disc;
+            const bool disc = event.other_kind == physics::ContactEvent::Other::body;
             const Body other = disc ? bodies[event.other]
                                     : Body{body.size, std::numeric_limits<double>::infinity()};
             // The lighter body's change of speed: what makes the contact loud, at any scale.
             const double lighter = std::min(body.mass, other.mass);
-            const double x = playback.discs()[event.a].position.x;
+            const double x = playback.bodies()[event.a].position.x;
             const double speed = std::isfinite(lighter) ? event.impulse / lighter : 0.0;
             if (speed < settling) continue;
             synth.add({.t = event.t,

@@ -21,8 +21,8 @@ public:
         // Every moving body that starts inside a box of walls is expected to stay there.
         for (std::size_t w = 0; w < scene.walls.size(); ++w) {
             if (scene.walls[w].shape != scene::Wall::Shape::box) continue;
-            for (std::size_t i = 0; i < scene.discs.size(); ++i) {
-                if (!scene.discs[i].is_static && inside(scene.walls[w], scene.discs[i].position)) {
+            for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+                if (!scene.bodies[i].is_static && inside(scene.walls[w], scene.bodies[i].position)) {
                     kept_.push_back({i, w});
                 }
             }
@@ -58,7 +58,7 @@ private:
     Error describe(const physics::NonFiniteState& failure) const {
         std::ostringstream text;
         // A body of `bodies:` (a shape) is a body to its author, not a disc.
-        const scene::Disc& body = scene_.discs[failure.disc];
+        const scene::Body& body = scene_.bodies[failure.body];
         text << "the simulation broke down at t = " << failure.t << " s: "
              << (body.shape ? "body '" : "disc '") << body.id
              << "' has a position, velocity or spin that is no longer a finite number; the "
@@ -71,13 +71,13 @@ private:
     }
 
     void check_kept() {
-        const auto bodies = world_.discs();
+        const auto bodies = world_.bodies();
         for (auto it = kept_.begin(); it != kept_.end();) {
             if (inside(scene_.walls[it->wall], bodies[it->body].position)) {
                 ++it;
                 continue;
             }
-            const scene::Disc& body = scene_.discs[it->body];
+            const scene::Body& body = scene_.bodies[it->body];
             std::ostringstream text;
             text << (body.shape ? "body '" : "disc '") << body.id << "' left the box of walls["
                  << it->wall << "] by t = " << world_.time()

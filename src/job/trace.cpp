@@ -14,10 +14,10 @@ Expected<TraceWriter> TraceWriter::create(const std::string& path, const scene::
 TraceWriter::TraceWriter(AtomicTextFile file, const scene::Scene& scene)
     : file_(std::move(file)), scene_(&scene) {
     file_.write("frame,t,id,x,y,angle,vx,vy,omega,radius,mass,inertia\n");
-    for (const scene::Disc& d : scene.discs) bodies_.push_back(&d);
+    for (const scene::Body& d : scene.bodies) bodies_.push_back(&d);
 }
 
-void TraceWriter::write_frame(int frame, double t, std::span<const physics::DiscState> discs,
+void TraceWriter::write_frame(int frame, double t, std::span<const physics::BodyState> discs,
                               std::size_t respawns) {
     for (; respawns_ < std::min(respawns, scene_->respawns.size()); ++respawns_) {
         const scene::Respawn& r = scene_->respawns[respawns_];
@@ -26,8 +26,8 @@ void TraceWriter::write_frame(int frame, double t, std::span<const physics::Disc
         }
     }
     for (std::size_t i = 0; i < discs.size(); ++i) {
-        const scene::Disc& def = *bodies_[i];
-        const physics::DiscState& s = discs[i];
+        const scene::Body& def = *bodies_[i];
+        const physics::BodyState& s = discs[i];
         row_.clear();
         row_ += std::to_string(frame);
         row_ += ',';
@@ -61,12 +61,12 @@ void EventWriter::write(std::span<const physics::ContactEvent> events) {
         row_.clear();
         append_number(row_, e.t);
         row_ += ',';
-        row_ += scene_->discs[e.a].id;
+        row_ += scene_->bodies[e.a].id;
         row_ += ',';
         if (e.other_kind == physics::ContactEvent::Other::wall) {
             row_ += "wall:" + std::to_string(e.other);
         } else {
-            row_ += scene_->discs[e.other].id;
+            row_ += scene_->bodies[e.other].id;
         }
         row_ += ',';
         append_number(row_, e.impulse);

@@ -22,7 +22,7 @@ public:
     static Expected<TraceWriter> create(const std::string& path, const scene::Scene& scene);
     // `respawns`: how many of the scene's respawns the world has carried out (their bodies'
     // radius, mass and inertia are the ones written from then on).
-    void write_frame(int frame, double t, std::span<const physics::DiscState> discs,
+    void write_frame(int frame, double t, std::span<const physics::BodyState> discs,
                      std::size_t respawns = 0);
     AtomicTextFile& file() { return file_; }
 
@@ -30,7 +30,7 @@ private:
     TraceWriter(AtomicTextFile file, const scene::Scene& scene);
     AtomicTextFile file_;
     const scene::Scene* scene_;
-    std::vector<const scene::Disc*> bodies_;   // each body's current definition
+    std::vector<const scene::Body*> bodies_;   // each body's current definition
     std::size_t respawns_ = 0;
     std::string row_;
 };

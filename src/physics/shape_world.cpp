@@ -9,7 +9,7 @@ namespace {
 
 V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
 
-RigidBody make_body(const DiscDef& d) {
+RigidBody make_body(const BodyDef& d) {
     RigidBody b;
     b.shape = d.shape ? to_polygon(*d.shape) : make_circle(d.radius);
     b.x = to_v2(d.position);
@@ -43,18 +43,18 @@ RigidBody make_fixed(const Polygon& shape, const V2& at, double angle, const Wal
 }  // namespace
 
 bool ShapeWorld::wanted(const WorldDef& def) {
-    const auto shaped = [](const DiscDef& d) { return d.shape.has_value(); };
-    return uses_manifold_solver(std::any_of(def.discs.begin(), def.discs.end(), shaped),
+    const auto shaped = [](const BodyDef& d) { return d.shape.has_value(); };
+    return uses_manifold_solver(std::any_of(def.bodies.begin(), def.bodies.end(), shaped),
                                 !def.respawns.empty());
 }
 
 ShapeWorld::ShapeWorld(const WorldDef& def, int substeps)
     : gravity_(to_v2(def.gravity)),
       substeps_(substeps),
-      body_count_(def.discs.size()),
+      body_count_(def.bodies.size()),
       throws_(def.throws),
       respawns_(def.respawns) {
-    for (const DiscDef& d : def.discs) bodies_.push_back(make_body(d));
+    for (const BodyDef& d : def.bodies) bodies_.push_back(make_body(d));
     for (std::size_t i = 0; i < def.walls.size(); ++i) {
         const WallDef& w = def.walls[i];
         if (w.shape == WallDef::Shape::box) {
@@ -112,7 +112,7 @@ void ShapeWorld::step(double t0, double t1) {
                 e.other_kind = ContactEvent::Other::wall;
                 e.other = wall_of_[touch.b - body_count_];
             } else {
-                e.other_kind = ContactEvent::Other::disc;
+                e.other_kind = ContactEvent::Other::body;
                 e.other = touch.b;
             }
             e.impulse = touch.impulse;
@@ -123,10 +123,10 @@ void ShapeWorld::step(double t0, double t1) {
     throws_.end_step(t1, bodies_);
 }
 
-std::span<const DiscState> ShapeWorld::states() const {
+std::span<const BodyState> ShapeWorld::states() const {
     for (std::size_t i = 0; i < body_count_; ++i) {
         const RigidBody& b = bodies_[i];
-        states_[i] = DiscState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
+        states_[i] = BodyState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
     }
     return states_;
 }

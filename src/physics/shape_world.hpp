@@ -21,7 +21,7 @@ public:
 
     // The step [t0, t0 + dt], at time t1 = t0 + dt; events are stamped t1.
     void step(double t0, double t1);
-    std::span<const DiscState> states() const;
+    std::span<const BodyState> states() const;
     std::vector<ContactEvent> take_events() { return std::exchange(events_, {}); }
     std::size_t respawns_applied() const { return respawns_applied_; }
     // The first body whose state is not finite, if any.
@@ -44,7 +44,7 @@ private:
     std::size_t respawns_applied_ = 0;
     std::vector<ContactEvent> events_;
     std::size_t touching_ = 0;              // pairs touching in the last substep
-    mutable std::vector<DiscState> states_;
+    mutable std::vector<BodyState> states_;
 };
 
 }  // namespace discreel::physics::detail

@@ -84,7 +84,7 @@ double separation(const Shape& a, const Vec2& position_a, double angle_a, const 
     return nearest;
 }
 
-double inertia_of(const DiscDef& def) {
+double inertia_of(const BodyDef& def) {
     if (!def.shape) return 0.5 * def.mass * def.radius * def.radius;
     const ShapeMass unit = shape_mass(*def.shape, 1.0);
     return unit.area > 0 ? def.mass * unit.inertia / unit.mass : 0.0;

@@ -54,7 +54,7 @@ template <class B>
 void Throws::start(std::vector<B>& bodies) {
     for (Throw& th : throws_) {
         std::vector<Waypoint>& path = th.def.path;
-        B& b = bodies[th.def.disc];
+        B& b = bodies[th.def.body];
         if (path.empty() || b.motion == Motion::fixed) continue;
         if (path.front().t > 0) path.insert(path.begin(), Waypoint{0.0, Vec2{b.x.x(), b.x.y()}});
         b.x = to_v2(path.front().position);
@@ -69,7 +69,7 @@ bool Throws::begin_step(double t0, double t1, std::vector<B>& bodies) {
     bool changed = false;
     for (Throw& th : throws_) {
         if (th.stage == Stage::done) continue;
-        B& b = bodies[th.def.disc];
+        B& b = bodies[th.def.body];
         if (b.motion == Motion::fixed) {
             th.stage = Stage::done;
             continue;
@@ -100,7 +100,7 @@ template <class B>
 void Throws::end_step(double t1, std::vector<B>& bodies) const {
     for (const Throw& th : throws_) {
         if (th.stage != Stage::holding) continue;
-        bodies[th.def.disc].x = path_at(th.def.path, t1);
+        bodies[th.def.body].x = path_at(th.def.path, t1);
     }
 }
 

@@ -35,7 +35,7 @@ double masked(double x, std::uint64_t mask) {
     return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) & mask);
 }
 
-Body make_disc(const DiscDef& d) {
+Body make_disc(const BodyDef& d) {
     Body b;
     b.x = to_v2(d.position);
     b.angle = d.angle;
@@ -62,7 +62,7 @@ struct World::Impl {
     explicit Impl(const WorldDef& def)
         : rate(def.rate),
           gravity(to_v2(def.gravity)),
-          disc_count(def.discs.size()),
+          disc_count(def.bodies.size()),
           features(detail::features_of(def.walls)),
           throws(def.throws) {
         iterations = std::max(1, def.iterations);
@@ -74,7 +74,7 @@ struct World::Impl {
             if (const auto i = shapes->non_finite()) failure = NonFiniteState{*i, 0.0};
             return;
         }
-        for (const DiscDef& d : def.discs) bodies.push_back(make_disc(d));
+        for (const BodyDef& d : def.bodies) bodies.push_back(make_disc(d));
         for (const detail::Feature& f : features) {
             Body b;
             b.restitution = def.walls[f.wall].restitution;
@@ -93,7 +93,7 @@ struct World::Impl {
     // runaways: the last substep left its runaway discs (PositionProjector::contain_runaways)
     // to this pass.
     void end_step(double dt, bool runaways);
-    std::span<const DiscState> publish() const;
+    std::span<const BodyState> publish() const;
 
     int rate;
     int substeps = 1;
@@ -114,7 +114,7 @@ struct World::Impl {
     detail::PositionProjector projector;
     detail::Throws throws;
     // Filled from the bodies when asked for, not every step (a renderer asks once per frame).
-    mutable std::vector<DiscState> states;
+    mutable std::vector<BodyState> states;
     mutable std::int64_t published_steps = -1;  // the step count `states` is for
     std::vector<ContactEvent> events;
     std::int64_t steps = 0;
@@ -238,7 +238,7 @@ void World::Impl::collect_events(double t) {
                 e.other_kind = ContactEvent::Other::wall;
                 e.other = features[c.b - disc_count].wall;
             } else {
-                e.other_kind = ContactEvent::Other::disc;
+                e.other_kind = ContactEvent::Other::body;
                 e.other = c.b;
             }
             e.impulse = c.step_impulse;
@@ -282,13 +282,13 @@ void World::Impl::end_step(double dt, bool runaways) {
     }
 }
 
-std::span<const DiscState> World::Impl::publish() const {
+std::span<const BodyState> World::Impl::publish() const {
     if (shapes) return shapes->states();
     if (published_steps != steps) {
         published_steps = steps;
         for (std::size_t i = 0; i < disc_count; ++i) {
             const Body& b = bodies[i];
-            states[i] = DiscState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
+            states[i] = BodyState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
         }
     }
     return states;
@@ -308,7 +308,7 @@ bool World::manifold_solver() const { return impl_->shapes != nullptr; }
 int World::iterations() const {
     return impl_->shapes ? detail::BodySolverDef{}.iterations : impl_->iterations;
 }
-std::span<const DiscState> World::discs() const { return impl_->publish(); }
+std::span<const BodyState> World::bodies() const { return impl_->publish(); }
 std::size_t World::respawns_applied() const {
     return impl_->shapes ? impl_->shapes->respawns_applied() : 0;
 }

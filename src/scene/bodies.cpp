@@ -43,7 +43,7 @@ constexpr std::array<std::string_view, 17> random_polygon_keys{
 constexpr std::uint64_t body_streams = std::uint64_t{1} << 32;
 
 // The shape and its size in scene terms, with the mass and inertia it gives.
-void give_shape(Disc& body, const physics::Shape& shape, const Properties& p) {
+void give_shape(Body& body, const physics::Shape& shape, const Properties& p) {
     const physics::ShapeMass unit = physics::shape_mass(shape, 1.0);
     body.radius = physics::bounding_radius(shape);
     body.mass = p.mass ? *p.mass : p.density * unit.area;
@@ -124,7 +124,7 @@ std::optional<physics::Shape> read_shape(const Fields& fields, std::string_view 
 void read_single_body(Loader& loader, const Fields& fields, const Value& item,
                       std::string_view key) {
     auto& d = loader.diagnostics;
-    const std::size_t index = loader.scene.discs.size();
+    const std::size_t index = loader.scene.bodies.size();
     const Properties p = read_properties(loader, fields, item);
     auto [id, id_value, position] = read_placement(loader, fields, item);
     if (key == "circle") {   // exactly a disc of that radius
@@ -135,7 +135,7 @@ void read_single_body(Loader& loader, const Fields& fields, const Value& item,
                                 "already");
         }
         if (!room_for(loader, item, 1)) return;
-        Disc disc = make_disc(p, std::move(id), position.value_or(Vec2{}), radius.value_or(0),
+        Body disc = make_disc(p, std::move(id), position.value_or(Vec2{}), radius.value_or(0),
                               index);
         const bool usable = position && radius && check_mass(disc, item, d);
         add_disc(loader, std::move(disc), item, id_value, fields.get("velocity"), usable);
@@ -143,7 +143,7 @@ void read_single_body(Loader& loader, const Fields& fields, const Value& item,
     }
     const auto shape = read_shape(fields, key, d);
     if (!room_for(loader, item, 1)) return;
-    Disc body = make_disc(p, std::move(id), position.value_or(Vec2{}), 1.0, index);
+    Body body = make_disc(p, std::move(id), position.value_or(Vec2{}), 1.0, index);
     if (shape) give_shape(body, *shape, p);
     const bool usable = position && shape && check_mass(body, item, d);
     add_disc(loader, std::move(body), item, id_value, fields.get("velocity"), usable);
@@ -183,13 +183,13 @@ struct PolygonSpec {
 // One set: places bounding circles clear of `existing`, `walls` and each other, then gives each a
 // polygon and a spin. Fewer than asked when the region is full or a polygon cannot be made
 // at its size (or weighs nothing, or infinitely much).
-std::vector<Disc> scatter(const PolygonSpec& spec, const Properties& p,
+std::vector<Body> scatter(const PolygonSpec& spec, const Properties& p,
                           const std::vector<Circle>& existing, std::span<const Wall> walls,
                           Rng& rng,
                           const std::optional<std::vector<Color>>& colors,
                           const std::string& prefix, std::size_t first_index,
                           bool& unmakeable) {
-    std::vector<Disc> set;
+    std::vector<Body> set;
     unmakeable = false;
     for (const PlacedDisc& placed : place_random(spec.placement, existing, rng, walls)) {
         const int sides =
@@ -210,7 +210,7 @@ std::vector<Disc> scatter(const PolygonSpec& spec, const Properties& p,
         each.angular_velocity = clockwise && spin != 0 ? -spin : spin;
         const std::size_t k = set.size();
         if (colors) each.color = (*colors)[k % colors->size()];
-        Disc body = make_disc(each, prefix + "." + std::to_string(k), placed.position, 1.0,
+        Body body = make_disc(each, prefix + "." + std::to_string(k), placed.position, 1.0,
                               first_index + k);
         give_shape(body, *shape, each);
         if (!std::isfinite(body.mass) || !(body.mass > 0) || !std::isfinite(body.inertia)) {
@@ -271,7 +271,7 @@ std::optional<PendingRespawns> read_random_polygons(Loader& loader, const Fields
         const auto count = read_integer(*count_value, d);
         const bool count_ok =
             count && check_between(*count_value, static_cast<double>(*count), 1,
-                                   static_cast<double>(loader.limits.discs), d);
+                                   static_cast<double>(loader.limits.bodies), d);
         ok = ok && count_ok;
         if (count_ok) spec.placement.count = static_cast<std::size_t>(*count);
     }
@@ -340,15 +340,15 @@ std::optional<PendingRespawns> read_random_polygons(Loader& loader, const Fields
         return std::nullopt;
     }
     std::vector<Circle> existing;
-    for (std::size_t i = 0; i < loader.scene.discs.size(); ++i) {
-        const Disc& body = loader.scene.discs[i];
+    for (std::size_t i = 0; i < loader.scene.bodies.size(); ++i) {
+        const Body& body = loader.scene.bodies[i];
         if (loader.sources[i].usable)
             existing.push_back({body.position, body.radius, body.is_static});
     }
     Rng rng(loader.scene.physics.seed, body_streams + entry_index);
-    const std::size_t first = loader.scene.discs.size();
+    const std::size_t first = loader.scene.bodies.size();
     bool unmakeable = false;
-    std::vector<Disc> set =
+    std::vector<Body> set =
         scatter(spec, p, existing, loader.scene.walls, rng, colors, prefix, first, unmakeable);
     if (unmakeable) {
         d.error(own->get("size")->where,
@@ -366,7 +366,7 @@ std::optional<PendingRespawns> read_random_polygons(Loader& loader, const Fields
         return std::nullopt;
     }
     const auto speed_value = own->get("speed");
-    for (Disc& body : set) add_disc(loader, std::move(body), item, id_value, speed_value, true);
+    for (Body& body : set) add_disc(loader, std::move(body), item, id_value, speed_value, true);
     if (!every) return std::nullopt;
     return PendingRespawns{spec, p, colors, prefix, first, *every, rng, item,
                            own->key_location("respawn_every")};
@@ -377,12 +377,12 @@ std::optional<PendingRespawns> read_random_polygons(Loader& loader, const Fields
 void draw_respawns(Loader& loader, std::vector<PendingRespawns>& pending) {
     auto& d = loader.diagnostics;
     std::vector<Circle> fixed;   // the bodies that never move; the others will have moved
-    for (std::size_t i = 0; i < loader.scene.discs.size(); ++i) {
-        const Disc& body = loader.scene.discs[i];
+    for (std::size_t i = 0; i < loader.scene.bodies.size(); ++i) {
+        const Body& body = loader.scene.bodies[i];
         if (body.is_static && loader.sources[i].usable)
             fixed.push_back({body.position, body.radius, true});
     }
-    std::size_t total = loader.scene.discs.size();
+    std::size_t total = loader.scene.bodies.size();
     // A clip length the caller will refuse (beyond the limit) draws only the file's respawns.
     const auto& given = loader.clip_duration;
     const double clip = given && *given > 0 && *given <= loader.limits.duration
@@ -393,12 +393,12 @@ void draw_respawns(Loader& loader, std::vector<PendingRespawns>& pending) {
         for (double k = 1; k * g.every < clip; ++k) {
             const double at = k * g.every;
             total += g.spec.placement.count;
-            if (total > loader.limits.discs) {
+            if (total > loader.limits.bodies) {
                 d.error(g.every_where,
                         item.path + ".respawn_every: respawning every " + format_number(g.every) +
                             " s brings the scene to " + std::to_string(total) +
                             " bodies over the clip; the limit is " +
-                            std::to_string(loader.limits.discs) + " (raise it with --max-bodies)");
+                            std::to_string(loader.limits.bodies) + " (raise it with --max-bodies)");
                 return;
             }
             bool unmakeable = false;

@@ -39,7 +39,7 @@ private:
     Location last_{};
 };
 
-void check_body(const Disc& body, const DiscSource& source, Diagnostics& d, Once& mass_once,
+void check_body(const Body& body, const BodySource& source, Diagnostics& d, Once& mass_once,
                 Once& speed_once, Once& spin_once) {
     // A body whose entry failed to read (its mass unset) has its problem reported already.
     if (body.is_static || !source.usable || !(body.mass > 0) || !std::isfinite(body.mass)) return;
@@ -76,10 +76,10 @@ void check_speed(double speed, const Location& where, const std::string& path, D
 void check_ranges(Loader& loader) {
     Diagnostics& d = loader.diagnostics;
     const Scene& scene = loader.scene;
-    if (loader.sources.size() != scene.discs.size()) return;
+    if (loader.sources.size() != scene.bodies.size()) return;
     Once mass_once, speed_once, spin_once;
-    for (std::size_t i = 0; i < scene.discs.size(); ++i) {
-        check_body(scene.discs[i], loader.sources[i], d, mass_once, speed_once, spin_once);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        check_body(scene.bodies[i], loader.sources[i], d, mass_once, speed_once, spin_once);
     }
     for (const Respawn& respawn : scene.respawns) {
         for (std::size_t k = 0; k < respawn.bodies.size(); ++k) {

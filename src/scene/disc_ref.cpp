@@ -5,7 +5,7 @@
 
 namespace discreel::scene::detail {
 
-DiscIds::DiscIds(const std::vector<Disc>& discs) {
+DiscIds::DiscIds(const std::vector<Body>& discs) {
     names.reserve(discs.size());
     for (std::size_t i = 0; i < discs.size(); ++i) {
         by_id.emplace(discs[i].id, i);
@@ -15,7 +15,7 @@ DiscIds::DiscIds(const std::vector<Disc>& discs) {
 
 std::optional<std::size_t> resolve_disc(Loader& loader, const Value& value, const DiscIds& ids) {
     auto& d = loader.diagnostics;
-    const std::size_t count = loader.scene.discs.size();
+    const std::size_t count = loader.scene.bodies.size();
     if (!value.node.IsScalar()) {
         d.error(value.where, value.path + ": expected a disc id or index, got " +
                                  describe(value.node));

@@ -12,7 +12,7 @@ namespace discreel::scene::detail {
 
 // The scene's disc ids, looked up once for all references.
 struct DiscIds {
-    explicit DiscIds(const std::vector<Disc>& discs);
+    explicit DiscIds(const std::vector<Body>& discs);
     std::map<std::string, std::size_t> by_id;
     std::vector<std::string> names;   // in disc order, for "did you mean"
 };

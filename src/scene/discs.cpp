@@ -88,9 +88,9 @@ std::optional<std::string> read_id(const Value& value, Diagnostics& d) {
     return id;
 }
 
-Disc make_disc(const Properties& p, std::string id, Vec2 position, double radius,
+Body make_disc(const Properties& p, std::string id, Vec2 position, double radius,
                std::size_t index) {
-    Disc disc;
+    Body disc;
     disc.id = std::move(id);
     disc.position = position;
     disc.velocity = p.velocity;
@@ -106,9 +106,9 @@ Disc make_disc(const Properties& p, std::string id, Vec2 position, double radius
     return disc;
 }
 
-double inertia_of(const Disc& body) {
+double inertia_of(const Body& body) {
     if (body.is_static) return 0.0;
-    physics::DiscDef def;
+    physics::BodyDef def;
     def.radius = body.radius;
     def.mass = body.mass;
     def.shape = body.shape;
@@ -117,7 +117,7 @@ double inertia_of(const Disc& body) {
 
 // A mass from density * pi r^2 can overflow or underflow for absurd radii; physics divides
 // by it, so it must come out positive and finite.
-bool check_mass(const Disc& disc, const Value& item, Diagnostics& d) {
+bool check_mass(const Body& disc, const Value& item, Diagnostics& d) {
     if (std::isfinite(disc.mass) && disc.mass > 0) return true;
     d.error(item.where, item.path + ": the mass works out to " + format_number(disc.mass) +
                             " kg (density * pi * radius^2); choose a radius or density that "
@@ -128,20 +128,20 @@ bool check_mass(const Disc& disc, const Value& item, Diagnostics& d) {
 // Whether `count` more bodies (discs or shapes) still fit under the limit; reports the entry
 // that breaks it.
 bool room_for(Loader& loader, const Value& item, std::size_t count) {
-    const std::size_t total = loader.scene.discs.size() + count;
-    if (total <= loader.limits.discs) return true;
+    const std::size_t total = loader.scene.bodies.size() + count;
+    if (total <= loader.limits.bodies) return true;
     loader.diagnostics.error(item.where, item.path + ": this entry brings the scene to " +
                                              std::to_string(total) + " bodies; the limit is " +
-                                             std::to_string(loader.limits.discs) +
+                                             std::to_string(loader.limits.bodies) +
                                              " (raise it with --max-bodies)");
     loader.discs_complete = false;
     loader.disc_limit_reached = true;
     return false;
 }
 
-void add_disc(Loader& loader, Disc disc, const Value& item, const std::optional<Value>& id_value,
+void add_disc(Loader& loader, Body disc, const Value& item, const std::optional<Value>& id_value,
               const std::optional<Value>& velocity_value, bool usable) {
-    DiscSource source{.entry = item.where,
+    BodySource source{.entry = item.where,
                       .where = item.path,
                       .id_where = item.where,
                       .id_path = item.path,
@@ -156,14 +156,14 @@ void add_disc(Loader& loader, Disc disc, const Value& item, const std::optional<
         source.velocity_where = velocity_value->where;
         source.velocity_path = velocity_value->path;
     }
-    loader.scene.discs.push_back(std::move(disc));
+    loader.scene.bodies.push_back(std::move(disc));
     loader.sources.push_back(std::move(source));
 }
 
 Placement read_placement(Loader& loader, const Fields& fields, const Value& item) {
     auto& d = loader.diagnostics;
     Placement placement;
-    placement.id = std::to_string(loader.scene.discs.size());
+    placement.id = std::to_string(loader.scene.bodies.size());
     placement.id_value = fields.get("id");
     if (placement.id_value)
         if (const auto explicit_id = read_id(*placement.id_value, d)) placement.id = *explicit_id;
@@ -178,7 +178,7 @@ namespace {
 
 void read_single_disc(Loader& loader, const Fields& fields, const Value& item) {
     auto& d = loader.diagnostics;
-    const std::size_t index = loader.scene.discs.size();
+    const std::size_t index = loader.scene.bodies.size();
     const Properties p = read_properties(loader, fields, item);
     auto [id, id_value, position] = read_placement(loader, fields, item);
     std::optional<double> radius;
@@ -187,7 +187,7 @@ void read_single_disc(Loader& loader, const Fields& fields, const Value& item) {
     else
         d.error(item.where, item.path + ": missing required key 'radius'");
     if (!room_for(loader, item, 1)) return;
-    Disc disc = make_disc(p, std::move(id), position.value_or(Vec2{}), radius.value_or(0),
+    Body disc = make_disc(p, std::move(id), position.value_or(Vec2{}), radius.value_or(0),
                           index);
     const bool usable = position && radius && check_mass(disc, item, d);
     add_disc(loader, std::move(disc), item, id_value, fields.get("velocity"), usable);
@@ -222,7 +222,7 @@ std::optional<Value> required(const Fields& fields, std::string_view key, Diagno
 
 namespace {
 
-double max_discs_of(const Loader& loader) { return static_cast<double>(loader.limits.discs); }
+double max_discs_of(const Loader& loader) { return static_cast<double>(loader.limits.bodies); }
 
 std::string position_hint(std::string_view kind) {
     return kind == "grid" ? "'position' does not apply to a grid; give the centre of its first "
@@ -286,12 +286,12 @@ std::optional<Generated> read_grid(Loader& loader, const Fields& fields, Rng& rn
             const bool columns_ok = columns && check_between((*items)[0], static_cast<double>(*columns), 1, max_discs_of(loader), d);
             const bool rows_ok = rows && check_between((*items)[1], static_cast<double>(*rows), 1, max_discs_of(loader), d);
             if (columns_ok && rows_ok &&
-                *columns * *rows > static_cast<long long>(loader.limits.discs)) {
+                *columns * *rows > static_cast<long long>(loader.limits.bodies)) {
                 d.error(count_value->where,
                         count_value->path + ": " + std::to_string(*columns) + " x " +
                             std::to_string(*rows) + " = " + std::to_string(*columns * *rows) +
                             " discs is more than the limit of " +
-                            std::to_string(loader.limits.discs) +
+                            std::to_string(loader.limits.bodies) +
                             " bodies (raise it with --max-bodies)");
                 ok = false;
             }
@@ -363,9 +363,9 @@ std::optional<Generated> read_random(Loader& loader, const Fields& fields, const
     if (!ok) return std::nullopt;
 
     std::vector<Circle> existing;
-    existing.reserve(loader.scene.discs.size());
-    for (std::size_t i = 0; i < loader.scene.discs.size(); ++i) {
-        const Disc& disc = loader.scene.discs[i];
+    existing.reserve(loader.scene.bodies.size());
+    for (std::size_t i = 0; i < loader.scene.bodies.size(); ++i) {
+        const Body& disc = loader.scene.bodies[i];
         if (loader.sources[i].usable) existing.push_back({disc.position, disc.radius, disc.is_static});
     }
     const auto placed = place_random(spec, existing, rng);
@@ -446,8 +446,8 @@ void read_generator(Loader& loader, const Fields& fields, const Value& item,
         Properties each = p;
         if (!generated->velocities.empty()) each.velocity = generated->velocities[k];
         if (generated->colors) each.color = (*generated->colors)[k % generated->colors->size()];
-        Disc disc = make_disc(each, prefix + "." + std::to_string(k), generated->positions[k],
-                              generated->radii[k], loader.scene.discs.size());
+        Body disc = make_disc(each, prefix + "." + std::to_string(k), generated->positions[k],
+                              generated->radii[k], loader.scene.bodies.size());
         // One report per entry is enough: every disc of it shares the cause.
         const bool usable = mass_ok && check_mass(disc, item, d);
         mass_ok = mass_ok && usable;
@@ -484,10 +484,10 @@ void read_discs(Loader& loader, const Value& value) {
 static void check_radii_against_reach(Loader& loader) {
     constexpr double min_radius_per_reach = 1e-9;
     auto& d = loader.diagnostics;
-    const auto& discs = loader.scene.discs;
+    const auto& discs = loader.scene.bodies;
     double reach = 0;   // metres from the origin to the farthest coordinate
     const auto extend = [&](Vec2 p) { reach = std::max({reach, std::abs(p.x), std::abs(p.y)}); };
-    for (const Disc& disc : discs) extend(disc.position);
+    for (const Body& disc : discs) extend(disc.position);
     for (const Wall& wall : loader.scene.walls) {
         extend(wall.a);
         extend(wall.b);
@@ -495,7 +495,7 @@ static void check_radii_against_reach(Loader& loader) {
     const double smallest = min_radius_per_reach * reach;
     std::optional<Location> reported;   // once per entry: a generator makes many alike
     for (std::size_t i = 0; i < discs.size() && !d.full(); ++i) {
-        const DiscSource& source = loader.sources[i];
+        const BodySource& source = loader.sources[i];
         if (!source.usable || discs[i].radius >= smallest) continue;
         if (reported && reported->line == source.entry.line &&
             reported->column == source.entry.column)
@@ -509,8 +509,8 @@ static void check_radii_against_reach(Loader& loader) {
 }
 
 // How deep two bodies' outlines overlap at t = 0 (negative: the gap between them), metres.
-static double shape_overlap(const Disc& a, const Disc& b) {
-    const auto shape_of = [](const Disc& body) {
+static double shape_overlap(const Body& a, const Body& b) {
+    const auto shape_of = [](const Body& body) {
         return body.shape ? *body.shape : physics::circle_shape(body.radius);
     };
     return -physics::separation(shape_of(a), a.position, a.angle, shape_of(b), b.position,
@@ -519,7 +519,7 @@ static double shape_overlap(const Disc& a, const Disc& b) {
 
 void check_discs(Loader& loader) {
     auto& d = loader.diagnostics;
-    const auto& discs = loader.scene.discs;
+    const auto& discs = loader.scene.bodies;
     const auto& sources = loader.sources;
 
     std::map<std::string, std::size_t> first_with_id;
@@ -543,16 +543,16 @@ void check_discs(Loader& loader) {
     // A shape's circle is only its bound: for a pair with a shape the outlines decide, and a
     // pair clear by its outlines does not hide a later overlap of the same body.
     const auto confirm = [&](std::size_t later, std::size_t earlier) {
-        const Disc& a = discs[later];
-        const Disc& b = discs[earlier];
+        const Body& a = discs[later];
+        const Body& b = discs[earlier];
         if (!a.shape && !b.shape) return true;
         // Touching is allowed: a stack's boxes start face to face.
         return shape_overlap(a, b) > 1e-9 * std::max(a.radius, b.radius);
     };
     for (const auto& [later, earlier] : find_overlaps(circles, include, confirm)) {
         if (d.full()) break;
-        const Disc& a = discs[later];
-        const Disc& b = discs[earlier];
+        const Body& a = discs[later];
+        const Body& b = discs[earlier];
         const double dx = a.position.x - b.position.x, dy = a.position.y - b.position.y;
         const double depth = a.shape || b.shape
                                  ? shape_overlap(a, b)

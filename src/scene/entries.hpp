@@ -28,16 +28,16 @@ struct Properties {
 Properties read_properties(Loader& loader, const Fields& fields, const Value& item);
 std::optional<std::string> read_id(const Value& value, Diagnostics& d);
 // A disc of `radius`, its mass from the properties (mass, or density * pi r^2).
-Disc make_disc(const Properties& p, std::string id, Vec2 position, double radius,
+Body make_disc(const Properties& p, std::string id, Vec2 position, double radius,
                std::size_t index);
 // The moment of inertia physics gives the body (physics::inertia_of), kg m^2; 0 for a static
 // body, which never turns. The trace writes it, so it must be physics' own number.
-double inertia_of(const Disc& body);
+double inertia_of(const Body& body);
 // The mass must come out positive and finite; reports the entry otherwise.
-bool check_mass(const Disc& disc, const Value& item, Diagnostics& d);
+bool check_mass(const Body& disc, const Value& item, Diagnostics& d);
 // Whether `count` more bodies still fit under the limit; reports the entry that breaks it.
 bool room_for(Loader& loader, const Value& item, std::size_t count);
-void add_disc(Loader& loader, Disc disc, const Value& item, const std::optional<Value>& id_value,
+void add_disc(Loader& loader, Body disc, const Value& item, const std::optional<Value>& id_value,
               const std::optional<Value>& velocity_value, bool usable);
 // What names and places a single body: its id (written, or its index) and its required
 // position (reported when missing).

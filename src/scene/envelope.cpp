@@ -20,7 +20,7 @@ struct Extremes {
     std::size_t lightest = 0, heaviest = 0, smallest = 0;   // disc indices
 };
 
-std::optional<Extremes> dynamic_extremes(const std::vector<Disc>& discs) {
+std::optional<Extremes> dynamic_extremes(const std::vector<Body>& discs) {
     std::optional<Extremes> e;
     for (std::size_t i = 0; i < discs.size(); ++i) {
         if (discs[i].is_static) continue;
@@ -68,13 +68,13 @@ std::string too_fast(double speed, double limit, double rate, double radii_per_s
 // index in Scene::discs whose entry a message points at), kept as respawns replace bodies.
 class Alive {
 public:
-    void add(const Disc& body, std::size_t slot) {
+    void add(const Body& body, std::size_t slot) {
         if (body.is_static) return;
         masses_.insert(body.mass);
         radii_.insert(body.radius);
         speeds_.emplace(speed_of(body.velocity), slot);
     }
-    void remove(const Disc& body, std::size_t slot) {
+    void remove(const Body& body, std::size_t slot) {
         if (body.is_static) return;
         masses_.erase(masses_.find(body.mass));
         radii_.erase(radii_.find(body.radius));
@@ -98,11 +98,11 @@ private:
 void check_respawns(Loader& loader) {
     const Scene& scene = loader.scene;
     if (scene.respawns.empty()) return;
-    std::vector<const Disc*> current;
+    std::vector<const Body*> current;
     Alive alive;
-    for (std::size_t i = 0; i < scene.discs.size(); ++i) {
-        current.push_back(&scene.discs[i]);
-        alive.add(scene.discs[i], i);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        current.push_back(&scene.bodies[i]);
+        alive.add(scene.bodies[i], i);
     }
     for (std::size_t n = 0; n < scene.respawns.size(); ++n) {
         const Respawn& r = scene.respawns[n];
@@ -114,7 +114,7 @@ void check_respawns(Loader& loader) {
         // Respawns at one time are judged together.
         if (n + 1 < scene.respawns.size() && scene.respawns[n + 1].at == r.at) continue;
         if (alive.empty()) continue;
-        const DiscSource& source = loader.sources[r.first];
+        const BodySource& source = loader.sources[r.first];
         const std::string when = "the respawn at t = " + format_number(r.at) + " s";
         const double ratio = alive.mass_ratio();
         if (ratio > physics::envelope.crowd_mass_ratio) {
@@ -129,7 +129,7 @@ void check_respawns(Loader& loader) {
         const double limit = radii_per_step * alive.smallest_radius() * scene.physics.rate;
         const auto [speed, slot] = alive.fastest();
         if (speed > limit) {
-            const DiscSource& fast = loader.sources[slot];
+            const BodySource& fast = loader.sources[slot];
             loader.diagnostics.warn(
                 fast.velocity_where,
                 fast.velocity_path + ": after " + when + ", " +
@@ -145,20 +145,20 @@ void check_respawns(Loader& loader) {
 void check_envelope(Loader& loader) {
     auto& d = loader.diagnostics;
     const Scene& scene = loader.scene;
-    const auto extremes = dynamic_extremes(scene.discs);
+    const auto extremes = dynamic_extremes(scene.bodies);
     if (!extremes) return;
-    const Disc& light = scene.discs[extremes->lightest];
-    const Disc& heavy = scene.discs[extremes->heaviest];
+    const Body& light = scene.bodies[extremes->lightest];
+    const Body& heavy = scene.bodies[extremes->heaviest];
     const double ratio = heavy.mass / light.mass;
     const bool manifold = physics::uses_manifold_solver(
-        std::any_of(scene.discs.begin(), scene.discs.end(),
-                    [](const Disc& disc) { return disc.shape.has_value(); }),
+        std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                    [](const Body& disc) { return disc.shape.has_value(); }),
         !scene.respawns.empty());
     if (ratio > physics::envelope.crowd_mass_ratio) {
         // A crowd this far apart in mass sinks in at any speed: the speeds are not judged.
-        const DiscSource& source = loader.sources[extremes->heaviest];
+        const BodySource& source = loader.sources[extremes->heaviest];
         // A body of `bodies:` (a shape) is a body to its author, not a disc.
-        const auto noun = [](const Disc& body) { return body.shape ? "body" : "disc"; };
+        const auto noun = [](const Body& body) { return body.shape ? "body" : "disc"; };
         d.warn(source.entry,
                source.where + ": " + noun(heavy) + " '" + heavy.id + "' (" +
                    format_short(heavy.mass) + " kg) is " + format_short(ratio) +
@@ -169,7 +169,7 @@ void check_envelope(Loader& loader) {
         return;
     }
 
-    const Disc& smallest = scene.discs[extremes->smallest];
+    const Body& smallest = scene.bodies[extremes->smallest];
     const double radii_per_step = physics::envelope.radii_per_step(ratio, manifold);
     const double rate = scene.physics.rate;
     const double limit = radii_per_step * smallest.radius * rate;   // m/s
@@ -180,15 +180,15 @@ void check_envelope(Loader& loader) {
     };
     // The discs of a generator share where their speed was written (a run of equal locations):
     // the fastest moving one speaks for all, once.
-    for (std::size_t first = 0; first < scene.discs.size();) {
-        const DiscSource& source = loader.sources[first];
+    for (std::size_t first = 0; first < scene.bodies.size();) {
+        const BodySource& source = loader.sources[first];
         std::optional<double> fastest;
         std::size_t end = first;
-        for (; end < scene.discs.size() &&
+        for (; end < scene.bodies.size() &&
                loader.sources[end].velocity_where == source.velocity_where;
              ++end) {
-            if (scene.discs[end].is_static) continue;
-            fastest = std::max(fastest.value_or(0.0), speed_of(scene.discs[end].velocity));
+            if (scene.bodies[end].is_static) continue;
+            fastest = std::max(fastest.value_or(0.0), speed_of(scene.bodies[end].velocity));
         }
         if (fastest) check(*fastest, source.velocity_where, source.velocity_path);
         first = end;
@@ -200,7 +200,7 @@ void check_envelope(Loader& loader) {
         if (t.release) check(speed_of(*t.release), source.velocity_where, source.velocity_path);
         double fastest = 0;   // the grab's speed along its path, from the disc's start on
         if (!t.path.empty() && t.path.front().t > 0) {
-            const Vec2 from = scene.discs[t.disc].position, to = t.path.front().position;
+            const Vec2 from = scene.bodies[t.body].position, to = t.path.front().position;
             fastest = speed_of({to.x - from.x, to.y - from.y}) / t.path.front().t;
         }
         for (std::size_t p = 1; p < t.path.size(); ++p) {

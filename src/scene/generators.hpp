@@ -1,5 +1,5 @@
 #pragma once
-// Disc generators, as plain geometry: where the discs of a `grid` or a `random` entry go.
+// Body generators, as plain geometry: where the discs of a `grid` or a `random` entry go.
 // Reading the YAML and giving the discs their other properties happens in discs.cpp.
 #include <cstddef>
 #include <span>

@@ -220,11 +220,11 @@ private:
         if (open_.size() == 2 && !parent.is_map) {   // an entry of a top-level list
             const std::size_t entries = index + 1;
             // Each entry of `discs` or `bodies` makes at least one body; both count together.
-            if ((section_ == "discs" || section_ == "bodies") && ++body_entries_ > limits_.discs) {
-                refuse(mark, section_ + ": more than " + std::to_string(limits_.discs) +
+            if ((section_ == "discs" || section_ == "bodies") && ++body_entries_ > limits_.bodies) {
+                refuse(mark, section_ + ": more than " + std::to_string(limits_.bodies) +
                                  " entries in 'discs' and 'bodies', and each makes at least one "
                                  "body; the limit is " +
-                                 std::to_string(limits_.discs) + " (raise it with --max-bodies)");
+                                 std::to_string(limits_.bodies) + " (raise it with --max-bodies)");
             }
             if (section_ == "walls" && entries > max_walls) {
                 refuse(mark, "walls: too many walls (more than " + std::to_string(max_walls) +

@@ -13,7 +13,7 @@
 namespace discreel::scene::detail {
 
 // Where a disc came from, so that later checks (ids, overlaps, throws) can point at it.
-struct DiscSource {
+struct BodySource {
     Location entry;          // its item in `discs:` (the generator's item for generated discs)
     std::string where;       // "discs[4]"
     Location id_where;       // its `id:` value, or `entry` when the id was not written
@@ -34,9 +34,9 @@ struct ThrowSource {
 struct Loader {
     Diagnostics& diagnostics;
     Scene& scene;
-    std::vector<DiscSource> sources;  // parallel to scene.discs
+    std::vector<BodySource> sources;  // parallel to scene.bodies
     bool discs_complete = true;       // every entry expanded, so indices and ids are final
-    bool disc_limit_reached = false;  // limits.discs reported: later entries are not read
+    bool disc_limit_reached = false;  // limits.bodies reported: later entries are not read
     bool frames_known = true;         // fps and duration read fine, so frame_count() is right
     std::optional<Value> camera_follow;  // read with the camera, resolved once discs are known
     std::vector<ThrowSource> throw_sources;  // parallel to scene.throws, filled by read_throws

@@ -159,7 +159,7 @@ void read_camera(Loader& loader, const Value& value) {
 
 void resolve_camera_follow(Loader& loader) {
     if (!loader.camera_follow) return;
-    const DiscIds ids(loader.scene.discs);
+    const DiscIds ids(loader.scene.bodies);
     loader.scene.camera.follow = resolve_disc(loader, *loader.camera_follow, ids);
 }
 

@@ -70,7 +70,7 @@ void read_throws(Loader& loader, const Value& value) {
                                  "); the limit is " + std::to_string(max_throws));
         return;
     }
-    const DiscIds ids(loader.scene.discs);
+    const DiscIds ids(loader.scene.bodies);
 
     for (const Value& item : *items) {
         if (d.full()) break;
@@ -84,13 +84,13 @@ void read_throws(Loader& loader, const Value& value) {
             ok = false;
         } else if (const auto disc = fields->get(fields->has("body") ? "body" : "disc")) {
             const auto index = resolve_disc(loader, *disc, ids);
-            if (index && loader.scene.discs[*index].is_static) {
-                d.error(disc->where, disc->path + ": disc '" + loader.scene.discs[*index].id +
+            if (index && loader.scene.bodies[*index].is_static) {
+                d.error(disc->where, disc->path + ": disc '" + loader.scene.bodies[*index].id +
                                          "' is static and cannot be thrown");
                 ok = false;
             }
             ok = ok && index;
-            t.disc = index.value_or(0);
+            t.body = index.value_or(0);
         } else {
             d.error(item.where, item.path + ": missing required key 'disc' (or 'body')");
             ok = false;

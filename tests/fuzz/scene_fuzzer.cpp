@@ -19,21 +19,21 @@ void require(bool holds) {
 
 void check_scene(const discreel::scene::Scene& scene) {
     using namespace discreel::scene;
-    require(scene.discs.size() <= Limits{}.discs);
+    require(scene.bodies.size() <= Limits{}.bodies);
     require(scene.walls.size() <= max_walls);
     require(scene.throws.size() <= max_throws);
     require(scene.golden_frames.size() <= max_golden_frames);
     require(scene.video.frame_count() > 0);
-    for (const Disc& disc : scene.discs) {
+    for (const Disc& disc : scene.bodies) {
         require(disc.radius > 0.0 && disc.mass > 0.0 && std::isfinite(disc.inertia));
         if (disc.shape) require(!disc.shape->vertices.empty() && disc.shape->vertices.size() <= 8);
     }
-    for (const Respawn& r : scene.respawns) require(r.first + r.bodies.size() <= scene.discs.size());
+    for (const Respawn& r : scene.respawns) require(r.first + r.bodies.size() <= scene.bodies.size());
     // Physics applies respawns in list order.
     require(std::is_sorted(scene.respawns.begin(), scene.respawns.end(),
                            [](const Respawn& a, const Respawn& b) { return a.at < b.at; }));
     for (const Throw& t : scene.throws) {
-        require(t.disc < scene.discs.size());
+        require(t.body < scene.bodies.size());
         require(t.velocity.has_value() != !t.path.empty());
     }
     for (const int frame : scene.golden_frames)

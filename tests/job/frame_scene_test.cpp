@@ -54,10 +54,10 @@ TEST(FitCameraTest, WithoutWallsFramesTheDiscs) {
     scene::Scene s;
     s.video.width = 100;
     s.video.height = 100;
-    scene::Disc d;
+    scene::Body d;
     d.position = {5, 5};
     d.radius = 1;
-    s.discs.push_back(d);
+    s.bodies.push_back(d);
     const render::Camera camera = fit_camera(s);
     EXPECT_DOUBLE_EQ(camera.center_x, 5);
     EXPECT_NEAR(camera.height, 2 * 1.1, 1e-12);
@@ -79,13 +79,13 @@ TEST(FrameSceneBuilderTest, BoxBecomesFourCapsulesOutsideTheCorners) {
 
 TEST(FrameSceneBuilderTest, DiscsFollowTheStateWithTheirLook) {
     scene::Scene s = boxed_scene();
-    scene::Disc d;
+    scene::Body d;
     d.radius = 0.5;
     d.color = {255, 0, 0, 255};
     d.is_static = true;
-    s.discs.push_back(d);
+    s.bodies.push_back(d);
     FrameSceneBuilder builder(s);
-    physics::DiscState state;
+    physics::BodyState state;
     state.position = {3, 4};
     state.angle = 1.5;
     const render::FrameScene& frame = builder.build(0, {&state, 1});
@@ -103,18 +103,18 @@ TEST(FrameSceneBuilderTest, DiscsFollowTheStateWithTheirLook) {
 scene::Scene discs_scene(std::size_t n) {
     scene::Scene s = boxed_scene();
     for (std::size_t i = 0; i < n; ++i) {
-        scene::Disc d;
+        scene::Body d;
         d.id = std::to_string(i);
         d.id.insert(d.id.begin(), 'd');
         d.radius = 0.5;
         d.color = {200, 100, 50, 255};
-        s.discs.push_back(d);
+        s.bodies.push_back(d);
     }
     return s;
 }
 
-physics::DiscState at(double x, double y, double vx = 0, double vy = 0) {
-    physics::DiscState d;
+physics::BodyState at(double x, double y, double vx = 0, double vy = 0) {
+    physics::BodyState d;
     d.position = {x, y};
     d.velocity = {vx, vy};
     return d;
@@ -126,7 +126,7 @@ TEST(FollowCameraTest, WithoutLagTheDiscIsAlwaysCentred) {
     s.camera.follow_lag = 0;
     FrameSceneBuilder builder(s);
     for (int frame = 0; frame < 5; ++frame) {
-        const std::vector<physics::DiscState> states{at(0, 0), at(1.5 * frame, -frame)};
+        const std::vector<physics::BodyState> states{at(0, 0), at(1.5 * frame, -frame)};
         const render::FrameScene& f = builder.build(frame, states);
         EXPECT_EQ(f.camera.center_x, 1.5 * frame);
         EXPECT_EQ(f.camera.center_y, -frame);
@@ -143,7 +143,7 @@ TEST(FollowCameraTest, SmoothingClosesAGapExponentiallyAtAnyFrameRate) {
         s.camera.follow = 0;
         s.camera.follow_lag = 0.25;
         FrameSceneBuilder builder(s);
-        const std::vector<physics::DiscState> start{at(0, 0)}, moved{at(10, 0)};
+        const std::vector<physics::BodyState> start{at(0, 0)}, moved{at(10, 0)};
         builder.observe(0, start);
         const int half_second = fps / 2;
         for (int frame = 1; frame < half_second; ++frame) builder.observe(frame, moved);
@@ -172,7 +172,7 @@ TEST(FollowCameraTest, KeepsACirclingDiscNearTheCentre) {
     const double expected = r * std::abs(1.0 - a / (1.0 - (1.0 - a) / z));
     for (int frame = 0; frame <= 90; ++frame) {
         const double t = frame * dt;
-        const std::vector<physics::DiscState> states{at(r * std::cos(w * t), r * std::sin(w * t))};
+        const std::vector<physics::BodyState> states{at(r * std::cos(w * t), r * std::sin(w * t))};
         const render::FrameScene& f = builder.build(frame, states);
         if (frame < 60) continue;   // 2 s = 13 lags: the start is forgotten to 1e-5
         const double gap = std::hypot(f.camera.center_x - states[0].position.x,
@@ -184,12 +184,12 @@ TEST(FollowCameraTest, KeepsACirclingDiscNearTheCentre) {
 
 TEST(TrailsTest, KeepTheirLengthFadeTowardTheBackgroundAndSkipPegsAndRestingDiscs) {
     scene::Scene s = discs_scene(3);
-    s.discs[1].is_static = true;
+    s.bodies[1].is_static = true;
     s.style.trails = {.enabled = true, .length = 0.5, .fade = true, .width = 0.4};
     FrameSceneBuilder builder(s);
     const render::FrameScene* f = nullptr;
     for (int frame = 0; frame < 100; ++frame) {
-        const std::vector<physics::DiscState> states{at(0.1 * frame, 0), at(5, 5), at(-3, -3)};
+        const std::vector<physics::BodyState> states{at(0.1 * frame, 0), at(5, 5), at(-3, -3)};
         f = &builder.build(frame, states);
     }
     // 0.5 s at 60 fps: 30 segments, oldest first, the newest ending at the disc.
@@ -223,8 +223,8 @@ TEST(TrailsTest, MemoryIsBoundedByShorteningTrails) {
     scene::Scene s = discs_scene(max_trail_points / 4);
     s.style.trails = {.enabled = true, .length = 10, .fade = true, .width = 0.4};
     FrameSceneBuilder builder(s);
-    const std::vector<physics::DiscState> still(s.discs.size(), at(0, 0));
-    std::vector<physics::DiscState> moved = still;
+    const std::vector<physics::BodyState> still(s.bodies.size(), at(0, 0));
+    std::vector<physics::BodyState> moved = still;
     moved[0] = at(1, 0);
     builder.observe(0, still);
     for (int frame = 1; frame < 10; ++frame) builder.observe(frame, frame % 2 ? moved : still);
@@ -234,7 +234,7 @@ TEST(TrailsTest, MemoryIsBoundedByShorteningTrails) {
 
 TEST(VelocityArrowsTest, PointAlongTheVelocityScaledByTheStyle) {
     scene::Scene s = discs_scene(2);
-    s.discs[1].is_static = true;
+    s.bodies[1].is_static = true;
     s.style.velocity_arrows = {.enabled = true, .scale = 0.5, .color = {0, 255, 0, 255},
                                .width = 3};
     FrameSceneBuilder builder(s);
@@ -294,12 +294,12 @@ TEST(FrameSceneGoldenGLTest, FollowCameraWithTrailsArrowsAndClock) {
     box.thickness = 0.2;
     s.walls.push_back(box);
     const auto disc = [&](std::string id, double r, scene::Color c, bool is_static) {
-        scene::Disc d;
+        scene::Body d;
         d.id = std::move(id);
         d.radius = r;
         d.color = c;
         d.is_static = is_static;
-        s.discs.push_back(d);
+        s.bodies.push_back(d);
     };
     disc("cue", 0.4, {0xf4, 0xd3, 0x5e, 0xff}, false);
     disc("a", 0.3, {0xe4, 0x57, 0x2e, 0xff}, false);
@@ -320,7 +320,7 @@ TEST(FrameSceneGoldenGLTest, FollowCameraWithTrailsArrowsAndClock) {
     const render::FrameScene* f = nullptr;
     for (int frame = 0; frame <= last; ++frame) {
         const double t = frame / 30.0, w = 2, r = 3;
-        std::vector<physics::DiscState> states{
+        std::vector<physics::BodyState> states{
             at(8 + r * std::cos(w * t), 4.5 + r * std::sin(w * t), -r * w * std::sin(w * t),
                r * w * std::cos(w * t)),
             at(5 + 1.5 * t, 2 + 0.5 * t, 1.5, 0.5),

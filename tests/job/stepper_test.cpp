@@ -14,11 +14,11 @@ namespace {
 TEST(FrameStepperTest, NamesTheDiscAndTimeWhenTheWorldBreaksDown) {
     scene::Scene scene;
     scene.physics.gravity = {0, 0};
-    scene::Disc runaway;
+    scene::Body runaway;
     runaway.id = "runaway";
     runaway.position = {0, 10};
     runaway.velocity = {8e307, 0};   // x overflows in step 1079 (see tests/physics)
-    scene.discs = {runaway};
+    scene.bodies = {runaway};
     scene.video.fps = 60;
     scene.video.duration = 3;
     const Timeline timeline{scene.video.fps, scene.physics.rate, scene.video.frame_count()};
@@ -40,9 +40,9 @@ TEST(FrameStepperTest, NamesTheDiscAndTimeWhenTheWorldBreaksDown) {
 namespace discreel::job {
 namespace {
 
-scene::Scene one_body_scene(scene::Disc body) {
+scene::Scene one_body_scene(scene::Body body) {
     scene::Scene scene;
-    scene.discs = {std::move(body)};
+    scene.bodies = {std::move(body)};
     scene.video.fps = 60;
     scene.video.duration = 3;
     return scene;
@@ -52,7 +52,7 @@ scene::Scene one_body_scene(scene::Disc body) {
 TEST(FrameStepperTest, NamesABoxABody) {
     scene::Scene scene;
     scene.physics.gravity = {0, 0};
-    scene::Disc box;
+    scene::Body box;
     box.id = "crate";
     box.shape = *physics::box_shape(1, 1);
     box.radius = physics::bounding_radius(*box.shape);
@@ -74,7 +74,7 @@ TEST(FrameStepperTest, NamesABoxABody) {
 
 // Asked before every physics step: a frame of many steps stops within one.
 TEST(FrameStepperTest, StopsBetweenPhysicsStepsWhenAsked) {
-    scene::Disc disc;
+    scene::Body disc;
     disc.id = "a";
     disc.radius = 0.5;
     disc.mass = 1;
@@ -94,7 +94,7 @@ TEST(FrameStepperTest, StopsBetweenPhysicsStepsWhenAsked) {
 
 // A body that leaves the box of walls it started in is said once, at the first frame it shows.
 TEST(FrameStepperTest, ABodyThatLeavesItsBoxIsWarnedAboutOnce) {
-    scene::Disc disc;
+    scene::Body disc;
     disc.id = "escapee";
     disc.radius = 0.1;
     disc.mass = 1;
@@ -111,7 +111,7 @@ TEST(FrameStepperTest, ABodyThatLeavesItsBoxIsWarnedAboutOnce) {
     // The world is built without the wall, as a solver that failed to hold the body would be.
     scene::Scene open = scene;
     open.walls.clear();
-    open.discs[0].velocity = {3, 0};
+    open.bodies[0].velocity = {3, 0};
     physics::World world(build_world(open));
     FrameStepper stepper(world, timeline, scene);
     ASSERT_TRUE(stepper.advance_to(10));   // t = 1/6 s: at x = 1.5, inside

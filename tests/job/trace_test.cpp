@@ -39,9 +39,9 @@ TEST(TraceNumberTest, ReadsBackBitForBit) {
     }
 }
 
-scene::Disc body(const std::string& id, double radius, double mass, double inertia,
+scene::Body body(const std::string& id, double radius, double mass, double inertia,
                  bool is_static) {
-    scene::Disc d;
+    scene::Body d;
     d.id = id;
     d.radius = radius;
     d.mass = mass;
@@ -55,8 +55,8 @@ scene::Disc body(const std::string& id, double radius, double mass, double inert
 TEST(TraceWriterTest, InertiaColumnAndRespawnedDefinitions) {
     testing::TempDir dir;
     scene::Scene scene;
-    scene.discs.push_back(body("peg", 0.5, 2, 0, true));
-    scene.discs.push_back(body("rock.0", 0.25, 1.5, 0.125, false));
+    scene.bodies.push_back(body("peg", 0.5, 2, 0, true));
+    scene.bodies.push_back(body("rock.0", 0.25, 1.5, 0.125, false));
     scene::Respawn respawn;
     respawn.at = 1;
     respawn.first = 1;
@@ -65,7 +65,7 @@ TEST(TraceWriterTest, InertiaColumnAndRespawnedDefinitions) {
 
     auto trace = TraceWriter::create(dir / "t.csv", scene);
     ASSERT_TRUE(trace);
-    std::vector<physics::DiscState> states(2);
+    std::vector<physics::BodyState> states(2);
     states[1].position = {1, 2};
     states[1].angle = 0.5;
     states[1].angular_velocity = -3;

@@ -33,24 +33,24 @@ WorldDef on_floor(Material floor = {.restitution = 0.0, .friction = 0.5}) {
 
 TEST(Bodies, ABoxAtRestStaysWithinATenthOfAMillimetreFor10s) {
     WorldDef def = on_floor();
-    def.discs.push_back(body(box_of(1, 0.5), {0.3, 0.25}, 1, {.restitution = 0.5, .friction = 0.5}));
+    def.bodies.push_back(body(box_of(1, 0.5), {0.3, 0.25}, 1, {.restitution = 0.5, .friction = 0.5}));
     World world(def);
     double farthest = 0;
     for (int k = 0; k < 10 * world.rate(); ++k) {
         world.step();
-        const Vec2 p = world.discs()[0].position;
+        const Vec2 p = world.bodies()[0].position;
         farthest = std::max(farthest, std::hypot(p.x - 0.3, p.y - 0.25));
     }
     EXPECT_LT(farthest, 1e-4);
-    EXPECT_LT(std::abs(world.discs()[0].angle), 1e-6);
+    EXPECT_LT(std::abs(world.bodies()[0].angle), 1e-6);
 }
 
 TEST(Bodies, AFlatLandingReboundsToESquaredHWithoutSpin) {
     const double h = 1.0, e = 0.5;
     WorldDef def = on_floor({.restitution = e, .friction = 0.5});
-    def.discs.push_back(body(box_of(1, 0.5), {0.3, 0.25 + h}, 1, {.restitution = e, .friction = 0.5}));
+    def.bodies.push_back(body(box_of(1, 0.5), {0.3, 0.25 + h}, 1, {.restitution = e, .friction = 0.5}));
     World world(def);
-    const std::optional<double> top = testing::rebound_height(world, 0, 0.25, [](const DiscState& s) {
+    const std::optional<double> top = testing::rebound_height(world, 0, 0.25, [](const BodyState& s) {
         EXPECT_LT(std::abs(s.angular_velocity), 1e-9);
     });
     ASSERT_TRUE(top);
@@ -63,23 +63,23 @@ TEST(Bodies, ABoxOnAnInclineSlidesOrSticksAsCoulombSays) {
     const double theta = 20 * std::numbers::pi / 180, g = 9.81;
     for (const double mu : {0.2, 0.5}) {
         WorldDef def;
-        DiscDef slope = body(box_of(40, 2), {0, 0}, 1, {.restitution = 0, .friction = mu});
+        BodyDef slope = body(box_of(40, 2), {0, 0}, 1, {.restitution = 0, .friction = mu});
         slope.angle = theta;
         slope.is_static = true;
-        def.discs.push_back(slope);
+        def.bodies.push_back(slope);
         const Vec2 along{std::cos(theta), std::sin(theta)}, up{-std::sin(theta), std::cos(theta)};
-        DiscDef crate = body(box_of(0.5, 0.5), {along.x + up.x * 1.25, along.y + up.y * 1.25}, 1,
+        BodyDef crate = body(box_of(0.5, 0.5), {along.x + up.x * 1.25, along.y + up.y * 1.25}, 1,
                              {.restitution = 0, .friction = mu});
         crate.angle = theta;
-        def.discs.push_back(crate);
+        def.bodies.push_back(crate);
         World world(def);
         run_for(world, 0.1);   // settled on the face
         const auto distance = [&] {
-            const Vec2 p = world.discs()[1].position;
+            const Vec2 p = world.bodies()[1].position;
             return p.x * along.x + p.y * along.y;
         };
         const double s0 = distance();
-        const Vec2 v0 = world.discs()[1].velocity;
+        const Vec2 v0 = world.bodies()[1].velocity;
         const double u0 = v0.x * along.x + v0.y * along.y;
         run_for(world, 1.0);
         const double travelled = distance() - s0;
@@ -89,16 +89,16 @@ TEST(Bodies, ABoxOnAnInclineSlidesOrSticksAsCoulombSays) {
         } else {
             EXPECT_LT(std::abs(travelled), 1e-4) << mu;
         }
-        EXPECT_NEAR(world.discs()[1].angle, theta, 1e-3) << mu;   // slides flat, no tumbling
+        EXPECT_NEAR(world.bodies()[1].angle, theta, 1e-3) << mu;   // slides flat, no tumbling
     }
 }
 
 double kinetic(const World& world, const WorldDef& def) {
     double e = 0;
-    for (std::size_t i = 0; i < def.discs.size(); ++i) {
-        const DiscState& s = world.discs()[i];
-        e += 0.5 * def.discs[i].mass * (s.velocity.x * s.velocity.x + s.velocity.y * s.velocity.y) +
-             0.5 * inertia_of(def.discs[i]) * s.angular_velocity * s.angular_velocity;
+    for (std::size_t i = 0; i < def.bodies.size(); ++i) {
+        const BodyState& s = world.bodies()[i];
+        e += 0.5 * def.bodies[i].mass * (s.velocity.x * s.velocity.x + s.velocity.y * s.velocity.y) +
+             0.5 * inertia_of(def.bodies[i]) * s.angular_velocity * s.angular_velocity;
     }
     return e;
 }
@@ -109,22 +109,22 @@ TEST(Bodies, ElasticSpinningPolygonsConserveMomentumAndEnergy) {
     WorldDef def;
     def.gravity = {0, 0};
     const std::vector<Vec2> hexagon{{0.4, 0}, {0.2, 0.35}, {-0.2, 0.35}, {-0.4, 0}, {-0.2, -0.35}, {0.2, -0.35}};
-    DiscDef a = body(polygon_shape(hexagon)->shape, {0, 0.1}, 2);
+    BodyDef a = body(polygon_shape(hexagon)->shape, {0, 0.1}, 2);
     a.velocity = {3, 0};
     a.angular_velocity = 5;
-    DiscDef b = body(box_of(0.6, 0.4), {2, -0.1}, 1);
+    BodyDef b = body(box_of(0.6, 0.4), {2, -0.1}, 1);
     b.velocity = {-2, 0.5};
     b.angular_velocity = -3;
-    def.discs = {a, b};
+    def.bodies = {a, b};
     const auto momenta = [&](const World& w) {
         std::array<double, 3> m{0, 0, 0};   // px, py, L
         for (std::size_t i = 0; i < 2; ++i) {
-            const DiscState& s = w.discs()[i];
-            const double mass = def.discs[i].mass;
+            const BodyState& s = w.bodies()[i];
+            const double mass = def.bodies[i].mass;
             m[0] += mass * s.velocity.x;
             m[1] += mass * s.velocity.y;
             m[2] += mass * (s.position.x * s.velocity.y - s.position.y * s.velocity.x) +
-                    inertia_of(def.discs[i]) * s.angular_velocity;
+                    inertia_of(def.bodies[i]) * s.angular_velocity;
         }
         return m;
     };
@@ -150,17 +150,17 @@ TEST(Bodies, ADiscHitsABoxHeadOnAsTheOneDimensionalFormulaSays) {
     const double e = 0.6, m1 = 1.0, v1 = 4.0;
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs.push_back(testing::disc({0, 0}, {v1, 0}, 0.2, m1, {.restitution = e, .friction = 0.3}));
-    DiscDef crate = body(box_of(0.5, 0.5), {1, 0}, 8, {.restitution = e, .friction = 0.3});
-    def.discs.push_back(crate);
+    def.bodies.push_back(testing::disc({0, 0}, {v1, 0}, 0.2, m1, {.restitution = e, .friction = 0.3}));
+    BodyDef crate = body(box_of(0.5, 0.5), {1, 0}, 8, {.restitution = e, .friction = 0.3});
+    def.bodies.push_back(crate);
     const double m2 = crate.mass;
     World world(def);
     run_for(world, 0.5);
     const double u1 = (m1 - e * m2) * v1 / (m1 + m2), u2 = (1 + e) * m1 * v1 / (m1 + m2);
-    EXPECT_NEAR(world.discs()[0].velocity.x, u1, 1e-9);
-    EXPECT_NEAR(world.discs()[1].velocity.x, u2, 1e-9);
-    EXPECT_NEAR(world.discs()[1].velocity.y, 0, 1e-12);
-    EXPECT_NEAR(world.discs()[1].angular_velocity, 0, 1e-9);
+    EXPECT_NEAR(world.bodies()[0].velocity.x, u1, 1e-9);
+    EXPECT_NEAR(world.bodies()[1].velocity.x, u2, 1e-9);
+    EXPECT_NEAR(world.bodies()[1].velocity.y, 0, 1e-12);
+    EXPECT_NEAR(world.bodies()[1].angular_velocity, 0, 1e-9);
 }
 
 // The bars: stacks within 5 mm of their ideal heights and 2 mm sideways.
@@ -168,9 +168,9 @@ void expect_stands(const WorldDef& def, double seconds, std::size_t first) {
     World world(def);
     run_for(world, seconds);
     double sag = 0, drift = 0;
-    for (std::size_t i = first; i < def.discs.size(); ++i) {
-        sag = std::max(sag, std::abs(world.discs()[i].position.y - def.discs[i].position.y));
-        drift = std::max(drift, std::abs(world.discs()[i].position.x - def.discs[i].position.x));
+    for (std::size_t i = first; i < def.bodies.size(); ++i) {
+        sag = std::max(sag, std::abs(world.bodies()[i].position.y - def.bodies[i].position.y));
+        drift = std::max(drift, std::abs(world.bodies()[i].position.x - def.bodies[i].position.x));
     }
     EXPECT_LT(sag, 5e-3);
     EXPECT_LT(drift, 2e-3);
@@ -179,7 +179,7 @@ void expect_stands(const WorldDef& def, double seconds, std::size_t first) {
 TEST(Bodies, AStackOfTwentyBoxesStands) {
     WorldDef def = on_floor();
     for (int i = 0; i < 20; ++i) {
-        def.discs.push_back(body(box_of(1, 1), {0, 0.5 + i}, 1, {.restitution = 0, .friction = 0.5}));
+        def.bodies.push_back(body(box_of(1, 1), {0, 0.5 + i}, 1, {.restitution = 0, .friction = 0.5}));
     }
     expect_stands(def, 5.0, 0);
 }
@@ -189,7 +189,7 @@ TEST(Bodies, ATwentyRowPyramidStands) {
     for (int row = 0; row < 20; ++row) {
         const int n = 20 - row;
         for (int i = 0; i < n; ++i) {
-            def.discs.push_back(body(box_of(1, 1), {i - (n - 1) / 2.0, 0.5 + row}, 1,
+            def.bodies.push_back(body(box_of(1, 1), {i - (n - 1) / 2.0, 0.5 + row}, 1,
                                      {.restitution = 0, .friction = 0.6}));
         }
     }
@@ -203,18 +203,18 @@ TEST(Bodies, ABoxBulletStaysInsideAThinWall) {
     def.gravity = {0, 0};
     def.walls.push_back(testing::segment({1, -1}, {1, 1}, 0.02, {.restitution = 0.5}));
     for (const double spin : {0.0, 40.0}) {
-        DiscDef bullet = body(box_of(0.1, 0.1), {0, 0.05}, 1, {.restitution = 0.5});
+        BodyDef bullet = body(box_of(0.1, 0.1), {0, 0.05}, 1, {.restitution = 0.5});
         bullet.velocity = {300, 0};
         bullet.angular_velocity = spin;
-        def.discs = {bullet};
+        def.bodies = {bullet};
         World world(def);
         double farthest = -1;
         for (int k = 0; k < world.rate() / 10; ++k) {
             world.step();
-            farthest = std::max(farthest, world.discs()[0].position.x);
+            farthest = std::max(farthest, world.bodies()[0].position.x);
         }
         EXPECT_LT(farthest, 1 - 0.01 - 0.05 + 1e-3) << spin;   // its face never past the wall's
-        EXPECT_LT(world.discs()[0].velocity.x, 0) << spin;     // and it came back
+        EXPECT_LT(world.bodies()[0].velocity.x, 0) << spin;     // and it came back
     }
 }
 
@@ -230,10 +230,10 @@ TEST(Bodies, ABoxBulletBouncesBetweenAWallAndAThinOneForASecond) {
     def.walls.push_back(testing::box({-1, -1}, {3, 1}, elastic));
     def.walls.push_back(testing::segment({1, -1}, {1, 1}, 0.02, elastic));
     for (const double spin : {0.0, 40.0}) {
-        DiscDef bullet = body(box_of(0.1, 0.1), {0, 0.05}, 1, elastic);
+        BodyDef bullet = body(box_of(0.1, 0.1), {0, 0.05}, 1, elastic);
         bullet.velocity = {300, 0};
         bullet.angular_velocity = spin;
-        def.discs = {bullet};
+        def.bodies = {bullet};
         World world(def);
         const double start = world.energy();
         double nearest = 10, farthest = -10;
@@ -241,7 +241,7 @@ TEST(Bodies, ABoxBulletBouncesBetweenAWallAndAThinOneForASecond) {
         double last_vx = 300;
         for (int k = 0; k < world.rate(); ++k) {
             world.step();
-            const DiscState& s = world.discs()[0];
+            const BodyState& s = world.bodies()[0];
             nearest = std::min(nearest, s.position.x);
             farthest = std::max(farthest, s.position.x);
             if ((s.velocity.x > 0) != (last_vx > 0)) ++turns;
@@ -258,7 +258,7 @@ TEST(Bodies, ABoxBulletBouncesBetweenAWallAndAThinOneForASecond) {
 // the floor at two points and gives one row, with both points' impulse.
 TEST(Bodies, ALandingIsOneEventWithTheTotalImpulse) {
     WorldDef def = on_floor({.restitution = 0.5, .friction = 0.5});
-    def.discs.push_back(body(box_of(1, 0.5), {0, 0.5}, 1, {.restitution = 0.5, .friction = 0.5}));
+    def.bodies.push_back(body(box_of(1, 0.5), {0, 0.5}, 1, {.restitution = 0.5, .friction = 0.5}));
     World world(def);
     std::vector<ContactEvent> events;
     for (int k = 0; k < world.rate() / 4; ++k) {
@@ -270,14 +270,14 @@ TEST(Bodies, ALandingIsOneEventWithTheTotalImpulse) {
     EXPECT_EQ(events[0].other_kind, ContactEvent::Other::wall);
     EXPECT_EQ(events[0].other, 0u);
     // Landing from 0.25 m at sqrt(2 g h), leaving at e times that: the impulse m (1 + e) v.
-    const double v = std::sqrt(2 * 9.81 * 0.25), m = def.discs[0].mass;
+    const double v = std::sqrt(2 * 9.81 * 0.25), m = def.bodies[0].mass;
     EXPECT_NEAR(events[0].impulse, m * 1.5 * v, 0.03 * m * 1.5 * v);
 }
 
 TEST(Bodies, ARespawnReplacesTheBodiesAtItsTime) {
     WorldDef def = on_floor();
-    def.discs.push_back(body(box_of(0.5, 0.5), {0, 2}, 1));
-    def.discs.push_back(body(box_of(0.5, 0.5), {2, 2}, 1));
+    def.bodies.push_back(body(box_of(0.5, 0.5), {0, 2}, 1));
+    def.bodies.push_back(body(box_of(0.5, 0.5), {2, 2}, 1));
     RespawnDef r;
     r.at = 0.5;
     r.first = 1;
@@ -286,33 +286,33 @@ TEST(Bodies, ARespawnReplacesTheBodiesAtItsTime) {
     World world(def);
     run_for(world, 0.5);
     EXPECT_EQ(world.respawns_applied(), 0u);
-    EXPECT_LT(world.discs()[1].position.y, 1.0);   // fallen
+    EXPECT_LT(world.bodies()[1].position.y, 1.0);   // fallen
     world.step();
     EXPECT_EQ(world.respawns_applied(), 1u);
-    EXPECT_NEAR(world.discs()[1].position.x, 5, 1e-12);
-    EXPECT_NEAR(world.discs()[1].position.y, 3 - 9.81 / 480 / 480, 1e-9);
+    EXPECT_NEAR(world.bodies()[1].position.x, 5, 1e-12);
+    EXPECT_NEAR(world.bodies()[1].position.y, 3 - 9.81 / 480 / 480, 1e-9);
 }
 
 TEST(Bodies, ThrowsMoveBodiesLikeDiscs) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs.push_back(body(box_of(0.5, 0.5), {0, 0}, 1));
-    def.discs.push_back(body(box_of(0.5, 0.5), {5, 0}, 1));
+    def.bodies.push_back(body(box_of(0.5, 0.5), {0, 0}, 1));
+    def.bodies.push_back(body(box_of(0.5, 0.5), {5, 0}, 1));
     ThrowDef flick;
-    flick.disc = 0;
+    flick.body = 0;
     flick.at = 0.25;
     flick.velocity = Vec2{2, 1};
     ThrowDef grab;
-    grab.disc = 1;
+    grab.body = 1;
     grab.path = {{0.5, {6, 1}}, {1.0, {7, 1}}};
     def.throws = {flick, grab};
     World world(def);
     run_for(world, 0.5);
-    EXPECT_NEAR(world.discs()[0].position.x, 0.5, 1e-9);
-    EXPECT_NEAR(world.discs()[1].position.x, 6, 1e-9);
-    EXPECT_NEAR(world.discs()[1].position.y, 1, 1e-9);
+    EXPECT_NEAR(world.bodies()[0].position.x, 0.5, 1e-9);
+    EXPECT_NEAR(world.bodies()[1].position.x, 6, 1e-9);
+    EXPECT_NEAR(world.bodies()[1].position.y, 1, 1e-9);
     run_for(world, 1.0);
-    EXPECT_NEAR(world.discs()[1].velocity.x, 2, 1e-9);   // released with the path's velocity
+    EXPECT_NEAR(world.bodies()[1].velocity.x, 2, 1e-9);   // released with the path's velocity
 }
 
 }  // namespace

@@ -20,14 +20,14 @@ TEST_P(Rebound, ReachesRestitutionSquaredTimesDropHeight) {
     const double r = 0.1;
     WorldDef def;
     def.walls.push_back(testing::box({-1, 0}, {1, 30}, {.restitution = e}));
-    def.discs.push_back(disc({0, r + drop}, {0, 0}, r, 1.0, {.restitution = e}));
+    def.bodies.push_back(disc({0, r + drop}, {0, 0}, r, 1.0, {.restitution = e}));
     World world(def);
     // Step until the disc has bounced and flies up clear of the floor; from there the flight is
     // ballistic (exact in this integrator), so the apex follows from the state.
     bool bounced = false;
     for (int k = 0; k < 480 * 10; ++k) {
         world.step();
-        const DiscState& s = world.discs()[0];
+        const BodyState& s = world.bodies()[0];
         if (s.velocity.y > 0.0 && s.position.y > r) {
             bounced = true;
             const double apex = s.position.y + s.velocity.y * s.velocity.y / (2 * g) - r;
@@ -46,12 +46,12 @@ TEST(Bounce, ElasticDiscKeepsBouncingToTheSameHeight) {
     const double r = 0.1, drop = 1.0;
     WorldDef def;
     def.walls.push_back(testing::box({-1, 0}, {1, 30}, {.restitution = 1.0}));
-    def.discs.push_back(disc({0, r + drop}, {0, 0}, r, 1.0, {.restitution = 1.0}));
+    def.bodies.push_back(disc({0, r + drop}, {0, 0}, r, 1.0, {.restitution = 1.0}));
     World world(def);
     double highest_late = 0.0;
     for (int k = 0; k < 480 * 10; ++k) {
         world.step();
-        if (k > 480 * 9) highest_late = std::max(highest_late, world.discs()[0].position.y - r);
+        if (k > 480 * 9) highest_late = std::max(highest_late, world.bodies()[0].position.y - r);
     }
     // Sampled apex: within g (dt/2)^2 / 2 = 1.1e-5 m of the true one.
     EXPECT_NEAR(highest_late, drop, 1e-4);
@@ -60,10 +60,10 @@ TEST(Bounce, ElasticDiscKeepsBouncingToTheSameHeight) {
 TEST(Bounce, RestingDiscStaysPutForTenSeconds) {
     WorldDef def;
     def.walls.push_back(testing::box({0, 0}, {4, 4}, {.restitution = 0.5, .friction = 0.6}));
-    def.discs.push_back(disc({2, 0.3}, {0, 0}, 0.3, 2.0, {.restitution = 0.5, .friction = 0.6}));
+    def.bodies.push_back(disc({2, 0.3}, {0, 0}, 0.3, 2.0, {.restitution = 0.5, .friction = 0.6}));
     World world(def);
     testing::run_for(world, 10.0);
-    const DiscState& s = world.discs()[0];
+    const BodyState& s = world.bodies()[0];
     EXPECT_LT(std::hypot(s.position.x - 2, s.position.y - 0.3), 1e-5);
     EXPECT_LT(std::hypot(s.velocity.x, s.velocity.y), 1e-6);
 }
@@ -71,14 +71,14 @@ TEST(Bounce, RestingDiscStaysPutForTenSeconds) {
 TEST(Bounce, FreeFlightFollowsTheParabolaAndKeepsItsSpin) {
     WorldDef def;
     def.gravity = {0.5, -g};
-    DiscDef d = disc({1, 2}, {3, 7}, 0.2, 1.0);
+    BodyDef d = disc({1, 2}, {3, 7}, 0.2, 1.0);
     d.angular_velocity = 200.0;
-    def.discs.push_back(d);
+    def.bodies.push_back(d);
     World world(def);
     for (int k = 1; k <= 480 * 2; ++k) {
         world.step();
         const double t = world.time();
-        const DiscState& s = world.discs()[0];
+        const BodyState& s = world.bodies()[0];
         ASSERT_NEAR(s.position.x, 1 + 3 * t + 0.25 * t * t, 1e-9) << t;
         ASSERT_NEAR(s.position.y, 2 + 7 * t - 0.5 * g * t * t, 1e-9) << t;
         ASSERT_NEAR(s.velocity.y, 7 - g * t, 1e-9) << t;
@@ -92,15 +92,15 @@ TEST(Bounce, FreeFlightFollowsTheParabolaAndKeepsItsSpin) {
 // exactly.
 TEST(Bounce, SpinOfMoreThanAnEighthTurnPerStepIsKept) {
     WorldDef def;
-    DiscDef d = disc({1, 2}, {0, 0}, 0.2, 1.0);
+    BodyDef d = disc({1, 2}, {0, 0}, 0.2, 1.0);
     d.angular_velocity = 2000.0;
-    def.discs.push_back(d);
+    def.bodies.push_back(d);
     World world(def);
     const double eighth_turn = 3.141592653589793 / 4;  // rad
     ASSERT_GT(2000.0 / def.rate, 5 * eighth_turn);
     for (int k = 1; k <= 480; ++k) {
         world.step();
-        const DiscState& s = world.discs()[0];
+        const BodyState& s = world.bodies()[0];
         ASSERT_EQ(s.angular_velocity, 2000.0);
         ASSERT_NEAR(s.angle, 2000.0 * world.time(), 1e-12 * 2000.0 * world.time()) << k;
     }

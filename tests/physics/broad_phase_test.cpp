@@ -21,15 +21,15 @@ TEST(BroadPhase, ADiscFarAwayChangesNothingInACrowd) {
     // A peg a megametre away: the cells then span far more than the table holds, so they are
     // hashed. Static, so that it never moves the times at which the list is rebuilt (a disc
     // that uses up its margin would, and the list's pairs depend on when it was built).
-    DiscDef peg = testing::disc({1.0e6, 0.0}, {0, 0}, 0.2, 0.1);
+    BodyDef peg = testing::disc({1.0e6, 0.0}, {0, 0}, 0.2, 0.1);
     peg.is_static = true;
-    spread_def.discs.push_back(peg);
+    spread_def.bodies.push_back(peg);
     World spread(spread_def);
     testing::run_for(nearby, 1.5);
     testing::run_for(spread, 1.5);
 
-    const std::span<const DiscState> a = nearby.discs();
-    const std::span<const DiscState> b = spread.discs();
+    const std::span<const BodyState> a = nearby.bodies();
+    const std::span<const BodyState> b = spread.bodies();
     ASSERT_EQ(a.size() + 1, b.size());
     for (std::size_t i = 0; i < a.size(); ++i) {
         // Exact equality: any pair found by one path and not the other changes the crowd.

@@ -27,16 +27,16 @@ inline WorldDef busy_scene() {
                          .seed = 42});
     const Material material{.restitution = 0.6, .friction = 0.4};
     def.walls.push_back(segment({1, 5}, {8, 3}, 0.05, material));
-    DiscDef peg = disc({6, 6}, {0, 0}, 0.3, 1.0, material);
+    BodyDef peg = disc({6, 6}, {0, 0}, 0.3, 1.0, material);
     peg.is_static = true;
-    def.discs.push_back(peg);
+    def.bodies.push_back(peg);
     ThrowDef flick;
-    flick.disc = 3;
+    flick.body = 3;
     flick.at = 0.5;
     flick.velocity = Vec2{40, 25};
     def.throws.push_back(flick);
     ThrowDef grab;
-    grab.disc = 100;
+    grab.body = 100;
     grab.path = {{0.2, {3, 9}}, {0.8, {9, 9}}, {1.0, {5, 2}}};
     def.throws.push_back(grab);
     return def;
@@ -53,7 +53,7 @@ inline std::uint64_t state_hash(const World& world) {
             h *= 1099511628211ull;
         }
     };
-    for (const DiscState& s : world.discs()) {
+    for (const BodyState& s : world.bodies()) {
         mix(s.position.x);
         mix(s.position.y);
         mix(s.velocity.x);
@@ -81,20 +81,20 @@ inline WorldDef mixed_scene() {
     Rng rng(7);
     for (int k = 0; k < 80; ++k) {
         const Vec2 at{0.5 + 0.7 * (k % 10), 6.5 + 0.7 * (k / 10)};
-        DiscDef d = k % 4 == 3 ? disc(at, {}, 0.2, 0.125, material)
+        BodyDef d = k % 4 == 3 ? disc(at, {}, 0.2, 0.125, material)
                                : body(shapes[k % 4], at, 1.0, material);
         d.angle = rng.uniform(0, 3);
         d.velocity = {rng.uniform(-2, 2), rng.uniform(-2, 2)};
         d.angular_velocity = rng.uniform(-4, 4);
-        def.discs.push_back(d);
+        def.bodies.push_back(d);
     }
     ThrowDef flick;
-    flick.disc = 5;
+    flick.body = 5;
     flick.at = 0.5;
     flick.velocity = Vec2{30, 10};
     def.throws.push_back(flick);
     ThrowDef grab;
-    grab.disc = 2;
+    grab.body = 2;
     grab.path = {{0.3, {2, 3}}, {0.9, {6, 3}}, {1.2, {4, 8}}};
     def.throws.push_back(grab);
     return def;
@@ -120,7 +120,7 @@ inline WorldDef heavy_light_scene() {
     for (int k = 0; k < 64; ++k) {
         const double angle = rng.uniform(0, 6.283185307179586);
         const Vec2 at{(1 + k % 8) * 1.1, (1 + k / 8) * 1.1};
-        def.discs.push_back(disc(at, {2 * std::cos(angle), 2 * std::sin(angle)}, 0.4,
+        def.bodies.push_back(disc(at, {2 * std::cos(angle), 2 * std::sin(angle)}, 0.4,
                                  k % 2 ? 1000.0 : 1.0, material));
     }
     return def;

@@ -14,14 +14,14 @@ using testing::disc;
 TEST(Collisions, EqualDiscsHeadOnElasticSwapVelocities) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs = {disc({0, 0}, {2, 0}, 0.25, 1.0), disc({2, 0}, {-1, 0}, 0.25, 1.0)};
+    def.bodies = {disc({0, 0}, {2, 0}, 0.25, 1.0), disc({2, 0}, {-1, 0}, 0.25, 1.0)};
     World world(def);
     testing::run_for(world, 2.0);
     // Rounding only: the impulse is computed once, from exact inputs.
-    EXPECT_NEAR(world.discs()[0].velocity.x, -1.0, 1e-12);
-    EXPECT_NEAR(world.discs()[1].velocity.x, 2.0, 1e-12);
-    EXPECT_EQ(world.discs()[0].velocity.y, 0.0);
-    EXPECT_EQ(world.discs()[1].velocity.y, 0.0);
+    EXPECT_NEAR(world.bodies()[0].velocity.x, -1.0, 1e-12);
+    EXPECT_NEAR(world.bodies()[1].velocity.x, 2.0, 1e-12);
+    EXPECT_EQ(world.bodies()[0].velocity.y, 0.0);
+    EXPECT_EQ(world.bodies()[1].velocity.y, 0.0);
 }
 
 // Box2D v3.2 treats approaches under 1 m/s as inelastic whatever the restitution; here an
@@ -32,12 +32,12 @@ TEST(Collisions, SlowElasticImpactsStillBounce) {
         WorldDef def;
         def.gravity = {0, 0};
         // They meet after 0.5 s.
-        def.discs = {disc({0, 0}, {speed, 0}, 0.25, 1.0),
+        def.bodies = {disc({0, 0}, {speed, 0}, 0.25, 1.0),
                      disc({0.5 + 0.5 * speed, 0}, {0, 0}, 0.25, 1.0)};
         World world(def);
         testing::run_for(world, 1.0);
-        EXPECT_NEAR(world.discs()[0].velocity.x, 0.0, 1e-12 * speed);
-        EXPECT_NEAR(world.discs()[1].velocity.x, speed, 1e-12 * speed);
+        EXPECT_NEAR(world.bodies()[0].velocity.x, 0.0, 1e-12 * speed);
+        EXPECT_NEAR(world.bodies()[1].velocity.x, speed, 1e-12 * speed);
     }
 }
 
@@ -45,23 +45,23 @@ TEST(Collisions, SlowElasticImpactOnAWallStillBounces) {
     WorldDef def;
     def.gravity = {0, 0};
     def.walls.push_back(testing::box({0, 0}, {4, 4}, {.restitution = 1.0}));
-    def.discs.push_back(disc({1, 2}, {-0.5, 0}, 0.25, 1.0));
+    def.bodies.push_back(disc({1, 2}, {-0.5, 0}, 0.25, 1.0));
     World world(def);
     testing::run_for(world, 2.0);  // meets the wall at 1.5 s
-    EXPECT_NEAR(world.discs()[0].velocity.x, 0.5, 1e-12);
-    EXPECT_EQ(world.discs()[0].velocity.y, 0.0);
+    EXPECT_NEAR(world.bodies()[0].velocity.x, 0.5, 1e-12);
+    EXPECT_EQ(world.bodies()[0].velocity.y, 0.0);
 }
 
 TEST(Collisions, MomentumIsConservedInAnObliqueCollisionWithFriction) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs = {disc({0, 0}, {3, 0.5}, 0.3, 2.0, {.restitution = 0.6, .friction = 0.5}),
+    def.bodies = {disc({0, 0}, {3, 0.5}, 0.3, 2.0, {.restitution = 0.6, .friction = 0.5}),
                  disc({1.5, 0.2}, {-1, 0}, 0.2, 0.7, {.restitution = 0.6, .friction = 0.5})};
-    def.discs[0].angular_velocity = 4.0;
+    def.bodies[0].angular_velocity = 4.0;
     const double px0 = 2.0 * 3 + 0.7 * -1, py0 = 2.0 * 0.5;
     World world(def);
     testing::run_for(world, 1.0);
-    const auto& d = world.discs();
+    const auto& d = world.bodies();
     ASSERT_GT(d[1].velocity.x, 0.0) << "no collision happened";
     const double px = 2.0 * d[0].velocity.x + 0.7 * d[1].velocity.x;
     const double py = 2.0 * d[0].velocity.y + 0.7 * d[1].velocity.y;
@@ -74,19 +74,19 @@ TEST(Collisions, FastDiscHitsAStillDisc) {
     // 100 m/s covers 0.1 m per substep, more than the sum of the radii: only a swept test finds it.
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs = {disc({0, 0}, {100, 0}, 0.02, 1.0), disc({1, 0}, {0, 0}, 0.02, 1.0)};
+    def.bodies = {disc({0, 0}, {100, 0}, 0.02, 1.0), disc({1, 0}, {0, 0}, 0.02, 1.0)};
     World world(def);
     testing::run_for(world, 0.1);
-    EXPECT_NEAR(world.discs()[0].velocity.x, 0.0, 1e-9);
-    EXPECT_NEAR(world.discs()[1].velocity.x, 100.0, 1e-9);
-    EXPECT_LT(world.discs()[0].position.x, 1.0 - 0.04 + 1e-9);
+    EXPECT_NEAR(world.bodies()[0].velocity.x, 0.0, 1e-9);
+    EXPECT_NEAR(world.bodies()[1].velocity.x, 100.0, 1e-9);
+    EXPECT_LT(world.bodies()[0].position.x, 1.0 - 0.04 + 1e-9);
 }
 
 // Five touching discs, the first hit by a sixth: the whole momentum must travel down the row.
 void expect_cradle(WorldDef def, double speed) {
     World world(def);
     testing::run_for(world, 2.0);
-    const auto& d = world.discs();
+    const auto& d = world.bodies();
     EXPECT_GE(d[5].velocity.x, 0.95 * speed);
     for (int k = 0; k < 5; ++k) EXPECT_LT(std::abs(d[k].velocity.x), 0.05 * speed) << k;
 }
@@ -94,16 +94,16 @@ void expect_cradle(WorldDef def, double speed) {
 TEST(Collisions, NewtonsCradleSendsTheLastDiscOff) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs.push_back(disc({-3, 0}, {1.5, 0}, 0.5, 1.0));
-    for (int k = 0; k < 5; ++k) def.discs.push_back(disc({1.0 * k, 0}, {0, 0}, 0.5, 1.0));
+    def.bodies.push_back(disc({-3, 0}, {1.5, 0}, 0.5, 1.0));
+    for (int k = 0; k < 5; ++k) def.bodies.push_back(disc({1.0 * k, 0}, {0, 0}, 0.5, 1.0));
     expect_cradle(def, 1.5);
 }
 
 TEST(Collisions, NewtonsCradleOnAFloorUnderGravity) {
     WorldDef def;
     def.walls.push_back(testing::box({-10, 0}, {20, 10}));
-    def.discs.push_back(disc({-3, 0.5}, {1.5, 0}, 0.5, 1.0));
-    for (int k = 0; k < 5; ++k) def.discs.push_back(disc({1.0 * k, 0.5}, {0, 0}, 0.5, 1.0));
+    def.bodies.push_back(disc({-3, 0.5}, {1.5, 0}, 0.5, 1.0));
+    for (int k = 0; k < 5; ++k) def.bodies.push_back(disc({1.0 * k, 0.5}, {0, 0}, 0.5, 1.0));
     expect_cradle(def, 1.5);
 }
 
@@ -126,12 +126,12 @@ TEST(Collisions, TouchingPairIsTimedWhenItsBounceWouldShowOrItClosesFast) {
                      << "e = " << k.e << ", v = " << k.speed << ", r = " << k.radius);
         WorldDef def;
         def.walls.push_back(testing::box({-10, 0}, {20, 10}, {.restitution = k.e}));
-        def.discs = {disc({0, k.radius}, {k.speed, 0}, k.radius, 1.0, {.restitution = k.e}),
+        def.bodies = {disc({0, k.radius}, {k.speed, 0}, k.radius, 1.0, {.restitution = k.e}),
                      disc({2 * k.radius, k.radius}, {0, 0}, k.radius, 1.0, {.restitution = k.e})};
         World world(def);
         const double t = 0.05;
         testing::run_for(world, t);
-        const auto& d = world.discs();
+        const auto& d = world.bodies();
         // The resting stage's rows are floats: 1e-6 relative.
         const double va = 0.5 * (1.0 - k.e) * k.speed, vb = 0.5 * (1.0 + k.e) * k.speed;
         EXPECT_NEAR(d[0].velocity.x, va, 1e-6 * k.speed);

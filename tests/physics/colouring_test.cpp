@@ -70,7 +70,7 @@ TEST(Colouring, ContactsOfAPileShareNoDiscWithinAColour) {
     // gets it.
     const WorldDef def = testing::pile({.count = 2000, .radius = 0.2, .spacing = 0.41});
     std::vector<Body> bodies;
-    for (const DiscDef& d : def.discs) {
+    for (const BodyDef& d : def.bodies) {
         Body b;
         b.x = V2(d.position.x, d.position.y);
         b.radius = d.radius;

@@ -67,9 +67,9 @@ TEST(Energy, MixedSizesWithPegsAndSegmentsNeverGainEnergy) {
     def.walls.push_back(testing::segment({11, 7}, {7, 5}, 0.05, rough));
     testing::Rng rng(5);
     for (int k = 0; k < 12; ++k) {
-        DiscDef peg = testing::disc({1.0 + k, 2.5 + 0.4 * (k % 2)}, {0, 0}, 0.1, 1.0, rough);
+        BodyDef peg = testing::disc({1.0 + k, 2.5 + 0.4 * (k % 2)}, {0, 0}, 0.1, 1.0, rough);
         peg.is_static = true;
-        def.discs.push_back(peg);
+        def.bodies.push_back(peg);
     }
     for (int k = 0; k < 300; ++k) {
         // One draw per statement, in this order: the scene depends on it.
@@ -77,7 +77,7 @@ TEST(Energy, MixedSizesWithPegsAndSegmentsNeverGainEnergy) {
         const double friction = rng.uniform(0.0, 0.8);
         const double restitution = rng.uniform(0.3, 1.0);
         const Vec2 velocity{rng.uniform(-2, 2), rng.uniform(-2, 2)};
-        def.discs.push_back(testing::disc({0.5 + 0.55 * (k % 20), 8.0 + 0.55 * (k / 20)}, velocity,
+        def.bodies.push_back(testing::disc({0.5 + 0.55 * (k % 20), 8.0 + 0.55 * (k / 20)}, velocity,
                                           r, 3.14159 * r * r,
                                           {.restitution = restitution, .friction = friction}));
     }

@@ -10,13 +10,13 @@ namespace {
 TEST(Events, HeadOnCollisionGivesOneEventWithTheImpulse) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs = {testing::disc({0, 0}, {1, 0}, 0.25, 2.0), testing::disc({1, 0}, {0, 0}, 0.25, 2.0)};
+    def.bodies = {testing::disc({0, 0}, {1, 0}, 0.25, 2.0), testing::disc({1, 0}, {0, 0}, 0.25, 2.0)};
     World world(def);
     testing::run_for(world, 1.0);
     const auto events = world.take_events();
     ASSERT_EQ(events.size(), 1u);
     EXPECT_EQ(events[0].a, 0u);
-    EXPECT_EQ(events[0].other_kind, ContactEvent::Other::disc);
+    EXPECT_EQ(events[0].other_kind, ContactEvent::Other::body);
     EXPECT_EQ(events[0].other, 1u);
     EXPECT_NEAR(events[0].impulse, 2.0, 1e-12);  // m * dv = 2 kg * 1 m/s
     // Contact at t = 0.5 s: the event comes with the step that contains it.
@@ -28,7 +28,7 @@ TEST(Events, RestingDiscTouchesTheFloorOnce) {
     WorldDef def;
     def.walls.push_back(testing::box({0, 0}, {1, 1}, {.restitution = 0.0}));
     def.walls.push_back(testing::box({5, 5}, {6, 6}, {.restitution = 0.0}));
-    def.discs.push_back(testing::disc({0.5, 0.2}, {0, 0}, 0.1, 1.0, {.restitution = 0.0}));
+    def.bodies.push_back(testing::disc({0.5, 0.2}, {0, 0}, 0.1, 1.0, {.restitution = 0.0}));
     World world(def);
     testing::run_for(world, 1.0);
     const auto events = world.take_events();

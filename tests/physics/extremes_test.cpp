@@ -42,7 +42,7 @@ WorldDef extreme_world(const Extreme& e) {
         const double angle = rng.uniform(0, 2 * 3.141592653589793);
         const Vec2 position{(1 + k % 8) * 1.1 * e.scale, (1 + k / 8) * 1.1 * e.scale};
         const Vec2 velocity{e.speed * e.scale * std::cos(angle), e.speed * e.scale * std::sin(angle)};
-        def.discs.push_back(
+        def.bodies.push_back(
             disc(position, velocity, 0.4 * e.scale, k % 2 ? e.heavy : e.light, material));
     }
     return def;
@@ -63,8 +63,8 @@ TEST_P(ExtremeTest, StaysFiniteAndInsideItsBox) {
     for (int k = 0; k < 2 * def.rate; ++k) {
         world.step();
         ASSERT_FALSE(world.failure()) << "step " << k;
-        for (std::size_t i = 0; i < world.discs().size(); ++i) {
-            const DiscState& s = world.discs()[i];
+        for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+            const BodyState& s = world.bodies()[i];
             ASSERT_TRUE(std::isfinite(s.position.x) && std::isfinite(s.position.y) &&
                         std::isfinite(s.velocity.x) && std::isfinite(s.velocity.y) &&
                         std::isfinite(s.angle) && std::isfinite(s.angular_velocity))

@@ -15,11 +15,11 @@ using testing::disc;
 
 TEST(NonFiniteState, FoundInTheDefinition) {
     WorldDef def;
-    def.discs.push_back(disc({0, 0}, {0, 0}, 0.5, 1.0));
-    def.discs.push_back(disc({2, 0}, {std::numeric_limits<double>::quiet_NaN(), 0}, 0.5, 1.0));
+    def.bodies.push_back(disc({0, 0}, {0, 0}, 0.5, 1.0));
+    def.bodies.push_back(disc({2, 0}, {std::numeric_limits<double>::quiet_NaN(), 0}, 0.5, 1.0));
     World world(def);
     ASSERT_TRUE(world.failure());
-    EXPECT_EQ(world.failure()->disc, 1u);
+    EXPECT_EQ(world.failure()->body, 1u);
     EXPECT_EQ(world.failure()->t, 0.0);
     world.step();
     EXPECT_EQ(world.step_count(), 0) << "a failed world must not step";
@@ -32,11 +32,11 @@ TEST(NonFiniteState, FoundAtTheStepThatOverflows) {
     WorldDef def;
     def.gravity = {0, 0};
     // Alone: near anything else, its squared speed (inf) would spoil the other's state first.
-    def.discs.push_back(disc({0, 10}, {8e307, 0}, 0.5, 1.0));
+    def.bodies.push_back(disc({0, 10}, {8e307, 0}, 0.5, 1.0));
     World world(def);
     for (int k = 0; k < 2000 && !world.failure(); ++k) world.step();
     ASSERT_TRUE(world.failure());
-    EXPECT_EQ(world.failure()->disc, 0u);
+    EXPECT_EQ(world.failure()->body, 0u);
     EXPECT_EQ(world.step_count(), 1079);
     EXPECT_DOUBLE_EQ(world.failure()->t, 1079.0 / 480.0);
     world.step();

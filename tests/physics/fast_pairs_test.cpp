@@ -22,17 +22,17 @@ TEST_P(HeadOn, DiscsSwapVelocitiesAndNeverPassEachOther) {
     const double v = GetParam();
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs = {disc({-1.0, 0}, {v, 0}, 0.05, 1.0), disc({1.0, 0}, {-v, 0}, 0.05, 1.0)};
+    def.bodies = {disc({-1.0, 0}, {v, 0}, 0.05, 1.0), disc({1.0, 0}, {-v, 0}, 0.05, 1.0)};
     World world(def);
     for (int k = 0; k < 20; ++k) {
         world.step();
-        ASSERT_LT(world.discs()[0].position.x, world.discs()[1].position.x) << "step " << k;
+        ASSERT_LT(world.bodies()[0].position.x, world.bodies()[1].position.x) << "step " << k;
     }
-    EXPECT_EQ(world.discs()[0].velocity.x, -v);
-    EXPECT_EQ(world.discs()[1].velocity.x, v);
+    EXPECT_EQ(world.bodies()[0].velocity.x, -v);
+    EXPECT_EQ(world.bodies()[1].velocity.x, v);
     // Apart by the distance they have flown since their exact time of impact, 0.95 / v s.
     const double flown = 2 * v * (20.0 / def.rate - 0.95 / v);
-    EXPECT_NEAR(world.discs()[1].position.x - world.discs()[0].position.x, 0.1 + flown,
+    EXPECT_NEAR(world.bodies()[1].position.x - world.bodies()[0].position.x, 0.1 + flown,
                 1e-12 * flown);
 }
 
@@ -45,20 +45,20 @@ INSTANTIATE_TEST_SUITE_P(Speeds, HeadOn, ::testing::Values(30.0, 500.0, 1000.0))
 TEST(FastPairs, AStruckDiscMeetsTheDiscsItThenReaches) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs.push_back(disc({-1.0, 0}, {300, 0}, 0.05, 1.0));
-    for (int k = 0; k < 5; ++k) def.discs.push_back(disc({0.5 * k, 0}, {0, 0}, 0.05, 1.0));
+    def.bodies.push_back(disc({-1.0, 0}, {300, 0}, 0.05, 1.0));
+    for (int k = 0; k < 5; ++k) def.bodies.push_back(disc({0.5 * k, 0}, {0, 0}, 0.05, 1.0));
     World world(def);
     for (int k = 0; k < 40; ++k) {
         world.step();
-        for (std::size_t i = 0; i + 1 < world.discs().size(); ++i) {
-            ASSERT_LE(world.discs()[i].position.x + 0.1, world.discs()[i + 1].position.x + 1e-12)
+        for (std::size_t i = 0; i + 1 < world.bodies().size(); ++i) {
+            ASSERT_LE(world.bodies()[i].position.x + 0.1, world.bodies()[i + 1].position.x + 1e-12)
                 << "discs " << i << " and " << i + 1 << " at step " << k;
         }
     }
-    for (std::size_t i = 0; i + 1 < world.discs().size(); ++i) {
-        EXPECT_EQ(world.discs()[i].velocity.x, 0.0) << i;
+    for (std::size_t i = 0; i + 1 < world.bodies().size(); ++i) {
+        EXPECT_EQ(world.bodies()[i].velocity.x, 0.0) << i;
     }
-    EXPECT_EQ(world.discs().back().velocity.x, 300.0);
+    EXPECT_EQ(world.bodies().back().velocity.x, 300.0);
 }
 
 // An elastic gas of 300 discs of 5 cm, all at the same speed in random directions, in a box:
@@ -75,7 +75,7 @@ TEST_P(FastGas, NeitherOverlapsNorChangesItsEnergy) {
                                   .gravity = {0, 0},
                                   .seed = 5});
     testing::Rng rng(9);
-    for (DiscDef& d : def.discs) {
+    for (BodyDef& d : def.bodies) {
         const double angle = rng.uniform(0, 2 * 3.141592653589793);
         d.velocity = {speed * std::cos(angle), speed * std::sin(angle)};
     }
@@ -84,7 +84,7 @@ TEST_P(FastGas, NeitherOverlapsNorChangesItsEnergy) {
     double deepest = 0;  // overlap of any pair after any step, in radii
     for (int k = 0; k < def.rate; ++k) {
         world.step();
-        const auto discs = world.discs();
+        const auto discs = world.bodies();
         for (std::size_t i = 0; i < discs.size(); ++i) {
             for (std::size_t j = i + 1; j < discs.size(); ++j) {
                 const double dx = discs[i].position.x - discs[j].position.x;

@@ -24,8 +24,8 @@ using testing::body;
 using testing::Material;
 
 // A circle body: a disc that the manifold solver steps.
-DiscDef circle(Vec2 position, Vec2 velocity, double radius, double mass, Material material) {
-    DiscDef d = testing::disc(position, velocity, radius, mass, material);
+BodyDef circle(Vec2 position, Vec2 velocity, double radius, double mass, Material material) {
+    BodyDef d = testing::disc(position, velocity, radius, mass, material);
     d.shape = circle_shape(radius);
     return d;
 }
@@ -33,7 +33,7 @@ DiscDef circle(Vec2 position, Vec2 velocity, double radius, double mass, Materia
 enum class Solver { disc, manifold };
 
 // A plain disc (the disc solver's) or a circle body (the manifold solver's).
-DiscDef disc_for(Solver solver, Vec2 position, Vec2 velocity, double radius, double mass,
+BodyDef disc_for(Solver solver, Vec2 position, Vec2 velocity, double radius, double mass,
                  Material material) {
     return solver == Solver::manifold ? circle(position, velocity, radius, mass, material)
                                       : testing::disc(position, velocity, radius, mass, material);
@@ -76,12 +76,12 @@ TEST_P(DiscOnLight, RestsOnALightDiscWithinATenthOfAPercentOfItsRadius) {
     const auto [solver, ratio] = GetParam();
     const double r = 0.1;
     WorldDef def = on_floor();
-    def.discs.push_back(disc_for(solver, {0, r}, {0, 0}, r, 1.0, sticky));
-    def.discs.push_back(disc_for(solver, {0, 2 * r + 0.5}, {0, 0}, 0.5, ratio, sticky));
+    def.bodies.push_back(disc_for(solver, {0, r}, {0, 0}, r, 1.0, sticky));
+    def.bodies.push_back(disc_for(solver, {0, 2 * r + 0.5}, {0, 0}, 0.5, ratio, sticky));
     World world(def);
     EXPECT_EQ(world.manifold_solver(), solver == Solver::manifold);
     EXPECT_LT(deepest_overlap(world, 3.0), 1e-3 * r);
-    EXPECT_NEAR(world.discs()[1].position.y, 2 * r + 0.5, 1e-3 * r);
+    EXPECT_NEAR(world.bodies()[1].position.y, 2 * r + 0.5, 1e-3 * r);
 }
 
 INSTANTIATE_TEST_SUITE_P(Ratios, DiscOnLight,
@@ -96,13 +96,13 @@ INSTANTIATE_TEST_SUITE_P(Ratios, DiscOnLight,
 TEST_P(HeavyOnLight, BoxRestsOnALightBoxWithinATenthOfAPercentOfItsSize) {
     const double ratio = GetParam(), side = 0.2;
     WorldDef def = on_floor();
-    def.discs.push_back(body(*box_shape(side, side), {0, side / 2}, 1 / (side * side), sticky));
+    def.bodies.push_back(body(*box_shape(side, side), {0, side / 2}, 1 / (side * side), sticky));
     // A 1 x 0.5 m box of `ratio` kg.
-    def.discs.push_back(body(*box_shape(1, 0.5), {0.03, side + 0.25}, 2 * ratio, sticky));
+    def.bodies.push_back(body(*box_shape(1, 0.5), {0.03, side + 0.25}, 2 * ratio, sticky));
     World world(def);
     EXPECT_LT(deepest_overlap(world, 3.0), 1e-3 * side / 2);
-    EXPECT_NEAR(world.discs()[1].position.y, side + 0.25, 1e-3 * side / 2);
-    EXPECT_NEAR(world.discs()[1].angle, 0, 1e-4);   // 0.5 mm slop over 0.2 m: 2.5e-3
+    EXPECT_NEAR(world.bodies()[1].position.y, side + 0.25, 1e-3 * side / 2);
+    EXPECT_NEAR(world.bodies()[1].angle, 0, 1e-4);   // 0.5 mm slop over 0.2 m: 2.5e-3
 }
 
 INSTANTIATE_TEST_SUITE_P(Ratios, HeavyOnLight, ::testing::Values(1e2, 1e3, 1e4, 1e6),
@@ -119,9 +119,9 @@ TEST_P(Squeeze, ALightDiscBetweenTwoMillionTimesHeavierOnesIsNotSqueezedThrough)
     WorldDef def;
     def.gravity = {0, 0};
     const Material material{.restitution = e, .friction = 0.0};
-    def.discs.push_back(disc_for(solver, {-1, 0}, {6, 0}, 0.5, heavy, material));
-    def.discs.push_back(disc_for(solver, {0, 0}, {0, 0}, r, 1.0, material));
-    def.discs.push_back(disc_for(solver, {1, 0}, {-6, 0}, 0.5, heavy, material));
+    def.bodies.push_back(disc_for(solver, {-1, 0}, {6, 0}, 0.5, heavy, material));
+    def.bodies.push_back(disc_for(solver, {0, 0}, {0, 0}, r, 1.0, material));
+    def.bodies.push_back(disc_for(solver, {1, 0}, {-6, 0}, 0.5, heavy, material));
     World world(def);
     EXPECT_EQ(world.manifold_solver(), solver == Solver::manifold);
     EXPECT_LT(deepest_overlap(world, 1.0), 1e-2 * r);
@@ -130,12 +130,12 @@ TEST_P(Squeeze, ALightDiscBetweenTwoMillionTimesHeavierOnesIsNotSqueezedThrough)
     const std::vector<ContactEvent> events = world.take_events();
     ASSERT_EQ(events.size(), 2U);
     for (const ContactEvent& event : events) {
-        EXPECT_EQ(event.other_kind, ContactEvent::Other::disc);
+        EXPECT_EQ(event.other_kind, ContactEvent::Other::body);
         EXPECT_NEAR(event.impulse, (1 + e) * 6 * heavy, 1e-9 * (1 + e) * 6 * heavy);
     }
-    EXPECT_NEAR(world.discs()[0].velocity.x, -e * 6, 6e-6);
-    EXPECT_NEAR(world.discs()[2].velocity.x, e * 6, 6e-6);
-    EXPECT_NEAR(world.discs()[1].position.x, 0, 1e-3 * r);
+    EXPECT_NEAR(world.bodies()[0].velocity.x, -e * 6, 6e-6);
+    EXPECT_NEAR(world.bodies()[2].velocity.x, e * 6, 6e-6);
+    EXPECT_NEAR(world.bodies()[1].position.x, 0, 1e-3 * r);
 }
 
 INSTANTIATE_TEST_SUITE_P(Restitutions, Squeeze,
@@ -151,13 +151,13 @@ INSTANTIATE_TEST_SUITE_P(Restitutions, Squeeze,
 TEST(HeavyLight, ASlabOnTwoLightDiscsDoesNotSinkIntoThem) {
     const double r = 0.1;
     WorldDef def = on_floor();
-    def.discs.push_back(circle({-0.6, r}, {0, 0}, r, 1.0, sticky));
-    def.discs.push_back(circle({0.6, r}, {0, 0}, r, 1.0, sticky));
-    def.discs.push_back(body(*box_shape(2, 0.2), {0, 2 * r + 0.1}, 1e5 / 0.4, sticky));
+    def.bodies.push_back(circle({-0.6, r}, {0, 0}, r, 1.0, sticky));
+    def.bodies.push_back(circle({0.6, r}, {0, 0}, r, 1.0, sticky));
+    def.bodies.push_back(body(*box_shape(2, 0.2), {0, 2 * r + 0.1}, 1e5 / 0.4, sticky));
     World world(def);
     EXPECT_LT(deepest_overlap(world, 3.0), 1e-3 * r);
-    EXPECT_NEAR(world.discs()[2].position.y, 2 * r + 0.1, 1e-3 * r);
-    EXPECT_NEAR(world.discs()[2].angle, 0, 1e-6);
+    EXPECT_NEAR(world.bodies()[2].position.y, 2 * r + 0.1, 1e-3 * r);
+    EXPECT_NEAR(world.bodies()[2].angle, 0, 1e-6);
 }
 
 // Light and heavy boxes alternating up a column, each heavy one `ratio` times its light one:
@@ -169,13 +169,13 @@ TEST_P(LightUnderHeavy, AStackHolds) {
     WorldDef def = on_floor();
     for (int k = 0; k < 4; ++k) {
         const double density = (k % 2 ? ratio : 1.0) / (side * side);
-        def.discs.push_back(body(*box_shape(side, side), {0, side * (k + 0.5)}, density, sticky));
+        def.bodies.push_back(body(*box_shape(side, side), {0, side * (k + 0.5)}, density, sticky));
     }
     World world(def);
     const double deepest = deepest_overlap(world, 3.0);
     EXPECT_LT(deepest, 1e-3 * side / 2);
     for (int k = 0; k < 4; ++k) {
-        const DiscState& s = world.discs()[static_cast<std::size_t>(k)];
+        const BodyState& s = world.bodies()[static_cast<std::size_t>(k)];
         EXPECT_LT(std::hypot(s.position.x, s.position.y - side * (k + 0.5)), 1e-3) << "box " << k;
     }
 }
@@ -190,8 +190,8 @@ TEST(HeavyLight, ABoxBesideOneAMillionTimesLighterLandsAndReboundsToESquaredH) {
     WorldDef def;
     def.walls.push_back(testing::box({-5, 0}, {5, 10}, {.restitution = e, .friction = 0.5}));
     const Material material{.restitution = e, .friction = 0.5};
-    def.discs.push_back(body(*box_shape(1, 0.5), {-0.5, 0.25 + h}, 1e6, material));
-    def.discs.push_back(body(*box_shape(1, 0.5), {0.5, 0.25 + h}, 1, material));
+    def.bodies.push_back(body(*box_shape(1, 0.5), {-0.5, 0.25 + h}, 1e6, material));
+    def.bodies.push_back(body(*box_shape(1, 0.5), {0.5, 0.25 + h}, 1, material));
     World world(def);
     const std::optional<double> top = testing::rebound_height(world, 0, 0.25);
     ASSERT_TRUE(top);
@@ -208,19 +208,19 @@ TEST(HeavyLight, AHeavyBoxLandingOnALightOneReboundsAndLeavesItInPlace) {
     WorldDef def;
     const Material material{.restitution = e, .friction = 0.5};
     def.walls.push_back(testing::box({-5, 0}, {5, 10}, material));
-    def.discs.push_back(body(*box_shape(side, side), {0, side / 2}, 1 / (side * side), material));
-    def.discs.push_back(body(*box_shape(1, 0.5), {0, side + 0.25 + h}, 1e6 / 0.5, material));
+    def.bodies.push_back(body(*box_shape(side, side), {0, side / 2}, 1 / (side * side), material));
+    def.bodies.push_back(body(*box_shape(1, 0.5), {0, side + 0.25 + h}, 1e6 / 0.5, material));
     World world(def);
     const double start = world.energy();
     double highest = start;
     const std::optional<double> top =
-        testing::rebound_height(world, 1, side + 0.25, [&](const DiscState&) {
+        testing::rebound_height(world, 1, side + 0.25, [&](const BodyState&) {
             highest = std::max(highest, world.energy());
         });
     ASSERT_TRUE(top);
     EXPECT_NEAR(*top, e * e * h, 0.02 * e * e * h);
     EXPECT_LT(highest, start + 1e-6 * std::abs(start));
-    const DiscState& light = world.discs()[0];
+    const BodyState& light = world.bodies()[0];
     EXPECT_LT(std::hypot(light.position.x, light.position.y - side / 2), 1e-3);
 }
 
@@ -236,7 +236,7 @@ TEST(HeavyLight, ALargeIslandOfMassesAThousandApartStaysBounded) {
     for (int k = 0; k < 64; ++k) {
         const double angle = rng.uniform(0, 2 * 3.141592653589793);
         const int column = k % 8, row = k / 8;
-        def.discs.push_back(circle({(1 + column) * 1.1, (1 + row) * 1.1},
+        def.bodies.push_back(circle({(1 + column) * 1.1, (1 + row) * 1.1},
                                    {2 * std::cos(angle), 2 * std::sin(angle)}, 0.4,
                                    k % 2 ? 1000.0 : 1.0, material));
     }
@@ -247,7 +247,7 @@ TEST(HeavyLight, ALargeIslandOfMassesAThousandApartStaysBounded) {
         overlap = std::max(overlap, world.stats().max_overlap_ratio);
     }
     double fastest = 0;
-    for (const DiscState& s : world.discs()) {
+    for (const BodyState& s : world.bodies()) {
         fastest = std::max(fastest, std::hypot(s.velocity.x, s.velocity.y));
     }
     EXPECT_LT(fastest, 14.0);

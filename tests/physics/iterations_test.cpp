@@ -19,7 +19,7 @@ double column_overlap(int iterations) {
     const testing::Material material{.restitution = 0.0, .friction = 0.5};
     def.walls.push_back(testing::box({0, 0}, {1.01, 60}, material));
     for (int k = 0; k < 40; ++k) {
-        def.discs.push_back(testing::disc({0.505, 0.5 + 1.0 * k}, {0, 0}, 0.5, 1.0, material));
+        def.bodies.push_back(testing::disc({0.505, 0.5 + 1.0 * k}, {0, 0}, 0.5, 1.0, material));
     }
     World world(def);
     double worst = 0.0;

@@ -19,9 +19,9 @@ struct Material {
 };
 
 // position (m), velocity (m/s), radius (m), mass (kg).
-inline DiscDef disc(Vec2 position, Vec2 velocity, double radius, double mass,
+inline BodyDef disc(Vec2 position, Vec2 velocity, double radius, double mass,
                     Material material = {}) {
-    DiscDef d;
+    BodyDef d;
     d.position = position;
     d.velocity = velocity;
     d.radius = radius;
@@ -32,9 +32,9 @@ inline DiscDef disc(Vec2 position, Vec2 velocity, double radius, double mass,
 }
 
 // A body of any shape (discreel/shapes.hpp) centred at `position` (m), of `density` (kg/m^2).
-inline DiscDef body(const Shape& shape, Vec2 position, double density = 1.0,
+inline BodyDef body(const Shape& shape, Vec2 position, double density = 1.0,
                     Material material = {}) {
-    DiscDef d;
+    BodyDef d;
     d.shape = shape;
     d.position = position;
     d.radius = bounding_radius(shape);
@@ -108,7 +108,7 @@ inline WorldDef pile(const PileDef& p) {
         const double y = p.spacing * (0.5 + k / columns);
         const double mass = 3.141592653589793 * p.radius * p.radius;  // kg: 1 kg/m^2
         const Vec2 velocity{rng.uniform(-p.speed, p.speed), rng.uniform(-p.speed, p.speed)};
-        def.discs.push_back(disc({x, y}, velocity, p.radius, mass, p.material));
+        def.bodies.push_back(disc({x, y}, velocity, p.radius, mass, p.material));
     }
     return def;
 }
@@ -124,12 +124,12 @@ inline void run_for(World& world, double seconds) {
 // never does. `each`, if set, sees the body after every step.
 inline std::optional<double> rebound_height(
     World& world, std::size_t i, double half_height,
-    const std::function<void(const DiscState&)>& each = {}) {
+    const std::function<void(const BodyState&)>& each = {}) {
     bool landed = false;
     double top = 0;
     for (int k = 0; k < 2 * world.rate(); ++k) {
         world.step();
-        const DiscState& s = world.discs()[i];
+        const BodyState& s = world.bodies()[i];
         const double bottom = s.position.y - half_height;
         if (!landed && s.velocity.y > 0) landed = true;
         if (landed) top = std::max(top, bottom);

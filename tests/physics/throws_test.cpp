@@ -13,26 +13,26 @@ namespace {
 TEST(Throws, FlickSetsVelocityAtTheFirstStepStartingAtItsTime) {
     WorldDef def;
     def.gravity = {0, 0};
-    def.discs.push_back(testing::disc({0, 0}, {0, 0}, 0.1, 1.0));
+    def.bodies.push_back(testing::disc({0, 0}, {0, 0}, 0.1, 1.0));
     ThrowDef flick;
-    flick.disc = 0;
+    flick.body = 0;
     flick.at = 0.5;  // = step 240 at 480 Hz
     flick.velocity = Vec2{3, -2};
     def.throws.push_back(flick);
     World world(def);
     for (int k = 0; k < 240; ++k) world.step();
-    EXPECT_EQ(world.discs()[0].velocity.x, 0.0);
+    EXPECT_EQ(world.bodies()[0].velocity.x, 0.0);
     world.step();
-    EXPECT_EQ(world.discs()[0].velocity.x, 3.0);
-    EXPECT_EQ(world.discs()[0].velocity.y, -2.0);
-    EXPECT_NEAR(world.discs()[0].position.x, 3.0 / 480, 1e-15);
+    EXPECT_EQ(world.bodies()[0].velocity.x, 3.0);
+    EXPECT_EQ(world.bodies()[0].velocity.y, -2.0);
+    EXPECT_NEAR(world.bodies()[0].position.x, 3.0 / 480, 1e-15);
 }
 
 WorldDef grab_scene() {
     WorldDef def;
-    def.discs.push_back(testing::disc({0, 0}, {0, 0}, 0.2, 1.0));
+    def.bodies.push_back(testing::disc({0, 0}, {0, 0}, 0.2, 1.0));
     ThrowDef grab;
-    grab.disc = 0;
+    grab.body = 0;
     grab.path = {{0.25, {1, 1}}, {0.5, {2, 1}}, {0.75, {2, 3}}};
     def.throws.push_back(grab);
     return def;
@@ -42,15 +42,15 @@ TEST(Throws, GrabFollowsThePathIgnoringGravityAndReleasesWithItsVelocity) {
     WorldDef def = grab_scene();
     World world(def);
     testing::run_for(world, 0.375);  // halfway along the first segment
-    EXPECT_NEAR(world.discs()[0].position.x, 1.5, 1e-12);
-    EXPECT_NEAR(world.discs()[0].position.y, 1.0, 1e-12);
-    EXPECT_NEAR(world.discs()[0].velocity.x, 4.0, 1e-9);
+    EXPECT_NEAR(world.bodies()[0].position.x, 1.5, 1e-12);
+    EXPECT_NEAR(world.bodies()[0].position.y, 1.0, 1e-12);
+    EXPECT_NEAR(world.bodies()[0].velocity.x, 4.0, 1e-9);
     testing::run_for(world, 0.375);  // t = 0.75: the last point
-    EXPECT_NEAR(world.discs()[0].position.x, 2.0, 1e-12);
-    EXPECT_NEAR(world.discs()[0].position.y, 3.0, 1e-12);
+    EXPECT_NEAR(world.bodies()[0].position.x, 2.0, 1e-12);
+    EXPECT_NEAR(world.bodies()[0].position.y, 3.0, 1e-12);
     world.step();  // released, with the last segment's velocity (0, 8), then falls
-    EXPECT_NEAR(world.discs()[0].velocity.x, 0.0, 1e-12);
-    EXPECT_NEAR(world.discs()[0].velocity.y, 8.0 - 9.81 / 480, 1e-9);
+    EXPECT_NEAR(world.bodies()[0].velocity.x, 0.0, 1e-12);
+    EXPECT_NEAR(world.bodies()[0].velocity.y, 8.0 - 9.81 / 480, 1e-9);
 }
 
 TEST(Throws, GrabReleasesWithAnExplicitVelocity) {
@@ -58,7 +58,7 @@ TEST(Throws, GrabReleasesWithAnExplicitVelocity) {
     def.throws[0].release = Vec2{-5, 0};
     World world(def);
     testing::run_for(world, 0.75 + 1.0 / 480);
-    EXPECT_NEAR(world.discs()[0].velocity.x, -5.0, 1e-12);
+    EXPECT_NEAR(world.bodies()[0].velocity.x, -5.0, 1e-12);
 }
 
 // A hand carrying disc 0 along the floor at 4 m/s into disc 1, letting go at t = 1 at rest.
@@ -66,10 +66,10 @@ WorldDef pushing_grab() {
     WorldDef def;
     const testing::Material material{.restitution = 0.2, .friction = 0.3};
     def.walls.push_back(testing::box({-5, 0}, {5, 5}, material));
-    def.discs.push_back(testing::disc({-3, 0.3}, {0, 0}, 0.3, 1.0, material));
-    def.discs.push_back(testing::disc({0, 0.3}, {0, 0}, 0.3, 1.0, material));
+    def.bodies.push_back(testing::disc({-3, 0.3}, {0, 0}, 0.3, 1.0, material));
+    def.bodies.push_back(testing::disc({0, 0.3}, {0, 0}, 0.3, 1.0, material));
     ThrowDef grab;
-    grab.disc = 0;
+    grab.body = 0;
     grab.path = {{0.0, {-3, 0.3}}, {1.0, {1, 0.3}}};
     grab.release = Vec2{0, 0};
     def.throws.push_back(grab);
@@ -79,7 +79,7 @@ WorldDef pushing_grab() {
 TEST(Throws, HeldDiscPushesOthersOutOfItsWay) {
     World world(pushing_grab());
     testing::run_for(world, 1.0);
-    const auto& d = world.discs();
+    const auto& d = world.bodies();
     EXPECT_NEAR(d[0].position.x, 1.0, 1e-12);
     // The pushed disc is ahead of the hand, not overlapped by it.
     EXPECT_GE(d[1].position.x - d[0].position.x, 0.6 - 1e-3);
@@ -93,8 +93,8 @@ TEST(Throws, ADiscReleasedOnTheFloorRestsThere) {
     World world(pushing_grab());
     testing::run_for(world, 1.5);
     ASSERT_FALSE(world.failure());
-    for (const DiscState& d : world.discs()) EXPECT_NEAR(d.position.y, 0.3, 1e-3);
-    const DiscState& released = world.discs()[0];
+    for (const BodyState& d : world.bodies()) EXPECT_NEAR(d.position.y, 0.3, 1e-3);
+    const BodyState& released = world.bodies()[0];
     EXPECT_NEAR(released.position.x, 1.0, 1e-3);
     EXPECT_LT(std::hypot(released.velocity.x, released.velocity.y), 1e-3);
 }
@@ -103,17 +103,17 @@ TEST(Throws, ADiscReleasedOnTheFloorRestsThere) {
 // holds it from t = 0 and carries it in a straight line to the first waypoint, arriving on time.
 TEST(Throws, GrabCarriesTheDiscToItsFirstWaypointWithoutAJump) {
     WorldDef def;
-    def.discs.push_back(testing::disc({1, 1}, {0, 0}, 0.2, 1.0));
+    def.bodies.push_back(testing::disc({1, 1}, {0, 0}, 0.2, 1.0));
     ThrowDef grab;
-    grab.disc = 0;
+    grab.body = 0;
     grab.path = {{0.5, {3, 3}}, {1.0, {4, 3}}};
     def.throws.push_back(grab);
     World world(def);
     double farthest = 0;   // the largest move in one step, metres
     for (int k = 0; k < 480; ++k) {
-        const Vec2 before = world.discs()[0].position;
+        const Vec2 before = world.bodies()[0].position;
         world.step();
-        const Vec2 after = world.discs()[0].position;
+        const Vec2 after = world.bodies()[0].position;
         farthest = std::max(farthest, std::hypot(after.x - before.x, after.y - before.y));
         if (k + 1 == 120) {   // t = 0.25: halfway to the first waypoint, not fallen
             EXPECT_NEAR(after.x, 2.0, 1e-12);
@@ -130,14 +130,14 @@ TEST(Throws, GrabCarriesTheDiscToItsFirstWaypointWithoutAJump) {
 
 TEST(Throws, GrabStartingAtTimeZeroPlacesTheDiscOnItsFirstWaypoint) {
     WorldDef def;
-    def.discs.push_back(testing::disc({1, 1}, {2, 0}, 0.2, 1.0));
+    def.bodies.push_back(testing::disc({1, 1}, {2, 0}, 0.2, 1.0));
     ThrowDef grab;
-    grab.disc = 0;
+    grab.body = 0;
     grab.path = {{0.0, {3, 3}}, {1.0, {4, 3}}};
     def.throws.push_back(grab);
     World world(def);
-    EXPECT_EQ(world.discs()[0].position.x, 3.0);   // the state frame 0 shows
-    EXPECT_EQ(world.discs()[0].position.y, 3.0);
+    EXPECT_EQ(world.bodies()[0].position.x, 3.0);   // the state frame 0 shows
+    EXPECT_EQ(world.bodies()[0].position.y, 3.0);
 }
 
 }  // namespace

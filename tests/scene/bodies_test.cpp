@@ -33,25 +33,25 @@ bodies:
   - {capsule: {length: 1.0, radius: 0.2}, position: [9, 2]}
   - {circle: 0.3, position: [12, 4], density: 2}
 )");
-    ASSERT_EQ(s.discs.size(), 5u);
-    EXPECT_EQ(s.discs[1].id, "crate");   // one numbering: discs, then bodies
-    const Disc& crate = s.discs[1];
+    ASSERT_EQ(s.bodies.size(), 5u);
+    EXPECT_EQ(s.bodies[1].id, "crate");   // one numbering: discs, then bodies
+    const Body& crate = s.bodies[1];
     ASSERT_TRUE(crate.shape);
     EXPECT_NEAR(crate.mass, 2 * 0.8 * 0.5, 1e-12);
     EXPECT_NEAR(crate.inertia, crate.mass * (0.64 + 0.25) / 12, 1e-12);
     EXPECT_NEAR(crate.radius, std::hypot(0.4, 0.25), 1e-12);   // the bounding radius
     // A right triangle: its centroid (1, 1) is the origin of its vertices, the body's position.
-    const Disc& wedge = s.discs[2];
+    const Body& wedge = s.bodies[2];
     ASSERT_TRUE(wedge.shape);
     EXPECT_NEAR(wedge.shape->vertices[0].x, -1, 1e-12);
     EXPECT_NEAR(wedge.shape->vertices[0].y, -1, 1e-12);
     EXPECT_EQ(wedge.position, (Vec2{6, 3}));
     EXPECT_NEAR(wedge.mass, 4.5, 1e-12);
     EXPECT_NEAR(wedge.inertia, 4.5 * (9 + 9) / 18, 1e-12);   // m (a^2 + b^2) / 18 about the centroid
-    const Disc& capsule = s.discs[3];
+    const Body& capsule = s.bodies[3];
     EXPECT_NEAR(capsule.mass, 1.0 * 0.4 + std::numbers::pi * 0.04, 1e-12);
     EXPECT_NEAR(capsule.radius, 0.7, 1e-12);
-    const Disc& circle = s.discs[4];
+    const Body& circle = s.bodies[4];
     EXPECT_FALSE(circle.shape);   // exactly a disc
     EXPECT_NEAR(circle.radius, 0.3, 1e-12);
     EXPECT_NEAR(circle.mass, 2 * std::numbers::pi * 0.09, 1e-12);
@@ -90,9 +90,9 @@ bodies:
     const double inertia = rectangle * (length * length + 4 * r * r) / 12 +
                            discs * (r * r / 2 + length * length / 4 +
                                     length * 4 * r / (3 * std::numbers::pi));
-    ASSERT_EQ(s.discs.size(), 1u);
-    EXPECT_NEAR(s.discs[0].mass, rectangle + discs, 1e-12);
-    EXPECT_NEAR(s.discs[0].inertia, inertia, 1e-12);
+    ASSERT_EQ(s.bodies.size(), 1u);
+    EXPECT_NEAR(s.bodies[0].mass, rectangle + discs, 1e-12);
+    EXPECT_NEAR(s.bodies[0].inertia, inertia, 1e-12);
 }
 
 // Either winding gives the same body; a static body keeps its mass but has no inertia.
@@ -104,15 +104,15 @@ bodies:
   - {polygon: [[0, 1], [2, 1], [2, 0], [0, 0]], position: [5, 0]}
   - {box: [2, 1], position: [10, 0], static: true}
 )");
-    ASSERT_EQ(s.discs.size(), 3u);
-    EXPECT_NEAR(s.discs[0].mass, 2.0, 1e-12);
-    EXPECT_NEAR(s.discs[0].inertia, 2.0 * (4 + 1) / 12, 1e-12);
-    EXPECT_NEAR(s.discs[1].mass, s.discs[0].mass, 1e-12);
-    EXPECT_NEAR(s.discs[1].inertia, s.discs[0].inertia, 1e-12);
-    EXPECT_NEAR(s.discs[1].radius, std::hypot(1.0, 0.5), 1e-12);
-    EXPECT_TRUE(s.discs[2].is_static);
-    EXPECT_NEAR(s.discs[2].mass, 2.0, 1e-12);
-    EXPECT_EQ(s.discs[2].inertia, 0.0);
+    ASSERT_EQ(s.bodies.size(), 3u);
+    EXPECT_NEAR(s.bodies[0].mass, 2.0, 1e-12);
+    EXPECT_NEAR(s.bodies[0].inertia, 2.0 * (4 + 1) / 12, 1e-12);
+    EXPECT_NEAR(s.bodies[1].mass, s.bodies[0].mass, 1e-12);
+    EXPECT_NEAR(s.bodies[1].inertia, s.bodies[0].inertia, 1e-12);
+    EXPECT_NEAR(s.bodies[1].radius, std::hypot(1.0, 0.5), 1e-12);
+    EXPECT_TRUE(s.bodies[2].is_static);
+    EXPECT_NEAR(s.bodies[2].mass, 2.0, 1e-12);
+    EXPECT_EQ(s.bodies[2].inertia, 0.0);
 }
 
 // A body whose bounding circle first meets a body it is clear of is still checked against the
@@ -147,20 +147,20 @@ bodies:
 )";
     const Scene a = load_ok(yaml);
     const Scene b = load_ok(yaml);
-    ASSERT_EQ(a.discs.size(), 40u);
-    EXPECT_EQ(a.discs[0].id, "body0.0");
-    EXPECT_EQ(a.discs[39].id, "body0.39");
-    for (std::size_t i = 0; i < a.discs.size(); ++i) {
-        const Disc& p = a.discs[i];
+    ASSERT_EQ(a.bodies.size(), 40u);
+    EXPECT_EQ(a.bodies[0].id, "body0.0");
+    EXPECT_EQ(a.bodies[39].id, "body0.39");
+    for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+        const Body& p = a.bodies[i];
         ASSERT_TRUE(p.shape);
         EXPECT_GE(p.shape->vertices.size(), 3u);
         EXPECT_LE(p.shape->vertices.size(), 8u);
         EXPECT_LE(p.radius, 0.5 + 1e-12);
         EXPECT_GE(std::abs(p.angular_velocity), 1.0);
-        EXPECT_EQ(p.position, b.discs[i].position);
-        EXPECT_EQ(p.shape->vertices.size(), b.discs[i].shape->vertices.size());
+        EXPECT_EQ(p.position, b.bodies[i].position);
+        EXPECT_EQ(p.shape->vertices.size(), b.bodies[i].shape->vertices.size());
         for (std::size_t j = 0; j < i; ++j) {
-            const Disc& q = a.discs[j];
+            const Body& q = a.bodies[j];
             EXPECT_GE(physics::separation(*p.shape, p.position, p.angle, *q.shape, q.position,
                                           q.angle, 0.0),
                       0.0);
@@ -173,7 +173,7 @@ bodies:
     EXPECT_EQ(a.respawns[0].first, 0u);
     ASSERT_EQ(a.respawns[0].bodies.size(), 40u);
     EXPECT_EQ(a.respawns[0].bodies[7].id, "body0.7");
-    EXPECT_NE(a.respawns[0].bodies[7].position, a.discs[7].position);
+    EXPECT_NE(a.respawns[0].bodies[7].position, a.bodies[7].position);
     EXPECT_EQ(a.respawns[1].bodies[7].position, b.respawns[1].bodies[7].position);
 }
 
@@ -196,9 +196,9 @@ bodies:
     density: 2
     static: true
 )");
-    ASSERT_EQ(s.discs.size(), 7u);
+    ASSERT_EQ(s.bodies.size(), 7u);
     for (std::size_t k = 0; k < 5; ++k) {
-        const Disc& p = s.discs[2 + k];
+        const Body& p = s.bodies[2 + k];
         EXPECT_EQ(p.id, "rock." + std::to_string(k));
         EXPECT_EQ(p.color, (k % 2 == 0 ? Color{0xff, 0, 0, 0xff} : Color{0, 0xff, 0, 0xff}));
         ASSERT_TRUE(p.shape);
@@ -222,17 +222,17 @@ bodies:
   - random_polygons: {count: 3, region: [[0, 0], [5, 5]], size: 0.3, respawn_every: 4}
   - random_polygons: {count: 2, region: [[10, 0], [15, 5]], size: 0.3, respawn_every: 3}
 )");
-    ASSERT_EQ(s.discs.size(), 6u);
-    for (const Disc& body : s.discs) EXPECT_FALSE(std::signbit(body.angular_velocity)) << body.id;
-    EXPECT_EQ(s.discs[1].id, "body1.0");
-    EXPECT_EQ(s.discs[4].id, "body2.0");
+    ASSERT_EQ(s.bodies.size(), 6u);
+    for (const Body& body : s.bodies) EXPECT_FALSE(std::signbit(body.angular_velocity)) << body.id;
+    EXPECT_EQ(s.bodies[1].id, "body1.0");
+    EXPECT_EQ(s.bodies[4].id, "body2.0");
     std::vector<std::pair<double, std::size_t>> schedule;
     for (const Respawn& r : s.respawns) {
         schedule.emplace_back(r.at, r.first);
         const std::size_t expected = r.first == 1 ? 3 : 2;
         ASSERT_EQ(r.bodies.size(), expected);
-        EXPECT_EQ(r.bodies[0].id, s.discs[r.first].id);
-        EXPECT_EQ(r.bodies[expected - 1].id, s.discs[r.first + expected - 1].id);
+        EXPECT_EQ(r.bodies[0].id, s.bodies[r.first].id);
+        EXPECT_EQ(r.bodies[expected - 1].id, s.bodies[r.first + expected - 1].id);
     }
     EXPECT_EQ(schedule, (std::vector<std::pair<double, std::size_t>>{
                             {3, 4}, {4, 1}, {6, 4}, {8, 1}, {9, 4}}));
@@ -255,17 +255,17 @@ bodies:
       respawn_every: 1
   - random_polygons: {count: 10, region: [[0, 0], [8, 8]], size: 0.5, static: true}
 )");
-    ASSERT_EQ(s.discs.size(), 25u);
+    ASSERT_EQ(s.bodies.size(), 25u);
     ASSERT_EQ(s.respawns.size(), 9u);
-    std::vector<std::vector<Disc>> sets{s.discs};
+    std::vector<std::vector<Body>> sets{s.bodies};
     for (const Respawn& r : s.respawns) {
-        std::vector<Disc> now = s.discs;
+        std::vector<Body> now = s.bodies;
         std::copy(r.bodies.begin(), r.bodies.end(),
                   now.begin() + static_cast<std::ptrdiff_t>(r.first));
         sets.push_back(now);
     }
-    for (const std::vector<Disc>& set : sets) {
-        for (const Disc& body : set) {
+    for (const std::vector<Body>& set : sets) {
+        for (const Body& body : set) {
             EXPECT_GE(std::abs(body.position.y - 4), body.radius + 0.1 - 1e-9) << body.id;
         }
         for (std::size_t i = 0; i < 15; ++i) {
@@ -288,7 +288,7 @@ video: {duration: 12}
 bodies:
   - random_polygons: {count: 1, region: [[0, 0], [10, 10]], size: [0.01, 1], respawn_every: 1}
 )");
-    double lightest = alone.discs[0].mass, heaviest = lightest;
+    double lightest = alone.bodies[0].mass, heaviest = lightest;
     for (const Respawn& r : alone.respawns) {
         lightest = std::min(lightest, r.bodies[0].mass);
         heaviest = std::max(heaviest, r.bodies[0].mass);
@@ -363,13 +363,13 @@ throws:
   - {disc: crate, at: 2, velocity: [0, 1]}
 )");
     ASSERT_EQ(s.throws.size(), 2u);
-    EXPECT_EQ(s.throws[0].disc, 1u);
-    EXPECT_EQ(s.throws[1].disc, 1u);
+    EXPECT_EQ(s.throws[0].body, 1u);
+    EXPECT_EQ(s.throws[1].body, 1u);
 }
 
 TEST(Bodies, RespawnsCountAgainstTheLimitOnBodies) {
     Limits limits;
-    limits.discs = 100;
+    limits.bodies = 100;
     const LoadResult r = load_scene_text(R"(
 version: 1
 video: {duration: 10}

@@ -27,7 +27,7 @@ TEST(Defaults, AMinimalSceneGetsTheDocumentedDefaults) {
     EXPECT_EQ(s.physics.friction, 0.2);
     EXPECT_EQ(s.physics.seed, 1u);
     EXPECT_TRUE(s.walls.empty());
-    EXPECT_TRUE(s.discs.empty());
+    EXPECT_TRUE(s.bodies.empty());
     EXPECT_TRUE(s.throws.empty());
     // 480 frames: first, middle (480 / 2) and last.
     EXPECT_EQ(s.golden_frames, (std::vector<int>{0, 240, 479}));
@@ -48,8 +48,8 @@ discs:
     radius: 0.25
     static: true
 )");
-    ASSERT_EQ(s.discs.size(), 3u);
-    const Disc& d = s.discs[0];
+    ASSERT_EQ(s.bodies.size(), 3u);
+    const Body& d = s.bodies[0];
     EXPECT_EQ(d.id, "0");
     EXPECT_EQ(d.velocity, (Vec2{0, 0}));
     EXPECT_EQ(d.angle, 0);
@@ -58,11 +58,11 @@ discs:
     EXPECT_EQ(d.restitution, 0.5);
     EXPECT_EQ(d.friction, 0.7);
     EXPECT_FALSE(d.is_static);
-    EXPECT_EQ(s.discs[1].id, "1");
-    EXPECT_DOUBLE_EQ(s.discs[1].mass, 3 * std::numbers::pi * 0.25);
+    EXPECT_EQ(s.bodies[1].id, "1");
+    EXPECT_DOUBLE_EQ(s.bodies[1].mass, 3 * std::numbers::pi * 0.25);
     // A static disc keeps a mass (physics ignores it).
-    EXPECT_TRUE(s.discs[2].is_static);
-    EXPECT_DOUBLE_EQ(s.discs[2].mass, std::numbers::pi * 0.0625);
+    EXPECT_TRUE(s.bodies[2].is_static);
+    EXPECT_DOUBLE_EQ(s.bodies[2].mass, std::numbers::pi * 0.0625);
 }
 
 TEST(Defaults, ColoursComeFromAPaletteByIndexThatCycles) {
@@ -70,11 +70,11 @@ TEST(Defaults, ColoursComeFromAPaletteByIndexThatCycles) {
     for (int i = 0; i < 9; ++i)
         yaml += "  - {position: [" + std::to_string(2 * i) + ", 0], radius: 0.5}\n";
     const Scene s = load_ok(yaml);
-    ASSERT_EQ(s.discs.size(), 9u);
-    EXPECT_EQ(s.discs[0].color, (Color{0xf4, 0xd3, 0x5e, 0xff}));
-    EXPECT_EQ(s.discs[1].color, (Color{0xe4, 0x57, 0x2e, 0xff}));
-    for (int i = 1; i < 8; ++i) EXPECT_NE(s.discs[i].color, s.discs[0].color) << i;
-    EXPECT_EQ(s.discs[8].color, s.discs[0].color);  // eight colours, then round again
+    ASSERT_EQ(s.bodies.size(), 9u);
+    EXPECT_EQ(s.bodies[0].color, (Color{0xf4, 0xd3, 0x5e, 0xff}));
+    EXPECT_EQ(s.bodies[1].color, (Color{0xe4, 0x57, 0x2e, 0xff}));
+    for (int i = 1; i < 8; ++i) EXPECT_NE(s.bodies[i].color, s.bodies[0].color) << i;
+    EXPECT_EQ(s.bodies[8].color, s.bodies[0].color);  // eight colours, then round again
 }
 
 TEST(Defaults, WallsTakeThePhysicsMaterialsAndAThinGreyLine) {
@@ -117,7 +117,7 @@ TEST(Defaults, PhysicsSubstepsAndIterationsAreRead) {
 TEST(Defaults, EmptySectionsAreAllowed) {
     const Scene s = load_ok("version: 1\nvideo:\nphysics:\nwalls:\ndiscs:\nthrows:\n");
     EXPECT_EQ(s.video.fps, 60);
-    EXPECT_TRUE(s.discs.empty());
+    EXPECT_TRUE(s.bodies.empty());
 }
 
 TEST(Defaults, ThrowsNameDiscsByIdByIndexOrByQuotedId) {
@@ -131,9 +131,9 @@ throws:
   - {disc: b, velocity: [1, 0]}
 )");
     ASSERT_EQ(s.throws.size(), 3u);
-    EXPECT_EQ(s.throws[0].disc, 1u);  // a plain number is an index
-    EXPECT_EQ(s.throws[1].disc, 0u);  // quoted, it is an id
-    EXPECT_EQ(s.throws[2].disc, 1u);
+    EXPECT_EQ(s.throws[0].body, 1u);  // a plain number is an index
+    EXPECT_EQ(s.throws[1].body, 0u);  // quoted, it is an id
+    EXPECT_EQ(s.throws[2].body, 1u);
     EXPECT_EQ(s.throws[0].at, 0.0);   // a flick without `at` happens at the start
 }
 

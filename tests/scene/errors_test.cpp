@@ -204,9 +204,9 @@ TEST(Errors, LimitsAreTheCallersToRaise) {
               "of 100000 bodies (raise it with --max-bodies)");
 
     const LoadResult raised =
-        load_scene_text(text, "s.yaml", Limits{.discs = 200'000, .duration = 6000});
+        load_scene_text(text, "s.yaml", Limits{.bodies = 200'000, .duration = 6000});
     EXPECT_TRUE(raised.ok()) << raised.diagnostics.front().to_string();
-    EXPECT_EQ(raised.scene.discs.size(), 120'000u);
+    EXPECT_EQ(raised.scene.bodies.size(), 120'000u);
 
     const LoadResult tiny = load_scene_text(text, "s.yaml", Limits{.file_bytes = 10});
     ASSERT_EQ(tiny.diagnostics.size(), 1u);

@@ -115,8 +115,8 @@ TEST(FullScene, WallsTakeOverridesOrThePhysicsDefaults) {
 
 TEST(FullScene, EveryDiscKeyArrives) {
     const Scene s = load_ok(every_key);
-    ASSERT_EQ(s.discs.size(), 1u + 60u + 200u);
-    const Disc& cue = s.discs[0];
+    ASSERT_EQ(s.bodies.size(), 1u + 60u + 200u);
+    const Body& cue = s.bodies[0];
     EXPECT_EQ(cue.id, "cue");
     EXPECT_EQ(cue.position, (Vec2{2, 3.6}));
     EXPECT_EQ(cue.velocity, (Vec2{0.5, -1}));
@@ -132,33 +132,33 @@ TEST(FullScene, EveryDiscKeyArrives) {
 
 TEST(FullScene, GeneratorsExpandInPlaceWithTheirIds) {
     const Scene s = load_ok(every_key);
-    EXPECT_EQ(s.discs[1].id, "1.0");
-    EXPECT_EQ(s.discs[60].id, "1.59");
-    EXPECT_EQ(s.discs[61].id, "2.0");
-    EXPECT_EQ(s.discs[260].id, "2.199");
+    EXPECT_EQ(s.bodies[1].id, "1.0");
+    EXPECT_EQ(s.bodies[60].id, "1.59");
+    EXPECT_EQ(s.bodies[61].id, "2.0");
+    EXPECT_EQ(s.bodies[260].id, "2.199");
     // Grid colours cycle in disc order.
-    EXPECT_EQ(s.discs[1].color, (Color{0xe4, 0x57, 0x2e, 0xff}));
-    EXPECT_EQ(s.discs[2].color, (Color{0x76, 0xb0, 0x41, 0xff}));
-    EXPECT_EQ(s.discs[3].color, (Color{0x17, 0xbe, 0xbb, 0xff}));
-    EXPECT_EQ(s.discs[4].color, (Color{0xe4, 0x57, 0x2e, 0xff}));
+    EXPECT_EQ(s.bodies[1].color, (Color{0xe4, 0x57, 0x2e, 0xff}));
+    EXPECT_EQ(s.bodies[2].color, (Color{0x76, 0xb0, 0x41, 0xff}));
+    EXPECT_EQ(s.bodies[3].color, (Color{0x17, 0xbe, 0xbb, 0xff}));
+    EXPECT_EQ(s.bodies[4].color, (Color{0xe4, 0x57, 0x2e, 0xff}));
     // Grid disc 11 is column 1 of row 1, within the jitter of its lattice point.
-    EXPECT_NEAR(s.discs[1 + 11].position.x, 4.5, 0.02);
-    EXPECT_NEAR(s.discs[1 + 11].position.y, 1.5, 0.02);
-    EXPECT_EQ(s.discs[1 + 11].radius, 0.2);
-    EXPECT_DOUBLE_EQ(s.discs[1 + 11].mass, std::numbers::pi * 0.2 * 0.2);
+    EXPECT_NEAR(s.bodies[1 + 11].position.x, 4.5, 0.02);
+    EXPECT_NEAR(s.bodies[1 + 11].position.y, 1.5, 0.02);
+    EXPECT_EQ(s.bodies[1 + 11].radius, 0.2);
+    EXPECT_DOUBLE_EQ(s.bodies[1 + 11].mass, std::numbers::pi * 0.2 * 0.2);
 }
 
 TEST(FullScene, ThrowsResolveToDiscIndices) {
     const Scene s = load_ok(every_key);
     ASSERT_EQ(s.throws.size(), 2u);
     const Throw& flick = s.throws[0];
-    EXPECT_EQ(flick.disc, 0u);
+    EXPECT_EQ(flick.body, 0u);
     EXPECT_EQ(flick.at, 1.0);
     EXPECT_EQ(flick.velocity, (Vec2{12, 3}));
     EXPECT_TRUE(flick.path.empty());
     EXPECT_FALSE(flick.release.has_value());
     const Throw& grab = s.throws[1];
-    EXPECT_EQ(grab.disc, 3u);
+    EXPECT_EQ(grab.body, 3u);
     EXPECT_FALSE(grab.velocity.has_value());
     ASSERT_EQ(grab.path.size(), 3u);
     EXPECT_EQ(grab.path[1].t, 1.3);
@@ -176,7 +176,7 @@ TEST(FullScene, LoadingFromAFileNamesTheSceneAfterIt) {
     const LoadResult result = load_scene_file(path);
     EXPECT_TRUE(result.ok());
     EXPECT_EQ(result.scene.name, "cradle");
-    EXPECT_EQ(result.scene.discs.size(), 261u);
+    EXPECT_EQ(result.scene.bodies.size(), 261u);
     std::filesystem::remove(path);
 }
 

@@ -40,10 +40,10 @@ discs:
       spacing: [0.5, 0.25]
       radius: 0.1
 )");
-    ASSERT_EQ(s.discs.size(), 7u);
+    ASSERT_EQ(s.bodies.size(), 7u);
     const Vec2 expected[] = {{1, 2}, {1.5, 2}, {2, 2}, {1, 2.25}, {1.5, 2.25}, {2, 2.25}};
     for (std::size_t k = 0; k < 6; ++k) {
-        const Disc& d = s.discs[1 + k];
+        const Body& d = s.bodies[1 + k];
         EXPECT_EQ(d.id, "pegs." + std::to_string(k));
         EXPECT_EQ(d.position, expected[k]) << k;
         EXPECT_EQ(d.radius, 0.1);
@@ -73,13 +73,13 @@ discs:
       radius: 0.1
       density: 2
 )");
-    ASSERT_EQ(s.discs.size(), 5u);
-    EXPECT_EQ(s.discs[1].id, "pegs.1");
-    EXPECT_TRUE(s.discs[1].is_static);
-    EXPECT_EQ(s.discs[1].velocity, (Vec2{1, 2}));
-    EXPECT_EQ(s.discs[1].restitution, 0.3);
-    EXPECT_EQ(s.discs[4].id, "dust.2");
-    EXPECT_DOUBLE_EQ(s.discs[4].mass, 2 * std::numbers::pi * 0.01);
+    ASSERT_EQ(s.bodies.size(), 5u);
+    EXPECT_EQ(s.bodies[1].id, "pegs.1");
+    EXPECT_TRUE(s.bodies[1].is_static);
+    EXPECT_EQ(s.bodies[1].velocity, (Vec2{1, 2}));
+    EXPECT_EQ(s.bodies[1].restitution, 0.3);
+    EXPECT_EQ(s.bodies[4].id, "dust.2");
+    EXPECT_DOUBLE_EQ(s.bodies[4].mass, 2 * std::numbers::pi * 0.01);
 }
 
 TEST(Grid, IdsUseTheEntryIndexAndDefaultSpacingJustTouches) {
@@ -89,13 +89,13 @@ discs:
   - {position: [-5, -3], radius: 0.1}
   - grid: {count: [4, 1], radius: 0.25}
 )");
-    ASSERT_EQ(s.discs.size(), 6u);
-    EXPECT_EQ(s.discs[2].id, "2.0");
-    EXPECT_EQ(s.discs[5].id, "2.3");
-    EXPECT_EQ(s.discs[2].position, (Vec2{0, 0}));  // origin defaults to [0, 0]
-    EXPECT_EQ(s.discs[5].position, (Vec2{1.5, 0}));
+    ASSERT_EQ(s.bodies.size(), 6u);
+    EXPECT_EQ(s.bodies[2].id, "2.0");
+    EXPECT_EQ(s.bodies[5].id, "2.3");
+    EXPECT_EQ(s.bodies[2].position, (Vec2{0, 0}));  // origin defaults to [0, 0]
+    EXPECT_EQ(s.bodies[5].position, (Vec2{1.5, 0}));
     // Colours without `colors` come from the palette by disc index, like single discs.
-    EXPECT_NE(s.discs[2].color, s.discs[3].color);
+    EXPECT_NE(s.bodies[2].color, s.bodies[3].color);
 }
 
 TEST(Grid, JitterIsBoundedAndFollowsTheSeed) {
@@ -104,7 +104,7 @@ TEST(Grid, JitterIsBoundedAndFollowsTheSeed) {
                                 "}\ndiscs:\n  - grid: {count: [5, 5], spacing: [1, 1], "
                                 "radius: 0.2, jitter: 0.05}\n");
         std::vector<Vec2> p;
-        for (const Disc& d : s.discs) p.push_back(d.position);
+        for (const Body& d : s.bodies) p.push_back(d.position);
         return p;
     };
     const auto a = positions(7), again = positions(7), other = positions(8);
@@ -123,9 +123,9 @@ TEST(Grid, JitterIsBoundedAndFollowsTheSeed) {
 
 TEST(Random, PlacesEveryDiscInsideTheRegionWithoutOverlap) {
     const Scene s = load_ok(random_scene(1));
-    ASSERT_EQ(s.discs.size(), 151u);
-    for (std::size_t i = 1; i < s.discs.size(); ++i) {
-        const Disc& d = s.discs[i];
+    ASSERT_EQ(s.bodies.size(), 151u);
+    for (std::size_t i = 1; i < s.bodies.size(); ++i) {
+        const Body& d = s.bodies[i];
         EXPECT_EQ(d.id, "1." + std::to_string(i - 1));
         EXPECT_GE(d.radius, 0.1);
         EXPECT_LE(d.radius, 0.3);
@@ -139,12 +139,12 @@ TEST(Random, PlacesEveryDiscInsideTheRegionWithoutOverlap) {
         EXPECT_DOUBLE_EQ(d.mass, std::numbers::pi * d.radius * d.radius);
     }
     // Every pair, the explicit disc included: none may overlap.
-    for (std::size_t i = 0; i < s.discs.size(); ++i)
-        for (std::size_t j = i + 1; j < s.discs.size(); ++j) {
-            const double gap = std::hypot(s.discs[i].position.x - s.discs[j].position.x,
-                                          s.discs[i].position.y - s.discs[j].position.y) -
-                               s.discs[i].radius - s.discs[j].radius;
-            EXPECT_GE(gap, 0.0) << s.discs[i].id << " and " << s.discs[j].id;
+    for (std::size_t i = 0; i < s.bodies.size(); ++i)
+        for (std::size_t j = i + 1; j < s.bodies.size(); ++j) {
+            const double gap = std::hypot(s.bodies[i].position.x - s.bodies[j].position.x,
+                                          s.bodies[i].position.y - s.bodies[j].position.y) -
+                               s.bodies[i].radius - s.bodies[j].radius;
+            EXPECT_GE(gap, 0.0) << s.bodies[i].id << " and " << s.bodies[j].id;
         }
 }
 
@@ -152,14 +152,14 @@ TEST(Random, TheSameSeedGivesTheSameSceneAndAnotherSeedAnother) {
     const Scene a = load_ok(random_scene(42));
     const Scene b = load_ok(random_scene(42));
     const Scene c = load_ok(random_scene(43));
-    ASSERT_EQ(a.discs.size(), b.discs.size());
-    ASSERT_EQ(a.discs.size(), c.discs.size());
+    ASSERT_EQ(a.bodies.size(), b.bodies.size());
+    ASSERT_EQ(a.bodies.size(), c.bodies.size());
     bool differs = false;
-    for (std::size_t i = 0; i < a.discs.size(); ++i) {
-        EXPECT_EQ(a.discs[i].position, b.discs[i].position);
-        EXPECT_EQ(a.discs[i].velocity, b.discs[i].velocity);
-        EXPECT_EQ(a.discs[i].radius, b.discs[i].radius);
-        differs = differs || a.discs[i].position != c.discs[i].position;
+    for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+        EXPECT_EQ(a.bodies[i].position, b.bodies[i].position);
+        EXPECT_EQ(a.bodies[i].velocity, b.bodies[i].velocity);
+        EXPECT_EQ(a.bodies[i].radius, b.bodies[i].radius);
+        differs = differs || a.bodies[i].position != c.bodies[i].position;
     }
     EXPECT_TRUE(differs);
 }
@@ -195,7 +195,7 @@ TEST(Random, UnitValuesStayInTheHalfOpenInterval) {
 TEST(Generators, TenThousandDiscsLoad) {
     const Scene s = load_ok("version: 1\ndiscs:\n  - grid: {count: [100, 100], radius: 0.05}\n"
                             "  - random: {count: 1000, region: [[20, 0], [40, 20]], radius: 0.1}\n");
-    EXPECT_EQ(s.discs.size(), 11000u);
+    EXPECT_EQ(s.bodies.size(), 11000u);
 }
 
 }  // namespace

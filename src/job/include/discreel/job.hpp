@@ -43,7 +43,7 @@ public:
     // call.
     const render::FrameScene& frame_scene(int frame);
 
-    std::span<const physics::DiscState> discs() const;
+    std::span<const physics::BodyState> bodies() const;
     std::vector<physics::ContactEvent> take_events();   // new contacts since the last call
     // What went wrong without stopping the run, since the last call: a body that left the box
     // of walls it started in (once per body, at the first frame that shows it outside).

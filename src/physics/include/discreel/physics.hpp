@@ -3,7 +3,7 @@
 // fixed rate. Plain definitions in, plain state out: no YAML, GL or FFmpeg here. Usage:
 //     physics::World world(def);
 //     while (world.time() < t_end) world.step();
-//     for (const auto& d : world.discs()) ...
+//     for (const auto& d : world.bodies()) ...
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -17,17 +17,16 @@
 
 namespace discreel::physics {
 
-// A body: a disc of `radius`, or, with `shape`, any convex shape (the "discs" of the World's
-// interface are its bodies of every shape, in one numbering). A world whose bodies are all
-// plain discs is stepped by the disc solver; one with any shape by the manifold solver
-// (docs/physics.md).
-struct DiscDef {
+// A body: a disc of `radius`, or, with `shape`, any convex shape, all in one numbering. A
+// world whose bodies are all plain discs is stepped by the disc solver; one with any shape by
+// the manifold solver (docs/physics.md).
+struct BodyDef {
     Vec2 position;                 // metres; the centroid for a shape
     Vec2 velocity;                 // m/s
     double angle = 0.0;            // radians
     double angular_velocity = 0.0; // rad/s, counter-clockwise positive
     double radius = 0.5;           // metres, > 0; ignored when `shape` is set
-    double mass = 1.0;             // kg, > 0; ignored for static discs
+    double mass = 1.0;             // kg, > 0; ignored for static bodies
     std::optional<Shape> shape;    // unset: a disc of `radius`
     double restitution = 0.8;      // coefficient of restitution, 0..1
     double friction = 0.2;         // Coulomb coefficient, >= 0
@@ -36,7 +35,7 @@ struct DiscDef {
 
 struct WallDef {
     enum class Shape {
-        box,      // closed container: a..b are the min and max corners, discs kept inside
+        box,      // closed container: a..b are the min and max corners, bodies kept inside
         segment,  // capsule from a to b
     };
     Shape shape = Shape::segment;
@@ -57,7 +56,7 @@ struct Waypoint {
 };
 
 struct ThrowDef {
-    std::size_t disc = 0;          // index into WorldDef::discs
+    std::size_t body = 0;          // index into WorldDef::bodies
     double at = 0.0;               // seconds; flick time
     std::optional<Vec2> velocity;  // m/s; a flick when set
     std::vector<Waypoint> path;    // a grab when non-empty
@@ -101,15 +100,15 @@ inline bool uses_manifold_solver(bool any_shaped_body, bool any_respawn) {
 
 // The moment of inertia about the centroid of a body of this definition's shape and mass,
 // kg m^2 (m r^2 / 2 for a disc).
-double inertia_of(const DiscDef& def);
+double inertia_of(const BodyDef& def);
 
 // Bodies [first, first + bodies.size()) are replaced by `bodies` at the first step that starts
 // at or after `at`: a generator's set removed and a new one scattered. Contacts of the old
 // bodies are forgotten; throws keep acting on the body slots by index.
 struct RespawnDef {
     double at = 0.0;               // seconds
-    std::size_t first = 0;         // index into WorldDef::discs
-    std::vector<DiscDef> bodies;
+    std::size_t first = 0;         // index into WorldDef::bodies
+    std::vector<BodyDef> bodies;
 };
 
 struct WorldDef {
@@ -119,13 +118,13 @@ struct WorldDef {
                                    // substep at or under 1/480 s (docs/physics.md)
     int iterations = 3;            // resting-contact iterations per substep, at least 1:
                                    // more hold a tall pile tighter (docs/physics.md)
-    std::vector<DiscDef> discs;
+    std::vector<BodyDef> bodies;
     std::vector<WallDef> walls;
     std::vector<ThrowDef> throws;
     std::vector<RespawnDef> respawns;   // in order of `at`
 };
 
-struct DiscState {
+struct BodyState {
     Vec2 position;                 // metres
     Vec2 velocity;                 // m/s
     double angle = 0.0;            // radians
@@ -136,17 +135,17 @@ struct DiscState {
 // whatever the number of points their contact has.
 struct ContactEvent {
     double t = 0.0;                // seconds, time of the step that found it
-    std::size_t a = 0;             // disc index
-    enum class Other { disc, wall };
-    Other other_kind = Other::disc;
-    std::size_t other = 0;         // disc index or index into WorldDef::walls
+    std::size_t a = 0;             // body index
+    enum class Other { body, wall };
+    Other other_kind = Other::body;
+    std::size_t other = 0;         // body index or index into WorldDef::walls
     double impulse = 0.0;          // N*s, total normal impulse applied in that step
 };
 
-// A snapshot of quantities the CLI's summary and tests read; O(discs + contacts) to compute.
+// A snapshot of quantities the CLI's summary and tests read; O(bodies + contacts) to compute.
 struct WorldStats {
-    double kinetic_energy = 0.0;    // J, translational + rotational, over non-static discs
-    double potential_energy = 0.0;  // J, -m g.x over non-static discs (zero at the origin)
+    double kinetic_energy = 0.0;    // J, translational + rotational, over non-static bodies
+    double potential_energy = 0.0;  // J, -m g.x over non-static bodies (zero at the origin)
     double max_overlap = 0.0;       // metres, deepest overlap between two bodies right now
     double max_overlap_ratio = 0.0; // that overlap over the smaller radius involved
     std::size_t contact_count = 0;  // pairs that exchanged an impulse during the last step
@@ -155,10 +154,10 @@ struct WorldStats {
     std::size_t sweeps = 0;
 };
 
-// The first disc whose state stopped being finite: the scene asked for more than double
+// The first body whose state stopped being finite: the scene asked for more than double
 // precision can carry (the scene loader's limits keep ordinary scenes far from this).
 struct NonFiniteState {
-    std::size_t disc = 0;          // index into WorldDef::discs
+    std::size_t body = 0;          // index into WorldDef::bodies
     double t = 0.0;                // seconds, the end of the step that produced it
 };
 
@@ -180,7 +179,7 @@ public:
     int iterations() const;
 
     // Same order as WorldDef::discs; valid until the next step() (ask again after it).
-    std::span<const DiscState> discs() const;
+    std::span<const BodyState> bodies() const;
 
     // How many of WorldDef::respawns have been carried out.
     std::size_t respawns_applied() const;

@@ -22,7 +22,7 @@ namespace discreel::scene {
 // in well under 1 GiB of memory (docs/reliability.md).
 struct Limits {
     // Bodies of every kind: discs, shapes, and every set a respawning generator will bring.
-    std::size_t discs = 100'000;
+    std::size_t bodies = 100'000;
     double duration = 3600;                   // seconds of video
     std::uintmax_t file_bytes = 64u << 20;    // size of the scene file; more is never read
     // YAML values (scalars, lists, mappings, keys included) in the file: each costs about half
@@ -151,7 +151,7 @@ struct Wall {
 
 // A body: a disc of `radius` from `discs:` (or a `circle:` body), or a body of another shape
 // from `bodies:`. Discs and bodies share one list and one numbering (Scene::discs).
-struct Disc {
+struct Body {
     std::string id;                // from the file, or the index / "<generator>.<k>"
     Vec2 position;                 // metres; the centroid for a shape
     Vec2 velocity;                 // m/s
@@ -173,7 +173,7 @@ struct Waypoint {
 };
 
 struct Throw {
-    std::size_t disc = 0;          // index into Scene::discs
+    std::size_t body = 0;          // index into Scene::bodies
     // A flick: at time `at` the disc's velocity becomes `velocity`.
     double at = 0.0;               // seconds; for a grab, the time of its first waypoint
     std::optional<Vec2> velocity;  // m/s; set for a flick
@@ -187,7 +187,7 @@ struct Throw {
 struct Respawn {
     double at = 0.0;               // seconds
     std::size_t first = 0;         // index into Scene::discs
-    std::vector<Disc> bodies;
+    std::vector<Body> bodies;
 };
 
 struct Scene {
@@ -199,7 +199,7 @@ struct Scene {
     Style style;
     Physics physics;
     std::vector<Wall> walls;
-    std::vector<Disc> discs;
+    std::vector<Body> bodies;
     std::vector<Throw> throws;
     std::vector<Respawn> respawns;   // in order of `at`
     std::vector<int> golden_frames;  // default: first, middle, last
