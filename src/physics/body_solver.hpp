@@ -157,7 +157,18 @@ private:
         std::array<double, 2> approach{};   // normal velocity before the solve, m/s
         bool touched = false;
     };
+    // The stages of a step, in order (body_solver.cpp unless said).
+    void begin_step(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
     void find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall);
+    void mark_fast(const std::vector<RigidBody>& bodies, double dt);
+    void make_contacts(const std::vector<RigidBody>& bodies, double dt);
+    void solve_velocities(std::vector<RigidBody>& bodies);       // body_velocities.cpp
+    void integrate_positions(std::vector<RigidBody>& bodies, double dt);   // body_positions.cpp
+    void bounce(std::vector<RigidBody>& bodies, double settle);  // body_velocities.cpp
+    void push_out(std::vector<RigidBody>& bodies);               // body_positions.cpp
+    // Pairs that started apart and sank in deeper than the slop: their bodies are fast.
+    void mark_sunk(const std::vector<RigidBody>& bodies);        // body_positions.cpp
+    void record_touches();
     // The manifold of pair (i, j) now: the one made before, moved with the bodies, while they
     // moved little against each other since (def_.recycle_*), else a new one from collide.
     void manifold_of(PairContact& pc, const PairContact* before,
@@ -170,7 +181,7 @@ private:
     // only one after t_begin).
     void predict_impact(const std::vector<RigidBody>& bodies, std::uint32_t i, std::uint32_t j,
                         double t_begin, double dt, bool after_only = false);
-    // Groups the contacts of the islands to solve directly into islands_ (island_start_
+    // (body_islands.cpp) Groups the contacts of the islands to solve directly into islands_ (island_start_
     // delimits them, direct_ marks them) and those of larger islands of masses far apart by
     // block into blocks_ (block_start_, blocked_).
     void find_islands(const std::vector<RigidBody>& bodies);

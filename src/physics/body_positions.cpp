@@ -1,0 +1,197 @@
+// The position stages of the manifold solver's step (body_solver.hpp): the positions move with
+// the solved velocities, overlap beyond the slop is pushed out (positions only), and pairs that
+// sank in anyway are handed to the impacts.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "body_solver.hpp"
+
+namespace discreel::physics::detail {
+namespace {
+
+// The positional impulses (kg m, along n) at two points of one manifold that bring both
+// separations, `gap` short of their allowed value (negative: too deep), to it or beyond, each
+// zero where its point separates by itself: the velocity block's complementarity problem
+// (block_solver.cpp) with the gaps in place of the velocities.
+std::array<double, 2> block_push(const RigidBody& a, const RigidBody& b, const V2& n,
+                                 const std::array<V2, 2>& ra, const std::array<V2, 2>& rb,
+                                 const std::array<double, 2>& gap) {
+    const double ra1 = cross(ra[0], n), rb1 = cross(rb[0], n);
+    const double ra2 = cross(ra[1], n), rb2 = cross(rb[1], n);
+    const double m = a.inv_mass + b.inv_mass;
+    const double k11 = m + a.inv_inertia * ra1 * ra1 + b.inv_inertia * rb1 * rb1;
+    const double k22 = m + a.inv_inertia * ra2 * ra2 + b.inv_inertia * rb2 * rb2;
+    const double k12 = m + a.inv_inertia * ra1 * ra2 + b.inv_inertia * rb1 * rb2;
+    const double det = k11 * k22 - k12 * k12;
+    const double g1 = gap[0], g2 = gap[1];
+    if (det > 1e-12 * k11 * k22) {   // both pushing
+        const std::array<double, 2> x{(-k22 * g1 + k12 * g2) / det, (k12 * g1 - k11 * g2) / det};
+        if (x[0] >= 0 && x[1] >= 0) return x;
+    }
+    if (k11 > 0 && -g1 / k11 >= 0 && k12 * (-g1 / k11) + g2 >= 0) return {-g1 / k11, 0};
+    if (k22 > 0 && -g2 / k22 >= 0 && k12 * (-g2 / k22) + g1 >= 0) return {0, -g2 / k22};
+    return {0, 0};
+}
+
+}  // namespace
+
+void BodySolver::integrate_positions(std::vector<RigidBody>& bodies, double dt) {
+    std::vector<V2>& moved = moved_;
+    moved.resize(bodies.size());
+    std::vector<double>& turned = turned_;
+    turned.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        RigidBody& b = bodies[i];
+        moved[i] = b.v * dt;
+        turned[i] = b.omega * dt;
+        b.x += moved[i];
+        b.angle += turned[i];
+    }
+
+}
+
+void BodySolver::push_out(std::vector<RigidBody>& bodies) {
+    std::vector<V2>& moved = moved_;
+    std::vector<double>& turned = turned_;
+    // Whatever overlap is left beyond the slop is pushed out, point by point: positions only,
+    // so no velocity (and no energy) is added. A point's separation follows from how far its
+    // two anchors moved along the manifold's normal since the manifold was made, which is
+    // accurate for the small motions of a step and costs no new manifold.
+    spin_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) spin_[i] = {std::cos(turned[i]), std::sin(turned[i])};
+    const auto rotate_by = [&](const V2& v, std::size_t i) {
+        const auto [c, s] = spin_[i];
+        return V2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
+    };
+    // The separation of point k of pc now, and its anchors' offsets now.
+    const auto separation_now = [&](const PairContact& pc, int k, V2& ra, V2& rb) {
+        const Anchor& an = pc.anchors[static_cast<std::size_t>(k)];
+        ra = rotate_by(an.ra, pc.a);
+        rb = rotate_by(an.rb, pc.b);
+        const V2 drift = (moved[pc.b] + rb - an.rb) - (moved[pc.a] + ra - an.ra);
+        return an.separation + pc.contact.normal.dot(drift);
+    };
+    // Moves a and b apart by `amount` (kg m) of positional impulse along n at offsets ra, rb.
+    const auto push_apart = [&](const PairContact& pc, const V2& ra, const V2& rb,
+                                double amount) {
+        RigidBody& a = bodies[pc.a];
+        RigidBody& b = bodies[pc.b];
+        const V2 impulse = amount * pc.contact.normal;
+        const V2 da = a.inv_mass * impulse, db = b.inv_mass * impulse;
+        const double ta = a.inv_inertia * cross(ra, impulse);
+        const double tb = b.inv_inertia * cross(rb, impulse);
+        a.x -= da;
+        a.angle -= ta;
+        b.x += db;
+        b.angle += tb;
+        moved[pc.a] -= da;
+        turned[pc.a] -= ta;
+        moved[pc.b] += db;
+        turned[pc.b] += tb;
+        spin_[pc.a] = {std::cos(turned[pc.a]), std::sin(turned[pc.a])};
+        spin_[pc.b] = {std::cos(turned[pc.b]), std::sin(turned[pc.b])};
+    };
+    // A direct island: every point to within the slop at once, through the same matrix; the
+    // blocks of larger islands the same way, one after the other, in sweeps.
+    const auto push_out_together = [&](std::span<const IslandContact> island) {
+        separation_.clear();
+        bool overlaps = false;
+        for (const IslandContact& ic : island) {
+            const PairContact& pc = *pair_of(ic);
+            for (int q = 0; q < pc.contact.count; ++q) {
+                BlockPoint& p = ic.contact->points[q];
+                // The slop, as below: pushing a body out raises it, and energy with it.
+                separation_.push_back(separation_now(pc, q, p.ra, p.rb) + def_.slop);
+                overlaps = overlaps || separation_.back() < 0;
+            }
+        }
+        if (!overlaps || !direct_solver_.positions(island, state_, separation_, push_)) return;
+        std::size_t point = 0;
+        for (const IslandContact& ic : island) {
+            const PairContact& pc = *pair_of(ic);
+            for (int q = 0; q < pc.contact.count; ++q, ++point) {
+                const BlockPoint& p = pc.contact.points[q];
+                if (push_[point] > 0) push_apart(pc, p.ra, p.rb, push_[point]);
+            }
+        }
+    };
+    for_each_group(islands_, island_start_, push_out_together);
+    for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
+        for_each_group(blocks_, block_start_, push_out_together);
+    }
+    for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
+        for (std::size_t i = 0; i < fresh_.size(); ++i) {
+            if (direct_[i] || blocked_[i]) continue;
+            const PairContact& pc = fresh_[i];
+            const RigidBody& a = bodies[pc.a];
+            const RigidBody& b = bodies[pc.b];
+            const V2& n = pc.contact.normal;
+            if (pc.contact.count == 2) {
+                // Both points at once, as the velocities are solved: pushed one at a time, the
+                // first push turns the body and the second turns it back only in part, which
+                // sets a resting stack rocking.
+                std::array<V2, 2> ra, rb;
+                std::array<double, 2> overlap{};
+                for (int k = 0; k < 2; ++k) {
+                    overlap[static_cast<std::size_t>(k)] =
+                        separation_now(pc, k, ra[static_cast<std::size_t>(k)],
+                                       rb[static_cast<std::size_t>(k)]) + def_.slop;
+                }
+                if (overlap[0] >= 0 && overlap[1] >= 0) continue;
+                const std::array<double, 2> push =
+                    block_push(a, b, n, ra, rb,
+                               {std::max(overlap[0], -def_.max_correction),
+                                std::max(overlap[1], -def_.max_correction)});
+                for (int k = 0; k < 2; ++k) {
+                    const auto q = static_cast<std::size_t>(k);
+                    if (push[q] > 0) push_apart(pc, ra[q], rb[q], push[q]);
+                }
+                continue;
+            }
+            for (int k = 0; k < pc.contact.count; ++k) {
+                V2 ra, rb;
+                const double overlap = separation_now(pc, k, ra, rb) + def_.slop;
+                if (overlap >= 0) continue;
+                const double push = std::min(-overlap, def_.max_correction);
+                const double rna = cross(ra, n), rnb = cross(rb, n);
+                const double k_n = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna +
+                                   b.inv_inertia * rnb * rnb;
+                if (k_n <= 0) continue;
+                push_apart(pc, ra, rb, push / k_n);
+            }
+        }
+    }
+}
+
+void BodySolver::mark_sunk(const std::vector<RigidBody>& bodies) {
+    const std::vector<V2>& moved = moved_;
+    const std::vector<double>& turned = turned_;
+    // A pair that started the step apart and ends deeper in than the slop was not kept apart
+    // by the iterations (bodies closing on each other from several sides at once, or features
+    // meeting that were not the nearest where the step started): its bodies are swept for
+    // their impacts too. Pairs that were already touching are a pile's, whose pressure the
+    // iterations share out; only pairs with a body that moved a hundredth of its inner radius
+    // are looked at again.
+    for (const PairContact& pc : fresh_) {
+        const RigidBody& a = bodies[pc.a];
+        const RigidBody& b = bodies[pc.b];
+        const auto moved_far = [&](std::uint32_t i) {
+            return moved[i].norm() + std::abs(turned[i]) * bodies[i].bound > 0.01 * bodies[i].inner;
+        };
+        if (!moved_far(pc.a) && !moved_far(pc.b)) continue;
+        double apart = HUGE_VAL;
+        for (int k = 0; k < pc.manifold.count; ++k) apart = std::min(apart, pc.manifold.points[k].separation);
+        if (apart <= 0) continue;
+        const Manifold now = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
+                                     Transform::of(b.x, b.angle), 0);
+        const double deep = def_.slop + 0.05 * std::min(a.inner, b.inner);
+        for (int k = 0; k < now.count; ++k) {
+            if (now.points[k].separation >= -deep) continue;
+            fast_[pc.a] = a.inv_mass > 0;
+            fast_[pc.b] = b.inv_mass > 0;
+        }
+    }
+}
+
+}  // namespace discreel::physics::detail
