@@ -71,7 +71,7 @@ struct BodySolverDef {
     // body, plus `predictions_base`. A body whose new sweep is left unchecked once they are
     // spent stays where its last impact put it for the rest of the step, so the work of a step
     // is bounded however fast its bodies move and however many their paths cross.
-    int predictions_per_body = 64;
+    int predictions_per_body = 512;
     int predictions_base = 1024;
     // A pair's manifold is made again only once its bodies have moved against each other by
     // more than this fraction of the smaller one's inner radius, or turned by more than this
