@@ -421,14 +421,17 @@ TEST(HostileInputGLTest, OptionNumbersNeverWrapAndTheirRangesAreReadable) {
 // --jobs beyond what the available memory holds is cut to it, and the run says so.
 TEST(HostileInputGLTest, JobsBeyondWhatMemoryHoldsAreCutAndSaid) {
     TempDir dir;
-    write_file(dir / "many.yaml", "version: 1\nvideo: {size: [64, 36], fps: 10, duration: 100, "
-                                  "segment: 0.1}\ndiscs:\n  - {position: [1, 1], radius: 0.3}\n");
+    // 8K frames: each segment at once holds about 1.6 GB, so 1 024 of them fit no machine.
+    write_file(dir / "many.yaml", "version: 1\nvideo: {size: [7680, 4320], fps: 10, duration: "
+                                  "100, segment: 0.1}\ndiscs:\n  - {position: [1, 1], radius: "
+                                  "0.3}\n");
     // The output's directory is missing: the run fails once the plan is made, before any work.
     const auto run = run_command({bin, "render", dir / "many.yaml", "-o", dir / "none/a.mp4",
                                   "--jobs", "1024"});
     EXPECT_EQ(run.exit_code, 3);
     EXPECT_EQ(run.err.rfind("discreel: --jobs 1024: rendering ", 0), 0u) << run.err;
-    EXPECT_NE(run.err.find(" segments at once, as many as the available memory holds at 64x36\n"),
+    EXPECT_NE(run.err.find(" segments at once, as many as the available memory holds at "
+                           "7680x4320\n"),
               std::string::npos)
         << run.err;
 }
