@@ -53,17 +53,15 @@ struct Ends {
     b.w = b.w + b.inv_inertia * (rb_x * py - rb_y * px);
 }
 
-// B's point's velocity relative to A's, along (dx, dy).
-[[gnu::always_inline]] inline Lanes along(const Ends& a, const Ends& b, const Lanes& ra_x,
-                                          const Lanes& ra_y, const Lanes& rb_x,
-                                          const Lanes& rb_y, const Lanes& dx, const Lanes& dy) {
+// B's point's velocity relative to A's, along (dx, dy), into `out`. (The helpers here return
+// vectors through references: a 256-bit vector returned by value is an ABI that clang refuses
+// to call without AVX, even inlined.)
+[[gnu::always_inline]] inline void along(const Ends& a, const Ends& b, const Lanes& ra_x,
+                                         const Lanes& ra_y, const Lanes& rb_x, const Lanes& rb_y,
+                                         const Lanes& dx, const Lanes& dy, Lanes& out) {
     const Lanes rel_x = (b.vx - b.w * rb_y) - (a.vx - a.w * ra_y);
     const Lanes rel_y = (b.vy + b.w * rb_x) - (a.vy + a.w * ra_x);
-    return rel_x * dx + rel_y * dy;
-}
-
-[[gnu::always_inline]] inline Lanes pick(const Mask& m, const Lanes& yes, const Lanes& no) {
-    return m ? yes : no;
+    out = rel_x * dx + rel_y * dy;
 }
 
 // One point's friction: the tangent impulse that stops its sliding, within +- friction times
@@ -74,14 +72,16 @@ struct Ends {
                                                const Lanes& ty, const Lanes& mass,
                                                const Lanes& friction, const Lanes& normal,
                                                Lanes& tangent) {
-    const Lanes vt = along(a, b, ra_x, ra_y, rb_x, rb_y, tx, ty);
+    Lanes vt;
+    along(a, b, ra_x, ra_y, rb_x, rb_y, tx, ty, vt);
     const Lanes limit = friction * normal;
     const Lanes wanted = tangent - vt * mass;
     const Lanes low = -limit;
-    const Lanes total = pick(wanted < low, low, pick(limit < wanted, limit, wanted));
+    const Lanes capped = limit < wanted ? limit : wanted;
+    const Lanes total = wanted < low ? low : capped;
     const Mask active = mass > Lanes{};
-    const Lanes change = pick(active, total - tangent, Lanes{});
-    tangent = pick(active, total, tangent);
+    const Lanes change = active ? total - tangent : Lanes{};
+    tangent = active ? total : tangent;
     push(a, b, ra_x, ra_y, rb_x, rb_y, change * tx, change * ty);
 }
 
@@ -190,8 +190,9 @@ DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks,
 
         // The normal block: K x + b = w, x >= 0, w >= 0, x_i w_i = 0 (block_solver.cpp).
         const Lanes old1 = r.normal1, old2 = r.normal2;
-        const Lanes vn1 = along(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, r.normal_x, r.normal_y);
-        const Lanes vn2 = along(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, r.normal_x, r.normal_y);
+        Lanes vn1, vn2;
+        along(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, r.normal_x, r.normal_y, vn1);
+        along(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, r.normal_x, r.normal_y, vn2);
         const Lanes b1 = vn1 - r.target1 - (r.k11 * old1 + r.k12 * old2);
         const Lanes b2 = vn2 - r.target2 - (r.k12 * old1 + r.k22 * old2);
         const Mask two = r.two > zero;
@@ -207,8 +208,11 @@ DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks,
         const Lanes second = -b2 * r.inv_k22;
         const Mask use_second =
             two & (r.k22 > zero) & (second >= zero) & (r.k12 * second + b1 >= zero);
-        const Lanes x1 = pick(use_both, both1, pick(use_first, first, zero));
-        const Lanes x2 = pick(use_both, both2, pick(use_first, zero, pick(use_second, second, zero)));
+        const Lanes first_or_none = use_first ? first : zero;
+        const Lanes x1 = use_both ? both1 : first_or_none;
+        const Lanes second_or_none = use_second ? second : zero;
+        const Lanes x2_single = use_first ? zero : second_or_none;
+        const Lanes x2 = use_both ? both2 : x2_single;
         const Lanes d1 = x1 - old1, d2 = x2 - old2;
         push(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, d1 * r.normal_x, d1 * r.normal_y);
         push(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, d2 * r.normal_x, d2 * r.normal_y);

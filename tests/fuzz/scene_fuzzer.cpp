@@ -24,7 +24,7 @@ void check_scene(const discreel::scene::Scene& scene) {
     require(scene.throws.size() <= max_throws);
     require(scene.golden_frames.size() <= max_golden_frames);
     require(scene.video.frame_count() > 0);
-    for (const Disc& disc : scene.bodies) {
+    for (const Body& disc : scene.bodies) {
         require(disc.radius > 0.0 && disc.mass > 0.0 && std::isfinite(disc.inertia));
         if (disc.shape) require(!disc.shape->vertices.empty() && disc.shape->vertices.size() <= 8);
     }
