@@ -11,22 +11,24 @@ namespace {
 using Lanes = simd::Double4;
 using Mask = decltype(Lanes{} < Lanes{});
 
-// One end of four rows: its velocities and inverse masses, lane by lane.
+// One end of four rows: its velocities (gathered) and inverse masses (the block's), lane by
+// lane.
 struct Ends {
     Lanes vx, vy, w, inv_mass, inv_inertia;
 };
 
 [[gnu::always_inline]] inline Ends gather(std::span<const BlockBody> bodies,
-                                          const std::uint32_t (&at)[4]) {
+                                          const std::uint32_t (&at)[4], const Lanes& inv_mass,
+                                          const Lanes& inv_inertia) {
     Ends e;
     for (unsigned l = 0; l < 4; ++l) {
         const BlockBody& s = bodies[at[l]];
         e.vx[l] = s.v.x();
         e.vy[l] = s.v.y();
         e.w[l] = s.omega;
-        e.inv_mass[l] = s.inv_mass;
-        e.inv_inertia[l] = s.inv_inertia;
     }
+    e.inv_mass = inv_mass;
+    e.inv_inertia = inv_inertia;
     return e;
 }
 
@@ -87,9 +89,28 @@ struct Ends {
 
 }  // namespace
 
-void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
+bool BlockRows::same_layout(std::span<const RowRef> rows,
+                            std::span<const BlockBody> bodies) const {
+    if (rows.size() != layout_.size() || bodies.size() != bodies_at_layout_) return false;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (layout_[i] != key_of(rows[i], bodies)) return false;
+    }
+    return true;
+}
+
+std::uint64_t BlockRows::key_of(const RowRef& r, std::span<const BlockBody> bodies) {
+    const auto moves = [&](std::uint32_t i) {
+        return bodies[i].inv_mass > 0 || bodies[i].inv_inertia > 0 ? 1u : 0u;
+    };
+    return std::uint64_t{r.a} << 33 | std::uint64_t{r.b} << 2 | moves(r.a) << 1 | moves(r.b);
+}
+
+void BlockRows::lay_out(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
     const std::size_t n = bodies.size() - 1;   // the last is the scratch record
     const auto scratch = static_cast<std::uint32_t>(n);
+    layout_.resize(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) layout_[i] = key_of(rows[i], bodies);
+    bodies_at_layout_ = bodies.size();
     // Greedy colouring in row order: each row takes the lowest colour none of its moving
     // bodies has yet.
     used_.assign(n, 0);
@@ -97,8 +118,7 @@ void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> b
     colour_start_.assign(overflow + 2, 0);
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const RowRef& r = rows[i];
-        const bool a_moves = bodies[r.a].inv_mass > 0 || bodies[r.a].inv_inertia > 0;
-        const bool b_moves = bodies[r.b].inv_mass > 0 || bodies[r.b].inv_inertia > 0;
+        const bool a_moves = (layout_[i] & 2) != 0, b_moves = (layout_[i] & 1) != 0;
         const std::uint64_t taken = (a_moves ? used_[r.a] : 0) | (b_moves ? used_[r.b] : 0);
         const auto colour = static_cast<unsigned>(std::countr_one(taken));
         colour_of_[i] = static_cast<std::uint8_t>(colour);
@@ -127,14 +147,31 @@ void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> b
         colour_start_[colour] += colour == overflow ? width : 1;
         lane_of_[i] = slot;
         Block& block = blocks_[slot / width];
-        const unsigned l = slot % width;
+        block.a[slot % width] = rows[i].a;
+        block.b[slot % width] = rows[i].b;
+    }
+}
+
+void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
+    // The colours and lanes hold while the rows are those of the last layout, the same pairs
+    // in the same order with the same bodies movable: a resting pile lays out rarely.
+    if (!same_layout(rows, bodies)) lay_out(rows, bodies);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        Block& block = blocks_[lane_of_[i] / width];
+        const unsigned l = lane_of_[i] % width;
         const RowRef& r = rows[i];
         const BlockContact& c = *r.contact;
         const BlockPoint& p1 = c.points[0];
-        const BlockPoint& p2 = c.points[1];
         const bool two = c.count > 1;
-        block.a[l] = r.a;
-        block.b[l] = r.b;
+        // A single point's second does nothing: no offset, no mass, no impulse, and a 1
+        // where the block would divide by it. Every field is written: a lane kept from the
+        // last layout may have held two points.
+        const BlockPoint none{};
+        const BlockPoint& p2 = two ? c.points[1] : none;
+        block.a_inv_mass[l] = bodies[r.a].inv_mass;
+        block.a_inv_inertia[l] = bodies[r.a].inv_inertia;
+        block.b_inv_mass[l] = bodies[r.b].inv_mass;
+        block.b_inv_inertia[l] = bodies[r.b].inv_inertia;
         block.normal_x[l] = c.normal.x();
         block.normal_y[l] = c.normal.y();
         block.ra1_x[l] = p1.ra.x();
@@ -148,13 +185,7 @@ void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> b
         block.friction[l] = c.friction;
         block.k11[l] = c.k11;
         block.inv_k11[l] = c.k11 > 0 ? 1 / c.k11 : 0;
-        if (!two) {
-            // The second point does nothing: no offset, no mass, no impulse, and a 1 where
-            // the block would divide by it.
-            block.k22[l] = 1;
-            continue;
-        }
-        block.two[l] = 1;
+        block.two[l] = two ? 1 : 0;
         block.ra2_x[l] = p2.ra.x();
         block.ra2_y[l] = p2.ra.y();
         block.rb2_x[l] = p2.rb.x();
@@ -163,12 +194,12 @@ void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> b
         block.target2[l] = p2.target;
         block.normal2[l] = p2.normal_impulse;
         block.tangent2[l] = p2.tangent_impulse;
-        block.k12[l] = c.k12;
-        block.k22[l] = c.k22;
-        block.inv_k22[l] = c.k22 > 0 ? 1 / c.k22 : 0;
+        block.k12[l] = two ? c.k12 : 0;
+        block.k22[l] = two ? c.k22 : 1;
+        block.inv_k22[l] = two && c.k22 > 0 ? 1 / c.k22 : 0;
         const double det = c.k11 * c.k22 - c.k12 * c.k12;
         // Points so close together that K is nearly singular are one point: the last cases.
-        const bool regular = det > 1e-12 * c.k11 * c.k22;
+        const bool regular = two && det > 1e-12 * c.k11 * c.k22;
         block.regular[l] = regular ? 1 : 0;
         block.inv_det[l] = regular ? 1 / det : 0;
     }
@@ -180,8 +211,8 @@ DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks,
     using Block = BlockRows::Block;
     const Lanes zero{};
     for (Block& r : blocks) {
-        Ends a = gather(bodies, r.a);
-        Ends b = gather(bodies, r.b);
+        Ends a = gather(bodies, r.a, r.a_inv_mass, r.a_inv_inertia);
+        Ends b = gather(bodies, r.b, r.b_inv_mass, r.b_inv_inertia);
         const Lanes tx = r.normal_y, ty = -r.normal_x;   // -perp(normal)
         friction_at(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, tx, ty, r.tangent_mass1,
                     r.friction, r.normal1, r.tangent1);

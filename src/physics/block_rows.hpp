@@ -42,6 +42,9 @@ public:
     // aligned where the baseline target has no 256-bit registers.
     struct alignas(32) Block {
         std::uint32_t a[width] = {}, b[width] = {};
+        // The ends' inverse masses: the iterations never change them, so only velocities are
+        // gathered.
+        Lanes a_inv_mass{}, a_inv_inertia{}, b_inv_mass{}, b_inv_inertia{};
         Lanes normal_x{}, normal_y{};
         Lanes ra1_x{}, ra1_y{}, rb1_x{}, rb1_y{}, ra2_x{}, ra2_y{}, rb2_x{}, rb2_y{};
         Lanes k11{}, k12{}, k22{};
@@ -55,7 +58,13 @@ public:
     };
 
 private:
+    static std::uint64_t key_of(const RowRef& r, std::span<const BlockBody> bodies);
+    bool same_layout(std::span<const RowRef> rows, std::span<const BlockBody> bodies) const;
+    void lay_out(std::span<const RowRef> rows, std::span<const BlockBody> bodies);
+
     std::vector<Block> blocks_;
+    std::vector<std::uint64_t> layout_;        // per row at the last layout: bodies, movable
+    std::size_t bodies_at_layout_ = 0;
     std::vector<std::uint32_t> lane_of_;       // per row: block * width + lane
     std::vector<std::uint64_t> used_;          // scratch: per body, colours taken
     std::vector<std::uint8_t> colour_of_;      // scratch: per row

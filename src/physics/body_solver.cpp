@@ -148,7 +148,9 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
         const RigidBody& a = bodies[i];
         const RigidBody& b = bodies[j];
-        PairContact pc;
+        // Made in its place in fresh_ (a contact is some hundreds of bytes), and taken back
+        // out if the pair makes none.
+        PairContact& pc = fresh_.emplace_back();
         pc.a = i;
         pc.b = j;
         // The same pair last step (both lists in pair order): its manifold and its impulses.
@@ -158,7 +160,10 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
         }
         const bool had = previous != contacts_.end() && previous->a == i && previous->b == j;
         manifold_of(pc, had ? &*previous : nullptr, bodies);
-        if (pc.manifold.count == 0) continue;
+        if (pc.manifold.count == 0) {
+            fresh_.pop_back();
+            continue;
+        }
         // A fast body's pair that starts apart, against a wall or a body of alike mass, is met
         // at its time of impact instead (body_impacts.cpp): exactly when it happens, bounced
         // by Poisson's rule, where a speculative contact would bounce it at the step's end by
@@ -173,7 +178,10 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
             for (int k = 0; k < pc.manifold.count; ++k) {
                 apart = std::min(apart, pc.manifold.points[k].separation);
             }
-            if (apart > def_.slop) continue;
+            if (apart > def_.slop) {
+                fresh_.pop_back();
+                continue;
+            }
         }
         BlockContact& c = pc.contact;
         c.normal = pc.manifold.normal;
@@ -201,7 +209,6 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
                 p.tangent_impulse = previous->contact.points[q].tangent_impulse;
             }
         }
-        fresh_.push_back(pc);
     }
 
 }
