@@ -6,7 +6,9 @@
 // largest sag below and drift beside each box's place (its start, gaps closed) and the fastest
 // box, at the end; for the polygons the deepest overlap in % of the smaller body's inscribed
 // radius and the largest rise of energy between two 60 fps frames, in % of the start. Appends
-// to bench/results/body_bench.csv (bench_results.hpp). See docs/performance.md.
+// to bench/results/body_bench.csv (bench_results.hpp). Each scene runs awake (`sleep` off, as
+// Box2D's figures in FIELD_NOTES were measured) and as scenes run by default, islands at rest
+// asleep (rows named `<scene>/sleep`). See docs/performance.md.
 //
 //   body_bench [seconds [rate...]]   default: 5 s at 480 Hz, the default physics.rate (a lower
 //                                    rate takes substeps of at most 1/480 s: the same work)
@@ -208,18 +210,29 @@ int main(int argc, char** argv) {
                                {"scene", "bodies", "rate", "simulated_s", "ms_per_simulated_s",
                                 "sag_mm", "drift_mm", "fastest_mm_s", "overlap_pct",
                                 "energy_rise_pct"});
-    std::printf("%-10s %6s %5s %10s %8s %8s %10s %10s %10s\n", "scene", "bodies", "rate",
+    std::printf("%-15s %6s %5s %10s %8s %8s %10s %10s %10s\n", "scene", "bodies", "rate",
                 "ms/sim s", "sag mm", "drift mm", "fast mm/s", "overlap %", "rise %");
     const auto field = [](double v, int digits) {
         return std::isnan(v) ? std::string() : bench::csv_number(v, digits);
     };
+    struct Run {
+        std::string scene;
+        bool sleep;
+    };
+    std::vector<Run> runs;
+    for (const std::string scene : {"stack", "pyramid", "polygons"}) {
+        runs.push_back({scene, false});
+        runs.push_back({scene, true});
+    }
     for (const int rate : rates) {
-        for (const std::string name : {"stack", "pyramid", "polygons"}) {
-            const WorldDef def = name == "stack" ? stack(rate)
-                                 : name == "pyramid" ? pyramid(rate)
-                                                     : polygons(rate);
-            const Result r = run(def, seconds, name == "polygons");
-            std::printf("%-10s %6zu %5d %10.1f %8.2f %8.2f %10.3f %10.2f %10.3f\n", name.c_str(),
+        for (const Run& run_of : runs) {
+            WorldDef def = run_of.scene == "stack" ? stack(rate)
+                           : run_of.scene == "pyramid" ? pyramid(rate)
+                                                       : polygons(rate);
+            def.sleep = run_of.sleep;
+            const std::string name = run_of.sleep ? run_of.scene + "/sleep" : run_of.scene;
+            const Result r = run(def, seconds, run_of.scene == "polygons");
+            std::printf("%-15s %6zu %5d %10.1f %8.2f %8.2f %10.3f %10.2f %10.3f\n", name.c_str(),
                         def.bodies.size(), rate, r.ms_per_second, r.sag_mm, r.drift_mm,
                         r.fastest_mm_s, r.overlap_pct, r.energy_rise_pct);
             results.append({name, std::to_string(def.bodies.size()), std::to_string(rate),

@@ -27,6 +27,7 @@ physics::WorldDef build_world(const scene::Scene& scene) {
     def.rate = scene.physics.rate;
     def.substeps = scene.physics.substeps;
     def.iterations = scene.physics.iterations;
+    def.sleep = scene.physics.sleep;
     def.bodies.reserve(scene.bodies.size());
     for (const scene::Body& d : scene.bodies) def.bodies.push_back(body_of(d));
     for (const scene::Respawn& r : scene.respawns) {

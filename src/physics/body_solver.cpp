@@ -13,8 +13,11 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
     boxes_.resize(n);
     margin_.resize(n);
     transforms_.resize(n);
+    // An asleep body has not moved since its box was made (a respawn makes bodies afresh,
+    // awake, and every body is awake in its first step).
     for (std::size_t i = 0; i < n; ++i) {
         const RigidBody& b = bodies[i];
+        if (b.asleep) continue;
         // How far the body's surface can move in the step: the pair's speculative distance
         // is the sum of the two, so contacts are found before a fast body passes through.
         margin_[i] = (b.v.norm() + std::abs(b.omega) * b.bound) * dt +
@@ -30,9 +33,8 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
         const double grow = b.shape.radius + margin_[i];
         boxes_[i] = {box[0] - grow, box[1] - grow, box[2] + grow, box[3] + grow};
     }
-    // The fat list holds every pair these boxes can make while it is kept (fat_pairs.hpp);
-    // the step's pairs are those whose boxes overlap now, in (a, b) order. Two bodies neither
-    // of which a contact can move (walls, pegs, held bodies) make none.
+    // The fat list holds every pair these boxes can make while it is kept (fat_pairs.hpp).
+    // Two bodies neither of which a contact can move (walls, pegs, held bodies) make none.
     fat_margin_.resize(n);
     movable_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -40,11 +42,24 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
         movable_[i] = bodies[i].inv_mass > 0;
     }
     fat_pairs_.update(boxes_, fat_margin_, movable_, fat_list_);
+    list_pairs(bodies);
+}
+
+void BodySolver::list_pairs(const std::vector<RigidBody>& bodies) {
+    // The step's pairs: those of the fat list whose boxes overlap now, in (a, b) order, with
+    // an awake body that can move (body_sleep.cpp parks the others).
+    const std::size_t n = bodies.size();
+    stirring_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        stirring_[i] = !bodies[i].asleep && bodies[i].motion != Motion::fixed;
+    }
     pairs_.clear();
     for (const std::uint64_t key : fat_list_) {
         const auto i = static_cast<std::uint32_t>(key >> 32);
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
-        if (boxes_overlap(boxes_[i], boxes_[j])) pairs_.push_back(key);
+        if ((stirring_[i] | stirring_[j]) != 0 && boxes_overlap(boxes_[i], boxes_[j])) {
+            pairs_.push_back(key);
+        }
     }
 }
 
@@ -97,11 +112,13 @@ void BodySolver::apply_totals(const PairContact& pc, double sign) {
 }
 
 void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
+    wake_moved(bodies);
     begin_step(bodies, gravity, dt);
     // Restitution acts on approaches faster than gravity gives in about two steps: slower
     // ones are a body settling, which would otherwise hop by e g dt every step.
     const double settle = 2 * gravity.norm() * dt;
     find_pairs(bodies, dt, 0.5 * gravity.norm() * dt * dt);
+    wake_reached(bodies, gravity, dt);
     mark_fast(bodies, dt);
     make_contacts(bodies, dt);
     // The islands solved directly first (their bodies have no other contacts), then warm
@@ -115,6 +132,7 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
     time_impacts(bodies, dt, settle);
     record_touches();
     std::swap(contacts_, fresh_);
+    fall_asleep(bodies, dt);
 }
 
 void BodySolver::begin_step(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
@@ -123,7 +141,7 @@ void BodySolver::begin_step(std::vector<RigidBody>& bodies, const V2& gravity, d
         RigidBody& b = bodies[i];
         if (b.bound < 0) b.bound = bounding_radius(b.shape);
         if (b.inner < 0) b.inner = inner_radius(b.shape);
-        if (b.inv_mass > 0) b.v += gravity * dt;
+        if (b.inv_mass > 0 && !b.asleep) b.v += gravity * dt;
         start_angle_[i] = b.angle;
     }
 }
@@ -250,13 +268,15 @@ void BodySolver::record_touches() {
 }
 
 BodySolver::Overlap BodySolver::max_overlap(const std::vector<RigidBody>& bodies) const {
-    // Every pair the step's broad phase listed: a fast pair left to its impacts has no contact.
+    // Every pair of the broad phase's whose boxes overlap (a fast pair left to its impacts has
+    // no contact, an asleep one none solved).
     Overlap deepest;
-    for (const std::uint64_t key : pairs_) {
+    for (const std::uint64_t key : fat_list_) {
         const auto i = static_cast<std::uint32_t>(key >> 32);
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
         const RigidBody& a = bodies[i];
         const RigidBody& b = bodies[j];
+        if (!boxes_overlap(boxes_[i], boxes_[j])) continue;
         const Manifold m = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
                                    Transform::of(b.x, b.angle), 0);
         for (int k = 0; k < m.count; ++k) {
@@ -267,12 +287,6 @@ BodySolver::Overlap BodySolver::max_overlap(const std::vector<RigidBody>& bodies
         }
     }
     return deepest;
-}
-
-void BodySolver::forget(std::size_t first, std::size_t last) {
-    fat_pairs_.invalidate();
-    const auto replaced = [&](std::size_t i) { return i >= first && i < last; };
-    std::erase_if(contacts_, [&](const PairContact& pc) { return replaced(pc.a) || replaced(pc.b); });
 }
 
 }  // namespace discreel::physics::detail

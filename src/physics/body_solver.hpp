@@ -39,6 +39,11 @@ struct RigidBody {
     Motion motion = Motion::dynamic;   // read by throws; the solver reads inv_mass
     double bound = -1;             // bounding radius, metres; < 0: not computed yet
     double inner = -1;             // inner radius (toi.hpp), metres; < 0: not computed yet
+    // Sleeping (body_sleep.cpp): an asleep body is left out of the step, at rest, until an
+    // awake body reaches it or a throw moves it.
+    bool asleep = false;
+    double still_for = 0;          // seconds it has moved slower than BodySolverDef::sleep_speed
+    std::uint32_t island = 0;      // while asleep: the island it fell asleep with (a body index)
 };
 
 // A body's velocities and inverse masses as the block solve reads them.
@@ -79,6 +84,12 @@ struct BodySolverDef {
     // following its points (a resting pile collides rarely).
     double recycle_travel = 0.002;
     double recycle_turn = 0.002;
+    // An island whose every body has moved slower than `sleep_speed` (m/s, at its centroid
+    // and at its bounding radius from its spin) for `sleep_after` seconds falls asleep: its
+    // bodies stop and cost nothing until an awake body comes within reach of one of them.
+    bool sleep = true;
+    double sleep_speed = 0.01;     // m/s
+    double sleep_after = 0.5;      // s
 };
 
 // A pair of bodies that touched (exchanged a normal impulse) during the step.
@@ -115,6 +126,7 @@ void for_each_overlapping_pair(const std::vector<std::array<double, 4>>& boxes,
 class BodySolver {
 public:
     explicit BodySolver(BodySolverDef def = {}) : def_(def) {}
+    const BodySolverDef& def() const { return def_; }
     void step(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
 
     // The pairs that touched during the last step, in (a, b) order.
@@ -127,8 +139,11 @@ public:
     Overlap max_overlap(const std::vector<RigidBody>& bodies) const;
     // Times of impact computed during the last step (at most the budget of BodySolverDef).
     std::size_t sweeps() const { return predictions_made_; }
-    // Forgets contacts of bodies [first, last): they were replaced.
-    void forget(std::size_t first, std::size_t last);
+    // Forgets contacts of bodies [first, last): they were replaced. The islands they slept in
+    // wake (they may have rested on them).
+    void forget(std::vector<RigidBody>& bodies, std::size_t first, std::size_t last);
+    // Pairs touching now: those that touched in the last step and those asleep touching.
+    std::size_t touching() const;
 
 private:
     struct Anchor {
@@ -160,6 +175,7 @@ private:
     // The stages of a step, in order (body_solver.cpp unless said).
     void begin_step(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
     void find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall);
+    void list_pairs(const std::vector<RigidBody>& bodies);
     void mark_fast(const std::vector<RigidBody>& bodies, double dt);
     void make_contacts(const std::vector<RigidBody>& bodies, double dt);
     void solve_velocities(std::vector<RigidBody>& bodies);       // body_velocities.cpp
@@ -169,6 +185,16 @@ private:
     // Pairs that started apart and sank in deeper than the slop: their bodies are fast.
     void mark_sunk(const std::vector<RigidBody>& bodies);        // body_positions.cpp
     void record_touches();
+    // (body_sleep.cpp) Wakes the sleeping islands that a throw or an impact moved.
+    void wake_moved(std::vector<RigidBody>& bodies);
+    // Wakes the sleeping islands an awake body can reach within the step.
+    void wake_reached(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
+    // Wakes the islands flagged in waking_, adding `kick` to their velocities; whether there
+    // were any.
+    bool wake_flagged(std::vector<RigidBody>& bodies, const V2& kick);
+    // Counts each awake body's time at rest, puts islands at rest long enough to sleep and
+    // parks their contacts.
+    void fall_asleep(std::vector<RigidBody>& bodies, double dt);
     // The manifold of pair (i, j) now: the one made before, moved with the bodies, while they
     // moved little against each other since (def_.recycle_*), else a new one from collide.
     void manifold_of(PairContact& pc, const PairContact* before,
@@ -210,7 +236,14 @@ private:
     std::vector<std::uint64_t> fat_list_;   // the pairs whose fat boxes overlap: a << 32 | b
     std::vector<double> fat_margin_;        // scratch: metres each box is fattened by
     std::vector<unsigned char> movable_;    // scratch: per body, whether a contact moves it
-    std::vector<std::uint64_t> pairs_;      // the step's: those of fat_list_ near enough
+    // The step's: those of fat_list_ near enough with an awake body that can move.
+    std::vector<std::uint64_t> pairs_;
+    std::vector<unsigned char> stirring_;   // scratch: per body, awake and able to move
+    // Contacts of pairs with no awake body (asleep, or asleep against a wall), in (a, b)
+    // order: kept as they were, for the warm start and the events when they wake.
+    std::vector<PairContact> parked_;
+    std::size_t asleep_count_ = 0;
+    std::vector<unsigned char> waking_;     // scratch: per island (a body index), to wake
     std::vector<std::uint32_t> order_;      // scratch: bodies by the low x of their box
     std::vector<std::array<double, 4>> boxes_;   // scratch: lo x, lo y, hi x, hi y
     std::vector<double> margin_;            // scratch: metres a body can close in the step

@@ -40,6 +40,13 @@ RigidBody make_fixed(const Polygon& shape, const V2& at, double angle, const Wal
     return b;
 }
 
+BodySolverDef solver_def(const WorldDef& def) {
+    BodySolverDef s;
+    if (def.iterations != 0) s.iterations = std::max(1, def.iterations);
+    s.sleep = def.sleep;
+    return s;
+}
+
 }  // namespace
 
 bool ShapeWorld::wanted(const WorldDef& def) {
@@ -52,6 +59,7 @@ ShapeWorld::ShapeWorld(const WorldDef& def, int substeps)
     : gravity_(to_v2(def.gravity)),
       substeps_(substeps),
       body_count_(def.bodies.size()),
+      solver_(solver_def(def)),
       throws_(def.throws),
       respawns_(def.respawns) {
     for (const BodyDef& d : def.bodies) bodies_.push_back(make_body(d));
@@ -81,6 +89,7 @@ void ShapeWorld::respawn(double t0) {
     while (respawns_applied_ < respawns_.size() && respawns_[respawns_applied_].at <= t0) {
         const RespawnDef& r = respawns_[respawns_applied_++];
         const std::size_t last = std::min(body_count_, r.first + r.bodies.size());
+        solver_.forget(bodies_, r.first, last);
         for (std::size_t i = r.first; i < last; ++i) {
             RigidBody fresh = make_body(r.bodies[i - r.first]);
             // A held body stays held: its throw still owns it.
@@ -93,7 +102,6 @@ void ShapeWorld::respawn(double t0) {
             }
             bodies_[i] = fresh;
         }
-        solver_.forget(r.first, last);
     }
 }
 
@@ -118,7 +126,7 @@ void ShapeWorld::step(double t0, double t1) {
             e.impulse = touch.impulse;
             events_.push_back(e);
         }
-        touching_ = solver_.touches().size();
+        touching_ = solver_.touching();
     }
     throws_.end_step(t1, bodies_);
 }

@@ -24,6 +24,7 @@ public:
     std::span<const BodyState> states() const;
     std::vector<ContactEvent> take_events() { return std::exchange(events_, {}); }
     std::size_t respawns_applied() const { return respawns_applied_; }
+    int iterations() const { return solver_.def().iterations; }
     // The first body whose state is not finite, if any.
     std::optional<std::size_t> non_finite() const;
     WorldStats stats(const V2& gravity) const;

@@ -27,6 +27,8 @@ namespace {
 // Substeps are sized so that one lasts at most this long (documented in docs/physics.md).
 constexpr double longest_substep = 1.0 / 480.0;  // s
 constexpr int projection_iterations = 2;
+// The disc solver's velocity iterations when a scene sets none (docs/physics.md).
+constexpr int disc_iterations = 3;
 
 V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
 
@@ -65,12 +67,13 @@ struct World::Impl {
           disc_count(def.bodies.size()),
           features(detail::features_of(def.walls)),
           throws(def.throws) {
-        iterations = std::max(1, def.iterations);
+        iterations = def.iterations == 0 ? disc_iterations : std::max(1, def.iterations);
         substeps = def.substeps > 0
                        ? def.substeps
                        : std::max(1, static_cast<int>(std::ceil(1.0 / (longest_substep * rate))));
         if (detail::ShapeWorld::wanted(def)) {
             shapes = std::make_unique<detail::ShapeWorld>(def, substeps);
+            iterations = shapes->iterations();
             if (const auto i = shapes->non_finite()) failure = NonFiniteState{*i, 0.0};
             return;
         }
@@ -305,9 +308,7 @@ int World::rate() const { return impl_->rate; }
 double World::time() const { return static_cast<double>(impl_->steps) / impl_->rate; }
 int World::substeps() const { return impl_->substeps; }
 bool World::manifold_solver() const { return impl_->shapes != nullptr; }
-int World::iterations() const {
-    return impl_->shapes ? detail::BodySolverDef{}.iterations : impl_->iterations;
-}
+int World::iterations() const { return impl_->iterations; }
 std::span<const BodyState> World::bodies() const { return impl_->publish(); }
 std::size_t World::respawns_applied() const {
     return impl_->shapes ? impl_->shapes->respawns_applied() : 0;

@@ -164,8 +164,8 @@ void resolve_camera_follow(Loader& loader) {
 }
 
 void read_physics(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 7> known{
-        "gravity", "rate", "substeps", "iterations", "restitution", "friction", "seed"};
+    static constexpr std::array<std::string_view, 8> known{
+        "gravity", "rate", "substeps", "iterations", "sleep", "restitution", "friction", "seed"};
     auto& d = loader.diagnostics;
     Physics& physics = loader.scene.physics;
     const auto fields = Fields::open(value, known, d);
@@ -196,6 +196,8 @@ void read_physics(Loader& loader, const Value& value) {
         if (v && check_between(*iterations, static_cast<double>(*v), 1, max_iterations, d))
             physics.iterations = static_cast<int>(*v);
     }
+    if (const auto sleep = fields->get("sleep"))
+        if (const auto v = read_bool(*sleep, d)) physics.sleep = *v;
     if (const auto restitution = fields->get("restitution"))
         if (const auto v = read_between(*restitution, 0, 1, d)) physics.restitution = *v;
     if (const auto friction = fields->get("friction"))

@@ -22,7 +22,8 @@ TEST(Defaults, AMinimalSceneGetsTheDocumentedDefaults) {
     EXPECT_EQ(s.physics.gravity, (Vec2{0, -9.81}));
     EXPECT_EQ(s.physics.rate, 480);
     EXPECT_EQ(s.physics.substeps, 0);     // automatic: each at or under 1/480 s
-    EXPECT_EQ(s.physics.iterations, 3);
+    EXPECT_EQ(s.physics.iterations, 0);   // the solver's own
+    EXPECT_TRUE(s.physics.sleep);
     EXPECT_EQ(s.physics.restitution, 0.8);
     EXPECT_EQ(s.physics.friction, 0.2);
     EXPECT_EQ(s.physics.seed, 1u);
@@ -112,6 +113,7 @@ TEST(Defaults, PhysicsSubstepsAndIterationsAreRead) {
     EXPECT_EQ(s.physics.rate, 400);
     EXPECT_EQ(s.physics.substeps, 1);
     EXPECT_EQ(s.physics.iterations, 5);
+    EXPECT_FALSE(load_ok("version: 1\nphysics: {sleep: false}\n").physics.sleep);
 }
 
 TEST(Defaults, EmptySectionsAreAllowed) {

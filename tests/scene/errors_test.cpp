@@ -77,6 +77,8 @@ TEST(Errors, ValuesOutOfRangeStateTheRange) {
                      "s.yaml:2:36: physics.iterations: must be between 1 and 100, got 101"}));
     EXPECT_EQ(problems("version: 1\nphysics: {iterations: 2.5}\n"),
               Lines{"s.yaml:2:23: physics.iterations: expected a whole number, got '2.5'"});
+    EXPECT_EQ(problems("version: 1\nphysics: {sleep: 1}\n"),
+              Lines{"s.yaml:2:18: physics.sleep: expected true or false, got '1'"});
     EXPECT_EQ(problems("version: 1\ndiscs:\n  - {position: [0, 0], radius: -1, density: 0}\n"),
               (Lines{"s.yaml:3:32: discs[0].radius: must be greater than 0, got -1",
                      "s.yaml:3:45: discs[0].density: must be greater than 0, got 0"}));

@@ -116,8 +116,12 @@ struct WorldDef {
     int rate = 480;                // steps per second; one step() advances 1/rate s
     int substeps = 0;              // solver substeps per step; 0: the fewest that keep a
                                    // substep at or under 1/480 s (docs/physics.md)
-    int iterations = 3;            // resting-contact iterations per substep, at least 1:
-                                   // more hold a tall pile tighter (docs/physics.md)
+    int iterations = 0;            // velocity iterations per substep: more hold a tall pile
+                                   // tighter (docs/physics.md); 0: the solver's own, 3 for
+                                   // plain discs and 6 with shapes; below 0: 1
+    // Islands of bodies at rest fall asleep (stop, and cost nothing) until something reaches
+    // them (docs/physics.md, "Sleeping"). Scenes with a shape only, for now.
+    bool sleep = true;
     std::vector<BodyDef> bodies;
     std::vector<WallDef> walls;
     std::vector<ThrowDef> throws;
@@ -175,7 +179,8 @@ public:
     int substeps() const;          // per step: WorldDef::substeps, or the count chosen for 0
     // True when some body has a shape: the manifold solver steps the world (docs/physics.md).
     bool manifold_solver() const;
-    // Velocity iterations per substep of the solver in use: WorldDef::iterations for discs.
+    // Velocity iterations per substep of the solver in use: WorldDef::iterations, or for 0
+    // the solver's own.
     int iterations() const;
 
     // Same order as WorldDef::discs; valid until the next step() (ask again after it).

@@ -132,7 +132,8 @@ struct Physics {
     int rate = 480;                // physics steps per second, independent of video fps
     int substeps = 0;              // solver substeps per step; 0: the fewest that keep a
                                    // substep at or under 1/480 s
-    int iterations = 3;            // resting-contact iterations per substep
+    int iterations = 0;            // velocity iterations per substep; 0: the solver's own
+    bool sleep = true;             // islands of bodies at rest stop until something reaches them
     double restitution = 0.8;      // default coefficient of restitution, 0..1
     double friction = 0.2;         // default Coulomb friction coefficient, >= 0
     std::uint64_t seed = 1;        // for generated discs

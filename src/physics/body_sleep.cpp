@@ -1,0 +1,169 @@
+// Sleeping islands (body_solver.hpp). A settled pile costs a step of full work per physics step
+// for nothing: every body at rest, every contact solved to the same impulses. An island (bodies
+// joined by contacts with points, walls not joining) whose bodies have all moved slower than
+// `sleep_speed` for `sleep_after` seconds is put to sleep: its bodies stop exactly, drop out of
+// the solve and keep their contacts parked, as they were, for the warm start and the events when
+// they wake. An island wakes whole when an awake body comes within the reach of a contact of one
+// of its bodies (the pair's manifold in the step would have a point), when a throw moves one of
+// them, or when one of them is replaced. Every decision depends on the state alone, in index
+// order: same input, same sleep.
+#include <algorithm>
+#include <cmath>
+
+#include "body_solver.hpp"
+
+namespace discreel::physics::detail {
+namespace {
+
+bool stirs(const RigidBody& b) { return !b.asleep && b.motion != Motion::fixed; }
+
+bool by_pair(const auto& x, const auto& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; }
+
+}  // namespace
+
+bool BodySolver::wake_flagged(std::vector<RigidBody>& bodies, const V2& kick) {
+    bool woke = false;
+    for (RigidBody& b : bodies) {
+        if (!b.asleep || !waking_[b.island]) continue;
+        b.asleep = false;
+        b.still_for = 0;
+        if (b.inv_mass > 0) b.v += kick;
+        --asleep_count_;
+        woke = true;
+    }
+    std::fill(waking_.begin(), waking_.end(), 0);
+    return woke;
+}
+
+void BodySolver::wake_moved(std::vector<RigidBody>& bodies) {
+    if (asleep_count_ == 0) return;
+    waking_.assign(bodies.size(), 0);
+    // Moved by a throw (a flick's velocity, a grab) or by an impact in the last step.
+    for (const RigidBody& b : bodies) {
+        if (b.asleep && (b.motion == Motion::held || b.v != V2::Zero() || b.omega != 0)) {
+            waking_[b.island] = 1;
+        }
+    }
+    wake_flagged(bodies, V2::Zero());
+}
+
+void BodySolver::wake_reached(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
+    if (asleep_count_ == 0) return;
+    // Again while islands wake, as a woken island may reach others; begin_step left the woken
+    // bodies out, so they start the step as the awake ones did.
+    for (;;) {
+        for (const std::uint64_t key : pairs_) {
+            const auto i = static_cast<std::uint32_t>(key >> 32);
+            const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
+            const RigidBody& a = bodies[i];
+            const RigidBody& b = bodies[j];
+            if (!a.asleep && !b.asleep) continue;
+            // The other one is awake and can move: the step lists no other pairs.
+            const std::uint32_t island = (a.asleep ? a : b).island;
+            if (waking_[island]) continue;
+            if (collide(a.shape, transforms_[i], b.shape, transforms_[j], margin_[i] + margin_[j])
+                    .count > 0) {
+                waking_[island] = 1;
+            }
+        }
+        if (!wake_flagged(bodies, gravity * dt)) break;
+        list_pairs(bodies);
+    }
+    // The woken islands' parked contacts rejoin the step's, in pair order.
+    const std::size_t before = contacts_.size();
+    std::erase_if(parked_, [&](PairContact& pc) {
+        if (!stirs(bodies[pc.a]) && !stirs(bodies[pc.b])) return false;
+        contacts_.push_back(std::move(pc));
+        return true;
+    });
+    if (contacts_.size() != before) {
+        std::inplace_merge(contacts_.begin(), contacts_.begin() + static_cast<std::ptrdiff_t>(before),
+                           contacts_.end(), by_pair<PairContact, PairContact>);
+    }
+}
+
+void BodySolver::fall_asleep(std::vector<RigidBody>& bodies, double dt) {
+    if (!def_.sleep) return;
+    const std::size_t n = bodies.size();
+    const double slow = def_.sleep_speed;
+    for (RigidBody& b : bodies) {
+        if (b.asleep) continue;
+        const bool still = b.motion == Motion::dynamic && b.v.squaredNorm() < slow * slow &&
+                           std::abs(b.omega) * b.bound < slow;
+        b.still_for = still ? b.still_for + dt : 0;
+    }
+    // The islands: union-find by the lower index, over contacts with points between bodies
+    // that move (a held body joins its island and keeps it awake).
+    parent_.resize(n);
+    lightest_.resize(n);   // here: the shortest time at rest in the island, s
+    for (std::size_t i = 0; i < n; ++i) {
+        parent_[i] = static_cast<std::uint32_t>(i);
+        lightest_[i] = bodies[i].still_for;
+    }
+    const auto joins = [&](std::uint32_t i) { return bodies[i].motion != Motion::fixed; };
+    for (const PairContact& pc : contacts_) {
+        if (!joins(pc.a) || !joins(pc.b)) continue;
+        const std::uint32_t ra = root(pc.a), rb = root(pc.b);
+        if (ra == rb) continue;
+        const std::uint32_t low = std::min(ra, rb), high = std::max(ra, rb);
+        parent_[high] = low;
+        lightest_[low] = std::min(lightest_[low], lightest_[high]);
+    }
+    bool fell = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        RigidBody& b = bodies[i];
+        if (b.asleep || b.motion != Motion::dynamic) continue;
+        const std::uint32_t r = root(static_cast<std::uint32_t>(i));
+        if (lightest_[r] < def_.sleep_after) continue;
+        b.asleep = true;
+        b.island = r;
+        b.v = V2::Zero();
+        b.omega = 0;
+        ++asleep_count_;
+        fell = true;
+    }
+    if (!fell) return;
+    const std::size_t before = parked_.size();
+    std::erase_if(contacts_, [&](PairContact& pc) {
+        if (stirs(bodies[pc.a]) || stirs(bodies[pc.b])) return false;
+        parked_.push_back(std::move(pc));
+        return true;
+    });
+    std::inplace_merge(parked_.begin(), parked_.begin() + static_cast<std::ptrdiff_t>(before),
+                       parked_.end(), by_pair<PairContact, PairContact>);
+}
+
+void BodySolver::forget(std::vector<RigidBody>& bodies, std::size_t first, std::size_t last) {
+    fat_pairs_.invalidate();
+    waking_.assign(bodies.size(), 0);
+    for (std::size_t i = first; i < last; ++i) {
+        if (bodies[i].asleep) waking_[bodies[i].island] = 1;
+    }
+    // Woken at rest: the next step's begin_step gives them gravity.
+    for (RigidBody& b : bodies) {
+        if (!b.asleep || !waking_[b.island]) continue;
+        b.asleep = false;
+        b.still_for = 0;
+        --asleep_count_;
+    }
+    const auto replaced = [&](const PairContact& pc) {
+        return (pc.a >= first && pc.a < last) || (pc.b >= first && pc.b < last);
+    };
+    std::erase_if(contacts_, replaced);
+    // Contacts of woken islands go back with the awake ones.
+    std::erase_if(parked_, [&](PairContact& pc) {
+        if (replaced(pc)) return true;
+        if (bodies[pc.a].asleep || bodies[pc.b].asleep) return false;
+        contacts_.push_back(std::move(pc));
+        return true;
+    });
+    std::sort(contacts_.begin(), contacts_.end(), by_pair<PairContact, PairContact>);
+}
+
+std::size_t BodySolver::touching() const {
+    const auto touched = [](const PairContact& pc) { return pc.touched; };
+    return touches_.size() +
+           static_cast<std::size_t>(std::count_if(parked_.begin(), parked_.end(), touched));
+}
+
+}  // namespace discreel::physics::detail
