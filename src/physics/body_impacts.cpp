@@ -113,17 +113,25 @@ void BodySolver::predict_impact(const std::vector<RigidBody>& bodies, std::uint3
     q.t_end = dt;
     q.target = std::min(impact_gap, 0.01 * std::min(a.inner, b.inner));
     q.tolerance = q.target;
-    const TimeOfImpact hit = time_of_impact(a.shape, sweeps_[i], b.shape, sweeps_[j], q);
+    // Bounding circles do not turn with their bodies: if their centres cannot come within the
+    // bounds (plus the target) before the step ends, neither can the surfaces. Most pairs of a
+    // falling crowd end here without a distance.
+    const Sweep& sa = sweeps_[i];
+    const Sweep& sb = sweeps_[j];
+    const double centres = (sb.x_at(t_begin) - sa.x_at(t_begin)).norm();
+    const double closing = (sb.v - sa.v).norm() * (dt - t_begin);
+    if (centres - closing > sa.bound + sb.bound + q.target + q.tolerance) return;
+    const TimeOfImpact hit = time_of_impact(a.shape, sa, b.shape, sb, q);
     if (hit.kind == TimeOfImpact::Kind::apart) return;
     double t = hit.t;
     if (hit.kind == TimeOfImpact::Kind::touching) {
         // Touching already: an impact now if their sweeps close at a point of their manifold
         // (the step's iterations did not stop them, or an impact has just turned one into the
         // other); later, if they slide or turn into each other deeper than the slop by the end.
-        if (!sweeps_close(a.shape, sweeps_[i], b.shape, sweeps_[j], t_begin,
+        if (!sweeps_close(a.shape, sa, b.shape, sb, t_begin,
                           q.target + q.tolerance, settle_)) {
             const std::optional<double> sink =
-                sinks_in(a.shape, sweeps_[i], b.shape, sweeps_[j], t_begin, dt, def_.slop,
+                sinks_in(a.shape, sa, b.shape, sb, t_begin, dt, def_.slop,
                          q.tolerance, 0.25 * std::min(a.inner, b.inner));
             if (!sink) return;
             t = *sink;
