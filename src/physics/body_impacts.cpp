@@ -123,6 +123,8 @@ void BodySolver::predict_impact(const std::vector<RigidBody>& bodies, std::uint3
     if (centres - closing > sa.bound + sb.bound + q.target + q.tolerance) return;
     const TimeOfImpact hit = time_of_impact(a.shape, sa, b.shape, sb, q);
     if (hit.kind == TimeOfImpact::Kind::apart) return;
+    const bool swift = (fast_[i] && !nudged_[i]) || (fast_[j] && !nudged_[j]);
+    if (hit.kind == TimeOfImpact::Kind::touching && !swift) return;
     double t = hit.t;
     if (hit.kind == TimeOfImpact::Kind::touching) {
         // Touching already: an impact now if their sweeps close at a point of their manifold
@@ -167,6 +169,7 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
     }
     if (fast_count == 0) return;
     versions_.assign(n, 0);
+    nudged_.assign(n, 0);
     unchecked_.assign(n, 0);
     predictions_left_ = static_cast<std::size_t>(def_.predictions_per_body) * n +
                         static_cast<std::size_t>(def_.predictions_base);
@@ -298,7 +301,18 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
             body.angle = s.angle_at(dt);
             swept_[i] = swept_box(s, dt);
             ++versions_[i];
-            fast_[i] = 1;   // whatever it now reaches is predicted too
+            // Whatever it now reaches is predicted too. Struck but slow by the measure of the
+            // step's start (a pile's body nudged), it is only nudged: what it touches already
+            // is left to the next step's contacts rather than struck in turn, which would pass
+            // each blow through a pile impact by impact.
+            if (!fast_[i]) {
+                fast_[i] = 1;
+                nudged_[i] = (s.v.norm() + std::abs(s.omega) * s.bound) * dt <=
+                             def_.impact_travel * body.inner;
+            } else if (nudged_[i]) {
+                nudged_[i] = (s.v.norm() + std::abs(s.omega) * s.bound) * dt <=
+                             def_.impact_travel * body.inner;
+            }
             if (!changed_flag_[i]) {
                 changed_flag_[i] = 1;
                 changed_.push_back(i);

@@ -286,6 +286,7 @@ private:
     std::vector<std::array<double, 4>> swept_;
     std::vector<std::uint32_t> versions_;
     std::vector<unsigned char> fast_;
+    std::vector<unsigned char> nudged_;      // fast only because an impact struck it, slowly
     std::vector<PredictedImpact> impacts_;
     std::vector<PairTouch> impact_touches_;
     std::vector<std::uint32_t> still_, moving_, changed_;   // scratch: see time_impacts
