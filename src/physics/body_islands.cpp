@@ -1,6 +1,8 @@
 // The islands of the manifold solver's step (body_solver.hpp): which contacts are solved
 // directly, as one problem per island of masses far apart, and which by blocks.
 #include <algorithm>
+#include <optional>
+#include <utility>
 
 #include "body_solver.hpp"
 
@@ -12,6 +14,15 @@ std::uint32_t BodySolver::root(std::uint32_t i) {
         i = parent_[i];
     }
     return i;
+}
+
+std::optional<std::pair<std::uint32_t, std::uint32_t>> BodySolver::unite(std::uint32_t i,
+                                                                       std::uint32_t j) {
+    const std::uint32_t ri = root(i), rj = root(j);
+    if (ri == rj) return std::nullopt;
+    const std::uint32_t low = std::min(ri, rj), high = std::max(ri, rj);
+    parent_[high] = low;
+    return std::pair{low, high};
 }
 
 void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
@@ -29,12 +40,11 @@ void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
     // The lower index roots the merged island, so the grouping depends only on the contacts.
     for (const PairContact& pc : fresh_) {
         if (!moves(pc.a) || !moves(pc.b)) continue;
-        const std::uint32_t ra = root(pc.a), rb = root(pc.b);
-        if (ra == rb) continue;
-        const std::uint32_t low = std::min(ra, rb), high = std::max(ra, rb);
-        parent_[high] = low;
-        lightest_[low] = std::max(lightest_[low], lightest_[high]);
-        heaviest_[low] = std::min(heaviest_[low], heaviest_[high]);
+        if (const auto merged = unite(pc.a, pc.b)) {
+            const auto [low, high] = *merged;
+            lightest_[low] = std::max(lightest_[low], lightest_[high]);
+            heaviest_[low] = std::min(heaviest_[low], heaviest_[high]);
+        }
     }
     const auto island_of = [&](const PairContact& pc) { return root(moves(pc.a) ? pc.a : pc.b); };
     for (const PairContact& pc : fresh_) points_[island_of(pc)] += pc.contact.count;

@@ -103,11 +103,9 @@ void BodySolver::fall_asleep(std::vector<RigidBody>& bodies, double dt) {
     const auto joins = [&](std::uint32_t i) { return bodies[i].motion != Motion::fixed; };
     for (const PairContact& pc : contacts_) {
         if (!joins(pc.a) || !joins(pc.b)) continue;
-        const std::uint32_t ra = root(pc.a), rb = root(pc.b);
-        if (ra == rb) continue;
-        const std::uint32_t low = std::min(ra, rb), high = std::max(ra, rb);
-        parent_[high] = low;
-        lightest_[low] = std::min(lightest_[low], lightest_[high]);
+        if (const auto merged = unite(pc.a, pc.b)) {
+            lightest_[merged->first] = std::min(lightest_[merged->first], lightest_[merged->second]);
+        }
     }
     bool fell = false;
     for (std::size_t i = 0; i < n; ++i) {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -212,6 +213,9 @@ private:
     // block into blocks_ (block_start_, blocked_).
     void find_islands(const std::vector<RigidBody>& bodies);
     std::uint32_t root(std::uint32_t i);
+    // Joins the islands of i and j under the lower root: (that root, the other), or nothing
+    // when they were one already.
+    std::optional<std::pair<std::uint32_t, std::uint32_t>> unite(std::uint32_t i, std::uint32_t j);
     // Groups the contacts selected (per contact of fresh_) by group_key_ into `grouped`, the
     // groups delimited by `starts`.
     void group(const std::vector<unsigned char>& selected, std::vector<IslandContact>& grouped,
