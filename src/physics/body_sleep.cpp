@@ -35,16 +35,23 @@ bool BodySolver::wake_flagged(std::vector<RigidBody>& bodies, const V2& kick) {
     return woke;
 }
 
-void BodySolver::wake_moved(std::vector<RigidBody>& bodies) {
-    if (asleep_count_ == 0) return;
+bool BodySolver::wake_moved(std::vector<RigidBody>& bodies) {
+    if (asleep_count_ == 0) return true;
     waking_.assign(bodies.size(), 0);
+    bool stirring = false;
     // Moved by a throw (a flick's velocity, a grab) or by an impact in the last step.
     for (const RigidBody& b : bodies) {
         if (b.asleep && (b.motion == Motion::held || b.v != V2::Zero() || b.omega != 0)) {
             waking_[b.island] = 1;
         }
+        stirring = stirring || stirs(b);
     }
-    wake_flagged(bodies, V2::Zero());
+    return wake_flagged(bodies, V2::Zero()) || stirring;
+}
+
+void BodySolver::count_parked() {
+    const auto touched = [](const PairContact& pc) { return pc.touched; };
+    parked_touching_ = static_cast<std::size_t>(std::count_if(parked_.begin(), parked_.end(), touched));
 }
 
 void BodySolver::wake_reached(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
@@ -79,6 +86,7 @@ void BodySolver::wake_reached(std::vector<RigidBody>& bodies, const V2& gravity,
     if (contacts_.size() != before) {
         std::inplace_merge(contacts_.begin(), contacts_.begin() + static_cast<std::ptrdiff_t>(before),
                            contacts_.end(), by_pair<PairContact, PairContact>);
+        count_parked();
     }
 }
 
@@ -129,6 +137,7 @@ void BodySolver::fall_asleep(std::vector<RigidBody>& bodies, double dt) {
     });
     std::inplace_merge(parked_.begin(), parked_.begin() + static_cast<std::ptrdiff_t>(before),
                        parked_.end(), by_pair<PairContact, PairContact>);
+    count_parked();
 }
 
 void BodySolver::forget(std::vector<RigidBody>& bodies, std::size_t first, std::size_t last) {
@@ -156,12 +165,9 @@ void BodySolver::forget(std::vector<RigidBody>& bodies, std::size_t first, std::
         return true;
     });
     std::sort(contacts_.begin(), contacts_.end(), by_pair<PairContact, PairContact>);
+    count_parked();
 }
 
-std::size_t BodySolver::touching() const {
-    const auto touched = [](const PairContact& pc) { return pc.touched; };
-    return touches_.size() +
-           static_cast<std::size_t>(std::count_if(parked_.begin(), parked_.end(), touched));
-}
+std::size_t BodySolver::touching() const { return touches_.size() + parked_touching_; }
 
 }  // namespace discreel::physics::detail

@@ -112,7 +112,13 @@ void BodySolver::apply_totals(const PairContact& pc, double sign) {
 }
 
 void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
-    wake_moved(bodies);
+    if (!wake_moved(bodies)) {
+        // Every body that can move is asleep and stays so: nothing touches, nothing is swept.
+        touches_.clear();
+        impact_touches_.clear();
+        predictions_made_ = 0;
+        return;
+    }
     begin_step(bodies, gravity, dt);
     // Restitution acts on approaches faster than gravity gives in about two steps: slower
     // ones are a body settling, which would otherwise hop by e g dt every step.

@@ -186,8 +186,10 @@ private:
     // Pairs that started apart and sank in deeper than the slop: their bodies are fast.
     void mark_sunk(const std::vector<RigidBody>& bodies);        // body_positions.cpp
     void record_touches();
-    // (body_sleep.cpp) Wakes the sleeping islands that a throw or an impact moved.
-    void wake_moved(std::vector<RigidBody>& bodies);
+    // (body_sleep.cpp) Wakes the sleeping islands that a throw or an impact moved; whether
+    // any body that can move is awake now (if none, the step has nothing to do).
+    bool wake_moved(std::vector<RigidBody>& bodies);
+    void count_parked();   // parked_touching_ from parked_
     // Wakes the sleeping islands an awake body can reach within the step.
     void wake_reached(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
     // Wakes the islands flagged in waking_, adding `kick` to their velocities; whether there
@@ -247,6 +249,7 @@ private:
     // order: kept as they were, for the warm start and the events when they wake.
     std::vector<PairContact> parked_;
     std::size_t asleep_count_ = 0;
+    std::size_t parked_touching_ = 0;       // parked contacts that touched
     std::vector<unsigned char> waking_;     // scratch: per island (a body index), to wake
     std::vector<std::uint32_t> order_;      // scratch: bodies by the low x of their box
     std::vector<std::array<double, 4>> boxes_;   // scratch: lo x, lo y, hi x, hi y
