@@ -1,6 +1,7 @@
 // Sleeping islands of shaped bodies: a settled stack stops exactly and stays put; what reaches
 // it (a falling ball, a flick, a respawn underneath) wakes it and moves as it would have had it
-// never slept; waking raises no contact events of its own; `sleep = false` keeps bodies awake.
+// never slept; a grabbed body pushes one ahead; waking raises no contact events of its own;
+// `sleep = false` keeps bodies awake.
 #include <cmath>
 #include <vector>
 
@@ -126,6 +127,25 @@ TEST(Sleep, AFlickedSleepingBoxSlidesAsCoulombSays) {
     EXPECT_TRUE(at_rest(world.bodies()[0]));
     run_for(world, 1.1);
     EXPECT_NEAR(world.bodies()[0].position.x, v * v / (2 * mu * g), 2e-3);
+}
+
+// A box asleep on the floor; from 1.5 s another is carried by a grab along the floor into it at
+// 1 m/s: the sleeping box wakes and is pushed ahead, as far as the carried one goes past first
+// touch.
+TEST(Sleep, AGrabbedBodyPushesASleepingOneAhead) {
+    WorldDef def;
+    def.walls.push_back(testing::box({-10, 0}, {10, 40}, crate));
+    def.bodies.push_back(body(*box_shape(1, 1), {0, 0.5}, 1, crate));
+    def.bodies.push_back(body(*box_shape(1, 1), {-3, 0.5}, 1, crate));
+    ThrowDef grab;
+    grab.body = 1;
+    grab.path = {{1.5, {-3, 0.5}}, {4.5, {0, 0.5}}};   // first touch at 3.5 s, then 1 m on
+    def.throws = {grab};
+    World world(def);
+    run_for(world, 1.4);
+    EXPECT_TRUE(at_rest(world.bodies()[0]));
+    run_for(world, 3.1);
+    EXPECT_NEAR(world.bodies()[0].position.x, 1.0, 0.02);
 }
 
 // Two boxes stacked, asleep; the bottom one is replaced by a box far away: the top one falls.
