@@ -305,14 +305,8 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
             // step's start (a pile's body nudged), it is only nudged: what it touches already
             // is left to the next step's contacts rather than struck in turn, which would pass
             // each blow through a pile impact by impact.
-            if (!fast_[i]) {
-                fast_[i] = 1;
-                nudged_[i] = (s.v.norm() + std::abs(s.omega) * s.bound) * dt <=
-                             def_.impact_travel * body.inner;
-            } else if (nudged_[i]) {
-                nudged_[i] = (s.v.norm() + std::abs(s.omega) * s.bound) * dt <=
-                             def_.impact_travel * body.inner;
-            }
+            nudged_[i] = (!fast_[i] || nudged_[i]) && !moves_fast(body, dt);
+            fast_[i] = 1;
             if (!changed_flag_[i]) {
                 changed_flag_[i] = 1;
                 changed_.push_back(i);

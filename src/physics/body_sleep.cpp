@@ -15,8 +15,6 @@
 namespace discreel::physics::detail {
 namespace {
 
-bool stirs(const RigidBody& b) { return !b.asleep && b.motion != Motion::fixed; }
-
 bool by_pair(const auto& x, const auto& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; }
 
 }  // namespace
@@ -76,18 +74,22 @@ void BodySolver::wake_reached(std::vector<RigidBody>& bodies, const V2& gravity,
         if (!wake_flagged(bodies, gravity * dt)) break;
         list_pairs(bodies);
     }
-    // The woken islands' parked contacts rejoin the step's, in pair order.
+    unpark(bodies);
+}
+
+void BodySolver::unpark(const std::vector<RigidBody>& bodies) {
+    // A parked contact joins two bodies of one island, or one and a wall: it rejoins the
+    // step's, in pair order, once its island is awake.
     const std::size_t before = contacts_.size();
     std::erase_if(parked_, [&](PairContact& pc) {
         if (!stirs(bodies[pc.a]) && !stirs(bodies[pc.b])) return false;
         contacts_.push_back(std::move(pc));
         return true;
     });
-    if (contacts_.size() != before) {
-        std::inplace_merge(contacts_.begin(), contacts_.begin() + static_cast<std::ptrdiff_t>(before),
-                           contacts_.end(), by_pair<PairContact, PairContact>);
-        count_parked();
-    }
+    if (contacts_.size() == before) return;
+    std::inplace_merge(contacts_.begin(), contacts_.begin() + static_cast<std::ptrdiff_t>(before),
+                       contacts_.end(), by_pair<PairContact, PairContact>);
+    count_parked();
 }
 
 void BodySolver::fall_asleep(std::vector<RigidBody>& bodies, double dt) {
@@ -147,24 +149,13 @@ void BodySolver::forget(std::vector<RigidBody>& bodies, std::size_t first, std::
         if (bodies[i].asleep) waking_[bodies[i].island] = 1;
     }
     // Woken at rest: the next step's begin_step gives them gravity.
-    for (RigidBody& b : bodies) {
-        if (!b.asleep || !waking_[b.island]) continue;
-        b.asleep = false;
-        b.still_for = 0;
-        --asleep_count_;
-    }
+    wake_flagged(bodies, V2::Zero());
     const auto replaced = [&](const PairContact& pc) {
         return (pc.a >= first && pc.a < last) || (pc.b >= first && pc.b < last);
     };
     std::erase_if(contacts_, replaced);
-    // Contacts of woken islands go back with the awake ones.
-    std::erase_if(parked_, [&](PairContact& pc) {
-        if (replaced(pc)) return true;
-        if (bodies[pc.a].asleep || bodies[pc.b].asleep) return false;
-        contacts_.push_back(std::move(pc));
-        return true;
-    });
-    std::sort(contacts_.begin(), contacts_.end(), by_pair<PairContact, PairContact>);
+    std::erase_if(parked_, replaced);
+    unpark(bodies);
     count_parked();
 }
 

@@ -50,9 +50,7 @@ void BodySolver::list_pairs(const std::vector<RigidBody>& bodies) {
     // an awake body that can move (body_sleep.cpp parks the others).
     const std::size_t n = bodies.size();
     stirring_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        stirring_[i] = !bodies[i].asleep && bodies[i].motion != Motion::fixed;
-    }
+    for (std::size_t i = 0; i < n; ++i) stirring_[i] = stirs(bodies[i]);
     pairs_.clear();
     for (const std::uint64_t key : fat_list_) {
         const auto i = static_cast<std::uint32_t>(key >> 32);
@@ -157,11 +155,12 @@ void BodySolver::mark_fast(const std::vector<RigidBody>& bodies, double dt) {
     // that start the step apart are left to the impacts (body_impacts.cpp), timed exactly,
     // rather than to a speculative contact made from where the step starts.
     fast_.assign(bodies.size(), 0);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const RigidBody& b = bodies[i];
-        const double travel = (b.v.norm() + std::abs(b.omega) * b.bound) * dt;
-        fast_[i] = b.inv_mass > 0 && travel > def_.impact_travel * b.inner;
-    }
+    for (std::size_t i = 0; i < bodies.size(); ++i) fast_[i] = moves_fast(bodies[i], dt);
+}
+
+bool BodySolver::moves_fast(const RigidBody& b, double dt) const {
+    const double travel = (b.v.norm() + std::abs(b.omega) * b.bound) * dt;
+    return b.inv_mass > 0 && travel > def_.impact_travel * b.inner;
 }
 
 void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) {

@@ -47,6 +47,9 @@ struct RigidBody {
     std::uint32_t island = 0;      // while asleep: the island it fell asleep with (a body index)
 };
 
+// Awake and able to move (held bodies too): a pair needs one such body to be solved.
+inline bool stirs(const RigidBody& b) { return !b.asleep && b.motion != Motion::fixed; }
+
 // A body's velocities and inverse masses as the block solve reads them.
 inline BlockBody velocity_of(const RigidBody& b) {
     return BlockBody{b.v, b.omega, b.inv_mass, b.inv_inertia};
@@ -178,6 +181,9 @@ private:
     void find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall);
     void list_pairs(const std::vector<RigidBody>& bodies);
     void mark_fast(const std::vector<RigidBody>& bodies, double dt);
+    // Whether a body at its velocities now travels more than impact_travel of its inner
+    // radius in a step (it cannot move: never).
+    bool moves_fast(const RigidBody& b, double dt) const;
     void make_contacts(const std::vector<RigidBody>& bodies, double dt);
     void solve_velocities(std::vector<RigidBody>& bodies);       // body_velocities.cpp
     void integrate_positions(std::vector<RigidBody>& bodies, double dt);   // body_positions.cpp
@@ -190,6 +196,8 @@ private:
     // any body that can move is awake now (if none, the step has nothing to do).
     bool wake_moved(std::vector<RigidBody>& bodies);
     void count_parked();   // parked_touching_ from parked_
+    // Moves the parked contacts of awake islands back into contacts_.
+    void unpark(const std::vector<RigidBody>& bodies);
     // Wakes the sleeping islands an awake body can reach within the step.
     void wake_reached(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
     // Wakes the islands flagged in waking_, adding `kick` to their velocities; whether there
