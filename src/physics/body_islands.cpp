@@ -51,10 +51,12 @@ void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
     direct_.assign(fresh_.size(), 0);
     blocked_.assign(fresh_.size(), 0);
     group_key_.resize(fresh_.size());
+    far_islands_ = false;
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         const PairContact& pc = fresh_[i];
         const std::uint32_t r = island_of(pc);
         if (lightest_[r] < def_.direct_mass_ratio * heaviest_[r]) continue;
+        far_islands_ = true;
         if (points_[r] <= def_.direct_points) {
             direct_[i] = 1;
             group_key_[i] = r;

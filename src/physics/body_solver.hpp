@@ -188,6 +188,9 @@ private:
     void solve_velocities(std::vector<RigidBody>& bodies);       // body_velocities.cpp
     void integrate_positions(std::vector<RigidBody>& bodies, double dt);   // body_positions.cpp
     void bounce(std::vector<RigidBody>& bodies, double settle);  // body_velocities.cpp
+    // Solves again, from their arrival and without the warm start, the islands of masses far
+    // apart that the iterations left with more kinetic energy than they came with.
+    void solve_gainers_cold(const std::vector<RigidBody>& bodies);   // body_velocities.cpp
     void push_out(std::vector<RigidBody>& bodies);               // body_positions.cpp
     // Pairs that started apart and sank in deeper than the slop: their bodies are fast.
     void mark_sunk(const std::vector<RigidBody>& bodies);        // body_positions.cpp
@@ -265,6 +268,17 @@ private:
     std::vector<Transform> transforms_;     // scratch: each body's at the step's start
     std::vector<double> start_angle_;       // scratch: each body's angle at the step's start
     std::vector<BlockBody> state_;          // scratch
+    // Scratch of the energy checks of islands of masses far apart (body_velocities.cpp):
+    // every body's velocities before the solve; per island root, the kinetic energy then and
+    // after the iterations, and whether to solve it again (1; 2: a held body pushes it); a
+    // direct island's bodies, their velocities and its points' impulses before its bounce,
+    // and the impulses that stopped it.
+    std::vector<BlockBody> arrived_;
+    std::vector<double> arrived_energy_, solved_energy_;
+    std::vector<unsigned char> again_;
+    std::vector<std::uint32_t> members_;
+    std::vector<BlockBody> kept_states_;
+    std::vector<double> kept_impulses_, stopping_;
     std::vector<V2> moved_;                 // scratch: metres each body moved this step
     std::vector<double> turned_;            // scratch: radians each body turned
     std::vector<std::pair<double, double>> spin_;   // scratch: cos and sin of turned_
@@ -274,6 +288,7 @@ private:
     // direct one.
     std::vector<std::uint32_t> parent_;
     std::vector<double> lightest_, heaviest_;
+    bool far_islands_ = false;              // some island's masses are direct_mass_ratio apart
     std::vector<int> points_;
     std::vector<unsigned char> direct_;
     std::vector<IslandContact> islands_;    // grouped by island, each in fresh_'s order
