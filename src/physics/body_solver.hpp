@@ -188,9 +188,9 @@ private:
     void solve_velocities(std::vector<RigidBody>& bodies);       // body_velocities.cpp
     void integrate_positions(std::vector<RigidBody>& bodies, double dt);   // body_positions.cpp
     void bounce(std::vector<RigidBody>& bodies, double settle);  // body_velocities.cpp
-    // Solves again, from their arrival and without the warm start, the islands of masses far
-    // apart that the iterations left with more kinetic energy than they came with.
-    void solve_gainers_cold(const std::vector<RigidBody>& bodies);   // body_velocities.cpp
+    // Solves again, from their arrival and with less of the warm start, the islands of masses
+    // far apart that the iterations left with more kinetic energy than they came with.
+    void solve_gainers_again(const std::vector<RigidBody>& bodies);   // body_velocities.cpp
     void push_out(std::vector<RigidBody>& bodies);               // body_positions.cpp
     // Pairs that started apart and sank in deeper than the slop: their bodies are fast.
     void mark_sunk(const std::vector<RigidBody>& bodies);        // body_positions.cpp
@@ -276,6 +276,8 @@ private:
     std::vector<BlockBody> arrived_;
     std::vector<double> arrived_energy_, solved_energy_;
     std::vector<unsigned char> again_;
+    // Per contact of fresh_: its points' warm-start impulses (normal, tangent), N s.
+    std::vector<std::array<std::array<double, 2>, 2>> warm_;
     std::vector<std::uint32_t> members_;
     std::vector<BlockBody> kept_states_;
     std::vector<double> kept_impulses_, stopping_;

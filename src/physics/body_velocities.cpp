@@ -35,11 +35,17 @@ void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {
         // Not settled within its pivots (never seen): the island iterates like the others.
         for (const IslandContact& ic : island) direct_[ic.pair] = 0;
     });
+    if (far_islands_) warm_.resize(fresh_.size());
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         PairContact& pc = fresh_[i];
         if (direct_[i]) continue;
         prepare_block(pc.contact, state_[pc.a], state_[pc.b]);
         apply_totals(pc, 1);
+        if (!far_islands_) continue;
+        for (int k = 0; k < pc.contact.count; ++k) {
+            const BlockPoint& p = pc.contact.points[k];
+            warm_[i][static_cast<std::size_t>(k)] = {p.normal_impulse, p.tangent_impulse};
+        }
     }
     rows_.clear();
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
@@ -57,73 +63,84 @@ void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {
         });
     }
     block_rows_.store(rows_);
-    if (far_islands_) solve_gainers_cold(bodies);
+    if (far_islands_) solve_gainers_again(bodies);
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 }
 
-void BodySolver::solve_gainers_cold(const std::vector<RigidBody>& bodies) {
+void BodySolver::solve_gainers_again(const std::vector<RigidBody>& bodies) {
     // The warm start applies last step's impulses whole; iterations take back what is not
     // needed now only by a fraction set by the masses' ratio per sweep, so between masses far
     // apart it can launch a light body (heavy_light_bench: a rise of 11 % of a crowd's energy
     // between two frames at 1e2, 1e6 times at 1e6). An island of masses direct_mass_ratio or
     // more apart that its iterations left with more kinetic energy than it came with (beyond
-    // 1e-9 of it, rounding) is solved again from its arrival without the warm start. An
-    // island a moving held body pushes is left as it is: the push is work done on it.
+    // 1e-9 of it, rounding) is solved again from its arrival with half the warm start, and if
+    // it still gains, with none (cold, the crowd's overlap grew by half). An island a moving
+    // held body pushes is left as it is (the push is work done on it), and so is a direct one
+    // (its solve is exact).
     const std::size_t n = bodies.size();
+    const auto moves = [&](std::uint32_t i) { return bodies[i].inv_mass > 0; };
     const auto kinetic = [](const BlockBody& b) {
         double energy = 0;
         if (b.inv_mass > 0) energy += 0.5 * b.v.squaredNorm() / b.inv_mass;
         if (b.inv_inertia > 0) energy += 0.5 * b.omega * b.omega / b.inv_inertia;
         return energy;
     };
-    arrived_energy_.assign(n, 0.0);
-    solved_energy_.assign(n, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-        if (bodies[i].inv_mass <= 0) continue;
-        const std::uint32_t r = root(static_cast<std::uint32_t>(i));
-        arrived_energy_[r] += kinetic(arrived_[i]);
-        solved_energy_[r] += kinetic(state_[i]);
-    }
-    const auto moves = [&](std::uint32_t i) { return bodies[i].inv_mass > 0; };
     const auto pushed = [&](std::uint32_t i) { return !moves(i) && state_[i].v != V2::Zero(); };
-    again_.assign(n, 0);
-    for (const PairContact& pc : fresh_) {
-        if (pushed(pc.a)) again_[root(pc.b)] = 2;
-        if (pushed(pc.b)) again_[root(pc.a)] = 2;
-    }
-    bool any = false;
-    for (std::uint32_t r = 0; r < n; ++r) {
-        if (parent_[r] != r || again_[r] != 0) continue;
-        if (lightest_[r] < def_.direct_mass_ratio * heaviest_[r]) continue;
-        again_[r] = solved_energy_[r] > (1 + 1e-9) * arrived_energy_[r];
-        any = any || again_[r] == 1;
-    }
-    if (!any) return;
-    const auto again = [&](std::uint32_t i) { return again_[root(i)] == 1; };
-    for (std::uint32_t i = 0; i < n; ++i) {
-        if (moves(i) && again(i)) state_[i] = arrived_[i];
-    }
-    rows_.clear();
-    for (std::size_t i = 0; i < fresh_.size(); ++i) {
-        PairContact& pc = fresh_[i];
-        if (direct_[i] || !again(moves(pc.a) ? pc.a : pc.b)) continue;
-        for (int k = 0; k < pc.contact.count; ++k) {
-            pc.contact.points[k].normal_impulse = 0;
-            pc.contact.points[k].tangent_impulse = 0;
+    const auto island_of = [&](const PairContact& pc) { return root(moves(pc.a) ? pc.a : pc.b); };
+    // Marks in again_ the islands that gained (1), and those never solved again (2).
+    const auto gained = [&] {
+        arrived_energy_.assign(n, 0.0);
+        solved_energy_.assign(n, 0.0);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            if (!moves(i)) continue;
+            arrived_energy_[root(i)] += kinetic(arrived_[i]);
+            solved_energy_[root(i)] += kinetic(state_[i]);
         }
-        if (!blocked_[i]) rows_.push_back(RowRef{pc.a, pc.b, &pc.contact});
+        again_.assign(n, 0);
+        for (std::size_t i = 0; i < fresh_.size(); ++i) {
+            const PairContact& pc = fresh_[i];
+            if (pushed(pc.a)) again_[root(pc.b)] = 2;
+            if (pushed(pc.b)) again_[root(pc.a)] = 2;
+            if (direct_[i]) again_[island_of(pc)] = 2;
+        }
+        bool any = false;
+        for (std::uint32_t r = 0; r < n; ++r) {
+            if (parent_[r] != r || again_[r] != 0) continue;
+            if (lightest_[r] < def_.direct_mass_ratio * heaviest_[r]) continue;
+            again_[r] = solved_energy_[r] > (1 + 1e-9) * arrived_energy_[r];
+            any = any || again_[r] == 1;
+        }
+        return any;
+    };
+    for (const double share : {0.5, 0.0}) {
+        if (!gained()) return;
+        for (std::uint32_t i = 0; i < n; ++i) {
+            if (moves(i) && again_[root(i)] == 1) state_[i] = arrived_[i];
+        }
+        rows_.clear();
+        for (std::size_t i = 0; i < fresh_.size(); ++i) {
+            PairContact& pc = fresh_[i];
+            if (again_[island_of(pc)] != 1) continue;
+            for (int k = 0; k < pc.contact.count; ++k) {
+                const auto [normal, tangent] = warm_[i][static_cast<std::size_t>(k)];
+                pc.contact.points[k].normal_impulse = share * normal;
+                pc.contact.points[k].tangent_impulse = share * tangent;
+            }
+            apply_totals(pc, 1);
+            if (!blocked_[i]) rows_.push_back(RowRef{pc.a, pc.b, &pc.contact});
+        }
+        block_rows_.build(rows_, state_);
+        for (int it = 0; it < def_.iterations; ++it) {
+            block_rows_.solve(state_);
+            for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
+                if (again_[root(block.front().a)] != 1) return;
+                for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
+                if (direct_solver_.velocities(block, state_)) return;
+                for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
+            });
+        }
+        block_rows_.store(rows_);
     }
-    block_rows_.build(rows_, state_);
-    for (int it = 0; it < def_.iterations; ++it) {
-        block_rows_.solve(state_);
-        for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
-            if (!again(block.front().a)) return;
-            for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
-            if (direct_solver_.velocities(block, state_)) return;
-            for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
-        });
-    }
-    block_rows_.store(rows_);
 }
 
 void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
