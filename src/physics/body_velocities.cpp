@@ -133,7 +133,7 @@ void BodySolver::solve_gainers_again(const std::vector<RigidBody>& bodies) {
         for (int it = 0; it < def_.iterations; ++it) {
             block_rows_.solve(state_);
             for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
-                if (again_[root(block.front().a)] != 1) return;
+                if (again_[island_of(*pair_of(block.front()))] != 1) return;
                 for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
                 if (direct_solver_.velocities(block, state_)) return;
                 for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
