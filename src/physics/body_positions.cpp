@@ -116,7 +116,10 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
             }
         }
     };
-    for_each_group(islands_, island_start_, push_out_together);
+    // An island whose direct solve failed iterates like the others (below), and is pushed so.
+    for_each_group(islands_, island_start_, [&](std::span<const IslandContact> island) {
+        if (direct_[island.front().pair]) push_out_together(island);
+    });
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
         for_each_group(blocks_, block_start_, push_out_together);
     }

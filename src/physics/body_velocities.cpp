@@ -273,7 +273,10 @@ void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
             }
         }
     };
-    for_each_group(islands_, island_start_, bounce_together);
+    // An island whose direct solve failed bounced with the others, above.
+    for_each_group(islands_, island_start_, [&](std::span<const IslandContact> island) {
+        if (direct_[island.front().pair]) bounce_together(island);
+    });
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 
 }
