@@ -25,6 +25,10 @@ std::optional<std::pair<std::uint32_t, std::uint32_t>> BodySolver::unite(std::ui
     return std::pair{low, high};
 }
 
+std::uint32_t BodySolver::island_of(const PairContact& pc, const std::vector<RigidBody>& bodies) {
+    return root(bodies[pc.a].inv_mass > 0 ? pc.a : pc.b);
+}
+
 void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
     const std::size_t n = bodies.size();
     parent_.resize(n);
@@ -46,15 +50,14 @@ void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
             heaviest_[low] = std::min(heaviest_[low], heaviest_[high]);
         }
     }
-    const auto island_of = [&](const PairContact& pc) { return root(moves(pc.a) ? pc.a : pc.b); };
-    for (const PairContact& pc : fresh_) points_[island_of(pc)] += pc.contact.count;
+    for (const PairContact& pc : fresh_) points_[island_of(pc, bodies)] += pc.contact.count;
     direct_.assign(fresh_.size(), 0);
     blocked_.assign(fresh_.size(), 0);
     group_key_.resize(fresh_.size());
     far_islands_ = false;
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         const PairContact& pc = fresh_[i];
-        const std::uint32_t r = island_of(pc);
+        const std::uint32_t r = island_of(pc, bodies);
         if (lightest_[r] < def_.direct_mass_ratio * heaviest_[r]) continue;
         far_islands_ = true;
         if (points_[r] <= def_.direct_points) {

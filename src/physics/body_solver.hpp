@@ -226,6 +226,8 @@ private:
     // block into blocks_ (block_start_, blocked_).
     void find_islands(const std::vector<RigidBody>& bodies);
     std::uint32_t root(std::uint32_t i);
+    // The island of a contact: its moving body's root (a wall, peg or held body joins none).
+    std::uint32_t island_of(const PairContact& pc, const std::vector<RigidBody>& bodies);
     // Joins the islands of i and j under the lower root: (that root, the other), or nothing
     // when they were one already.
     std::optional<std::pair<std::uint32_t, std::uint32_t>> unite(std::uint32_t i, std::uint32_t j);

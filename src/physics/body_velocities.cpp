@@ -15,6 +15,15 @@ void store(RigidBody& b, const BlockBody& s) {
     b.omega = s.omega;
 }
 
+// A body's kinetic energy at these velocities, J, in a frame moving at `frame` (m/s); an
+// immovable body (inverse mass 0) has none.
+double kinetic_energy(const BlockBody& b, const V2& frame = V2::Zero()) {
+    double energy = 0;
+    if (b.inv_mass > 0) energy += 0.5 * (b.v - frame).squaredNorm() / b.inv_mass;
+    if (b.inv_inertia > 0) energy += 0.5 * b.omega * b.omega / b.inv_inertia;
+    return energy;
+}
+
 V2 rotate(const V2& v, double angle) {
     const double c = std::cos(angle), s = std::sin(angle);
     return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
@@ -79,29 +88,22 @@ void BodySolver::solve_gainers_again(const std::vector<RigidBody>& bodies) {
     // (its solve is exact).
     const std::size_t n = bodies.size();
     const auto moves = [&](std::uint32_t i) { return bodies[i].inv_mass > 0; };
-    const auto kinetic = [](const BlockBody& b) {
-        double energy = 0;
-        if (b.inv_mass > 0) energy += 0.5 * b.v.squaredNorm() / b.inv_mass;
-        if (b.inv_inertia > 0) energy += 0.5 * b.omega * b.omega / b.inv_inertia;
-        return energy;
-    };
     const auto pushed = [&](std::uint32_t i) { return !moves(i) && state_[i].v != V2::Zero(); };
-    const auto island_of = [&](const PairContact& pc) { return root(moves(pc.a) ? pc.a : pc.b); };
     // Marks in again_ the islands that gained (1), and those never solved again (2).
     const auto gained = [&] {
         arrived_energy_.assign(n, 0.0);
         solved_energy_.assign(n, 0.0);
         for (std::uint32_t i = 0; i < n; ++i) {
             if (!moves(i)) continue;
-            arrived_energy_[root(i)] += kinetic(arrived_[i]);
-            solved_energy_[root(i)] += kinetic(state_[i]);
+            arrived_energy_[root(i)] += kinetic_energy(arrived_[i]);
+            solved_energy_[root(i)] += kinetic_energy(state_[i]);
         }
         again_.assign(n, 0);
         for (std::size_t i = 0; i < fresh_.size(); ++i) {
             const PairContact& pc = fresh_[i];
             if (pushed(pc.a)) again_[root(pc.b)] = 2;
             if (pushed(pc.b)) again_[root(pc.a)] = 2;
-            if (direct_[i]) again_[island_of(pc)] = 2;
+            if (direct_[i]) again_[island_of(pc, bodies)] = 2;
         }
         bool any = false;
         for (std::uint32_t r = 0; r < n; ++r) {
@@ -120,7 +122,7 @@ void BodySolver::solve_gainers_again(const std::vector<RigidBody>& bodies) {
         rows_.clear();
         for (std::size_t i = 0; i < fresh_.size(); ++i) {
             PairContact& pc = fresh_[i];
-            if (again_[island_of(pc)] != 1) continue;
+            if (again_[island_of(pc, bodies)] != 1) continue;
             for (int k = 0; k < pc.contact.count; ++k) {
                 const auto [normal, tangent] = warm_[i][static_cast<std::size_t>(k)];
                 pc.contact.points[k].normal_impulse = share * normal;
@@ -133,7 +135,7 @@ void BodySolver::solve_gainers_again(const std::vector<RigidBody>& bodies) {
         for (int it = 0; it < def_.iterations; ++it) {
             block_rows_.solve(state_);
             for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
-                if (again_[island_of(*pair_of(block.front()))] != 1) return;
+                if (again_[island_of(*pair_of(block.front()), bodies)] != 1) return;
                 for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
                 if (direct_solver_.velocities(block, state_)) return;
                 for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
@@ -195,11 +197,7 @@ void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
             }
         }
         double energy = 0;
-        for (const std::uint32_t m : members_) {
-            const BlockBody& b = states[m];
-            if (b.inv_mass > 0) energy += 0.5 * (b.v - frame).squaredNorm() / b.inv_mass;
-            if (b.inv_inertia > 0) energy += 0.5 * b.omega * b.omega / b.inv_inertia;
-        }
+        for (const std::uint32_t m : members_) energy += kinetic_energy(states[m], frame);
         return energy;
     };
     const auto bounce_together = [&](std::span<const IslandContact> island) {
