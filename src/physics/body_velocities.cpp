@@ -41,7 +41,8 @@ void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {
     if (far_islands_) arrived_ = state_;
     for_each_group(islands_, island_start_, [&](std::span<const IslandContact> island) {
         if (direct_solver_.velocities(island, state_)) return;
-        // Not settled within its pivots (never seen): the island iterates like the others.
+        // Not settled within its pivots (a few times in 2 s of a crowd of boxes 1e4 apart):
+        // the island iterates like the others.
         for (const IslandContact& ic : island) direct_[ic.pair] = 0;
     });
     if (far_islands_) warm_.resize(fresh_.size());
