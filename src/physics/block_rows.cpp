@@ -2,51 +2,74 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <utility>
 
 #include "discreel/clones.hpp"
 
 namespace discreel::physics::detail {
 namespace {
 
-using Lanes = simd::Double4;
-using Mask = decltype(Lanes{} < Lanes{});
+using Floats = simd::Float8;
+using Mask = decltype(Floats{} < Floats{});
+using Velocity = BlockRows::Velocity;
 
-// One end of four rows: its velocities (gathered) and inverse masses (the block's), lane by
-// lane.
+// One end of eight rows: its velocity corrections (gathered) and inverse masses (the block's),
+// lane by lane.
 struct Ends {
-    Lanes vx, vy, w, inv_mass, inv_inertia;
+    Floats vx, vy, w, pad, inv_mass, inv_inertia;
 };
 
-[[gnu::always_inline]] inline Ends gather(std::span<const BlockBody> bodies,
-                                          const std::uint32_t (&at)[4], const Lanes& inv_mass,
-                                          const Lanes& inv_inertia) {
+// Gathers the records of one end of a block's rows into lanes: records l and l + 4 share a
+// register, and an in-lane 4x4 transpose of each half turns eight records into four vectors of
+// eight lanes; each record is read with one access of its own size.
+[[gnu::always_inline]] inline Ends gather(const Velocity* v, const std::uint32_t (&at)[8],
+                                          const Floats& inv_mass, const Floats& inv_inertia) {
+    const Floats r04 = simd::join(v[at[0]].packed, v[at[4]].packed);
+    const Floats r15 = simd::join(v[at[1]].packed, v[at[5]].packed);
+    const Floats r26 = simd::join(v[at[2]].packed, v[at[6]].packed);
+    const Floats r37 = simd::join(v[at[3]].packed, v[at[7]].packed);
+    const Floats xy01 = simd::unpack_low(r04, r15);
+    const Floats wp01 = simd::unpack_high(r04, r15);
+    const Floats xy23 = simd::unpack_low(r26, r37);
+    const Floats wp23 = simd::unpack_high(r26, r37);
     Ends e;
-    for (unsigned l = 0; l < 4; ++l) {
-        const BlockBody& s = bodies[at[l]];
-        e.vx[l] = s.v.x();
-        e.vy[l] = s.v.y();
-        e.w[l] = s.omega;
-    }
+    e.vx = simd::low_pairs(xy01, xy23);
+    e.vy = simd::high_pairs(xy01, xy23);
+    e.w = simd::low_pairs(wp01, wp23);
+    e.pad = simd::high_pairs(wp01, wp23);
     e.inv_mass = inv_mass;
     e.inv_inertia = inv_inertia;
     return e;
 }
 
-// Lane by lane, in lane order: lanes that share an immovable body all write back what they
-// read, which no row changed.
-[[gnu::always_inline]] inline void scatter(std::span<BlockBody> bodies,
-                                           const std::uint32_t (&at)[4], const Ends& e) {
-    for (unsigned l = 0; l < 4; ++l) {
-        BlockBody& s = bodies[at[l]];
-        s.v = V2(e.vx[l], e.vy[l]);
-        s.omega = e.w[l];
-    }
+// The lanes of a block share no record but the scratch one: a colour shares no moving body,
+// immovable ends have private records, and empty lanes all point at the scratch record and all
+// store back the zeros it holds.
+[[gnu::always_inline]] inline void scatter(Velocity* v, const std::uint32_t (&at)[8],
+                                           const Ends& e) {
+    const Floats xy01 = simd::unpack_low(e.vx, e.vy);
+    const Floats wp01 = simd::unpack_low(e.w, e.pad);
+    const Floats xy23 = simd::unpack_high(e.vx, e.vy);
+    const Floats wp23 = simd::unpack_high(e.w, e.pad);
+    const Floats r04 = simd::low_pairs(xy01, wp01);
+    const Floats r15 = simd::high_pairs(xy01, wp01);
+    const Floats r26 = simd::low_pairs(xy23, wp23);
+    const Floats r37 = simd::high_pairs(xy23, wp23);
+    v[at[0]].packed = simd::low_half(r04);
+    v[at[1]].packed = simd::low_half(r15);
+    v[at[2]].packed = simd::low_half(r26);
+    v[at[3]].packed = simd::low_half(r37);
+    v[at[4]].packed = simd::high_half(r04);
+    v[at[5]].packed = simd::high_half(r15);
+    v[at[6]].packed = simd::high_half(r26);
+    v[at[7]].packed = simd::high_half(r37);
 }
 
 // The impulse (px, py) on B, and its opposite on A, at offsets ra and rb.
-[[gnu::always_inline]] inline void push(Ends& a, Ends& b, const Lanes& ra_x, const Lanes& ra_y,
-                                        const Lanes& rb_x, const Lanes& rb_y, const Lanes& px,
-                                        const Lanes& py) {
+[[gnu::always_inline]] inline void push(Ends& a, Ends& b, const Floats& ra_x, const Floats& ra_y,
+                                        const Floats& rb_x, const Floats& rb_y, const Floats& px,
+                                        const Floats& py) {
     a.vx = a.vx - a.inv_mass * px;
     a.vy = a.vy - a.inv_mass * py;
     a.w = a.w - a.inv_inertia * (ra_x * py - ra_y * px);
@@ -55,36 +78,101 @@ struct Ends {
     b.w = b.w + b.inv_inertia * (rb_x * py - rb_y * px);
 }
 
-// B's point's velocity relative to A's, along (dx, dy), into `out`. (The helpers here return
-// vectors through references: a 256-bit vector returned by value is an ABI that clang refuses
-// to call without AVX, even inlined.)
-[[gnu::always_inline]] inline void along(const Ends& a, const Ends& b, const Lanes& ra_x,
-                                         const Lanes& ra_y, const Lanes& rb_x, const Lanes& rb_y,
-                                         const Lanes& dx, const Lanes& dy, Lanes& out) {
-    const Lanes rel_x = (b.vx - b.w * rb_y) - (a.vx - a.w * ra_y);
-    const Lanes rel_y = (b.vy + b.w * rb_x) - (a.vy + a.w * ra_x);
+// The corrections' velocity of B's point relative to A's, along (dx, dy), into `out`. (The
+// helpers here return vectors through references: a 256-bit vector returned by value is an ABI
+// that clang refuses to call without AVX, even inlined.)
+[[gnu::always_inline]] inline void along(const Ends& a, const Ends& b, const Floats& ra_x,
+                                         const Floats& ra_y, const Floats& rb_x,
+                                         const Floats& rb_y, const Floats& dx, const Floats& dy,
+                                         Floats& out) {
+    const Floats rel_x = (b.vx - b.w * rb_y) - (a.vx - a.w * ra_y);
+    const Floats rel_y = (b.vy + b.w * rb_x) - (a.vy + a.w * ra_x);
     out = rel_x * dx + rel_y * dy;
 }
 
 // One point's friction: the tangent impulse that stops its sliding, within +- friction times
 // its normal impulse (std::clamp's order of tests).
-[[gnu::always_inline]] inline void friction_at(Ends& a, Ends& b, const Lanes& ra_x,
-                                               const Lanes& ra_y, const Lanes& rb_x,
-                                               const Lanes& rb_y, const Lanes& tx,
-                                               const Lanes& ty, const Lanes& mass,
-                                               const Lanes& friction, const Lanes& normal,
-                                               Lanes& tangent) {
-    Lanes vt;
+[[gnu::always_inline]] inline void friction_at(Ends& a, Ends& b, const Floats& ra_x,
+                                               const Floats& ra_y, const Floats& rb_x,
+                                               const Floats& rb_y, const Floats& tx,
+                                               const Floats& ty, const Floats& slip,
+                                               const Floats& mass, const Floats& friction,
+                                               const Floats& normal, Floats& tangent) {
+    Floats vt;
     along(a, b, ra_x, ra_y, rb_x, rb_y, tx, ty, vt);
-    const Lanes limit = friction * normal;
-    const Lanes wanted = tangent - vt * mass;
-    const Lanes low = -limit;
-    const Lanes capped = limit < wanted ? limit : wanted;
-    const Lanes total = wanted < low ? low : capped;
-    const Mask active = mass > Lanes{};
-    const Lanes change = active ? total - tangent : Lanes{};
+    vt = vt + slip;
+    const Floats limit = friction * normal;
+    const Floats wanted = tangent - vt * mass;
+    const Floats low = -limit;
+    const Floats capped = limit < wanted ? limit : wanted;
+    const Floats total = wanted < low ? low : capped;
+    const Mask active = mass > Floats{};
+    const Floats change = active ? total - tangent : Floats{};
     tangent = active ? total : tangent;
     push(a, b, ra_x, ra_y, rb_x, rb_y, change * tx, change * ty);
+}
+
+// The warm start: each row's accumulated impulses, applied to the corrections.
+DISCREEL_CLONES void warm_blocks(std::span<const BlockRows::Block> blocks, Velocity* records) {
+    for (const BlockRows::Block& r : blocks) {
+        Ends a = gather(records, r.a, r.a_inv_mass, r.a_inv_inertia);
+        Ends b = gather(records, r.b, r.b_inv_mass, r.b_inv_inertia);
+        const Floats tx = r.normal_y, ty = -r.normal_x;   // -perp(normal)
+        push(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, r.normal1 * r.normal_x + r.tangent1 * tx,
+             r.normal1 * r.normal_y + r.tangent1 * ty);
+        push(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, r.normal2 * r.normal_x + r.tangent2 * tx,
+             r.normal2 * r.normal_y + r.tangent2 * ty);
+        scatter(records, r.a, a);
+        scatter(records, r.b, b);
+    }
+}
+
+// Built for AVX2 and for baseline x86-64 (clones.hpp): the same IEEE operations, lane by lane.
+DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks, Velocity* records) {
+    using Block = BlockRows::Block;
+    const Floats zero{};
+    for (Block& r : blocks) {
+        Ends a = gather(records, r.a, r.a_inv_mass, r.a_inv_inertia);
+        Ends b = gather(records, r.b, r.b_inv_mass, r.b_inv_inertia);
+        const Floats tx = r.normal_y, ty = -r.normal_x;   // -perp(normal)
+        friction_at(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, tx, ty, r.slip1, r.tangent_mass1,
+                    r.friction, r.normal1, r.tangent1);
+        friction_at(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, tx, ty, r.slip2, r.tangent_mass2,
+                    r.friction, r.normal2, r.tangent2);
+
+        // The normal block: K x + b = w, x >= 0, w >= 0, x_i w_i = 0 (block_solver.cpp).
+        const Floats old1 = r.normal1, old2 = r.normal2;
+        Floats vn1, vn2;
+        along(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, r.normal_x, r.normal_y, vn1);
+        along(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, r.normal_x, r.normal_y, vn2);
+        const Floats b1 = vn1 - r.bias1 - (r.k11 * old1 + r.k12 * old2);
+        const Floats b2 = vn2 - r.bias2 - (r.k12 * old1 + r.k22 * old2);
+        const Mask two = r.two > zero;
+        // Both points pushing.
+        const Floats both1 = (-r.k22 * b1 + r.k12 * b2) * r.inv_det;
+        const Floats both2 = (r.k12 * b1 - r.k11 * b2) * r.inv_det;
+        const Mask use_both = (r.regular > zero) & two & (both1 >= zero) & (both2 >= zero);
+        // Only the first: the second separates by itself (or there is none).
+        const Floats first = -b1 * r.inv_k11;
+        const Mask use_first =
+            (r.k11 > zero) & (first >= zero) & (~two | (r.k12 * first + b2 >= zero));
+        // Only the second.
+        const Floats second = -b2 * r.inv_k22;
+        const Mask use_second =
+            two & (r.k22 > zero) & (second >= zero) & (r.k12 * second + b1 >= zero);
+        const Floats first_or_none = use_first ? first : zero;
+        const Floats x1 = use_both ? both1 : first_or_none;
+        const Floats second_or_none = use_second ? second : zero;
+        const Floats x2_single = use_first ? zero : second_or_none;
+        const Floats x2 = use_both ? both2 : x2_single;
+        const Floats d1 = x1 - old1, d2 = x2 - old2;
+        push(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, d1 * r.normal_x, d1 * r.normal_y);
+        push(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, d2 * r.normal_x, d2 * r.normal_y);
+        r.normal1 = x1;
+        r.normal2 = x2;
+        scatter(records, r.a, a);
+        scatter(records, r.b, b);
+    }
 }
 
 }  // namespace
@@ -106,19 +194,20 @@ std::uint64_t BlockRows::key_of(const RowRef& r, std::span<const BlockBody> bodi
 }
 
 void BlockRows::lay_out(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
-    const std::size_t n = bodies.size() - 1;   // the last is the scratch record
-    const auto scratch = static_cast<std::uint32_t>(n);
+    const std::size_t n = bodies.size();
     layout_.resize(rows.size());
     for (std::size_t i = 0; i < rows.size(); ++i) layout_[i] = key_of(rows[i], bodies);
-    bodies_at_layout_ = bodies.size();
+    bodies_at_layout_ = n;
     // Greedy colouring in row order: each row takes the lowest colour none of its moving
     // bodies has yet.
     used_.assign(n, 0);
     colour_of_.resize(rows.size());
     colour_start_.assign(overflow + 2, 0);
+    std::uint32_t copies = 0;
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const RowRef& r = rows[i];
         const bool a_moves = (layout_[i] & 2) != 0, b_moves = (layout_[i] & 1) != 0;
+        copies += (a_moves ? 0 : 1) + (b_moves ? 0 : 1);
         const std::uint64_t taken = (a_moves ? used_[r.a] : 0) | (b_moves ? used_[r.b] : 0);
         const auto colour = static_cast<unsigned>(std::countr_one(taken));
         colour_of_[i] = static_cast<std::uint8_t>(colour);
@@ -128,12 +217,25 @@ void BlockRows::lay_out(std::span<const RowRef> rows, std::span<const BlockBody>
         if (a_moves) used_[r.a] |= bit;
         if (b_moves) used_[r.b] |= bit;
     }
+    // The bodies the rows move: those with a colour (an overflow row's too).
+    moved_.clear();
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if ((layout_[i] & 2) != 0) used_[rows[i].a] |= 1;
+        if ((layout_[i] & 1) != 0) used_[rows[i].b] |= 1;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (used_[i] != 0) moved_.push_back(static_cast<std::uint32_t>(i));
+    }
     // Each colour starts on a block; an overflow row has a block to itself.
     colour_start_[overflow + 1] *= width;
     for (unsigned c = 0; c <= overflow; ++c) {
         const std::uint32_t count = colour_start_[c + 1];
         colour_start_[c + 1] = colour_start_[c] + (count + width - 1) / width * width;
     }
+    // A row end on an immovable body gets its own record, so that rows on one wall do not
+    // chain through one record.
+    const auto scratch = static_cast<std::uint32_t>(n + copies);
+    velocities_.assign(n + copies + 1, Velocity{});
     const std::uint32_t lanes = colour_start_[overflow + 1];
     blocks_.assign(lanes / width, Block{});
     for (Block& block : blocks_) {
@@ -141,131 +243,148 @@ void BlockRows::lay_out(std::span<const RowRef> rows, std::span<const BlockBody>
         std::fill(std::begin(block.b), std::end(block.b), scratch);
     }
     lane_of_.resize(rows.size());
+    auto copy = static_cast<std::uint32_t>(n);
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const unsigned colour = colour_of_[i];
         const std::uint32_t slot = colour_start_[colour];
         colour_start_[colour] += colour == overflow ? width : 1;
         lane_of_[i] = slot;
         Block& block = blocks_[slot / width];
-        block.a[slot % width] = rows[i].a;
-        block.b[slot % width] = rows[i].b;
+        block.a[slot % width] = (layout_[i] & 2) != 0 ? rows[i].a : copy++;
+        block.b[slot % width] = (layout_[i] & 1) != 0 ? rows[i].b : copy++;
     }
+}
+
+void BlockRows::fill(const RowRef& r, std::span<const BlockBody> bodies, Block& block,
+                     unsigned l) const {
+    const BlockContact& c = *r.contact;
+    const BlockBody& a = bodies[r.a];
+    const BlockBody& b = bodies[r.b];
+    const double unit = mass_unit_;
+    const auto f = [](double x) { return static_cast<float>(x); };
+    const bool two = c.count > 1;
+    // A single point's second does nothing: no offset, no mass, no impulse, and a 1 where the
+    // block would divide by it. Every field is written: a lane kept from the last layout may
+    // have held two points.
+    const BlockPoint none{};
+    const BlockPoint& p1 = c.points[0];
+    const BlockPoint& p2 = two ? c.points[1] : none;
+    block.a_inv_mass[l] = f(a.inv_mass * unit);
+    block.a_inv_inertia[l] = f(a.inv_inertia * unit);
+    block.b_inv_mass[l] = f(b.inv_mass * unit);
+    block.b_inv_inertia[l] = f(b.inv_inertia * unit);
+    block.normal_x[l] = f(c.normal.x());
+    block.normal_y[l] = f(c.normal.y());
+    block.friction[l] = f(c.friction);
+    block.two[l] = two ? 1 : 0;
+    // The velocities at build(), folded into the bounds in doubles.
+    const V2 tangent(c.normal.y(), -c.normal.x());
+    // A point's bias (its target less its normal velocity) and slip (its tangential velocity).
+    const auto fold = [&](const BlockPoint& p) {
+        const V2 rel = relative_velocity(p, a, b);
+        return std::pair{f(p.target - rel.dot(c.normal)), f(rel.dot(tangent))};
+    };
+    const auto [bias1, slip1] = fold(p1);
+    block.bias1[l] = bias1;
+    block.slip1[l] = slip1;
+    block.ra1_x[l] = f(p1.ra.x());
+    block.ra1_y[l] = f(p1.ra.y());
+    block.rb1_x[l] = f(p1.rb.x());
+    block.rb1_y[l] = f(p1.rb.y());
+    block.tangent_mass1[l] = f(p1.tangent_mass / unit);
+    block.normal1[l] = f(p1.normal_impulse / unit);
+    block.tangent1[l] = f(p1.tangent_impulse / unit);
+    const auto [bias2, slip2] = two ? fold(p2) : std::pair{0.0F, 0.0F};
+    block.bias2[l] = bias2;
+    block.slip2[l] = slip2;
+    block.ra2_x[l] = f(p2.ra.x());
+    block.ra2_y[l] = f(p2.ra.y());
+    block.rb2_x[l] = f(p2.rb.x());
+    block.rb2_y[l] = f(p2.rb.y());
+    block.tangent_mass2[l] = f(p2.tangent_mass / unit);
+    block.normal2[l] = f(p2.normal_impulse / unit);
+    block.tangent2[l] = f(p2.tangent_impulse / unit);
+    const double k11 = c.k11 * unit;
+    const double k12 = two ? c.k12 * unit : 0;
+    const double k22 = two ? c.k22 * unit : 1;
+    block.k11[l] = f(k11);
+    block.k12[l] = f(k12);
+    block.k22[l] = f(k22);
+    block.inv_k11[l] = c.k11 > 0 ? f(1 / k11) : 0;
+    block.inv_k22[l] = two && c.k22 > 0 ? f(1 / k22) : 0;
+    const double det = k11 * k22 - k12 * k12;
+    // Points so close together that K is nearly singular are one point (the last cases): in
+    // single precision a condition number over about 1 000 would amplify the rounding of the
+    // velocities into the impulses (Box2D v2.4's bound).
+    const bool regular = two && det > 1e-3 * k11 * k22;
+    block.regular[l] = regular ? 1 : 0;
+    block.inv_det[l] = regular ? f(1 / det) : 0;
 }
 
 void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
     // The colours and lanes hold while the rows are those of the last layout, the same pairs
     // in the same order with the same bodies movable: a resting pile lays out rarely.
     if (!same_layout(rows, bodies)) lay_out(rows, bodies);
+    // The mass unit: a power of two at the heaviest moving body's mass (scaling by it is exact).
+    double lightest_inverse = HUGE_VAL;
+    start_.resize(bodies.size());
+    for (const std::uint32_t i : moved_) {
+        start_[i] = bodies[i];
+        velocities_[i] = Velocity{};
+        if (bodies[i].inv_mass > 0) lightest_inverse = std::min(lightest_inverse, bodies[i].inv_mass);
+    }
+    mass_unit_ = std::isfinite(lightest_inverse) ? std::ldexp(1.0, std::ilogb(1 / lightest_inverse)) : 1;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        Block& block = blocks_[lane_of_[i] / width];
+        fill(rows[i], bodies, blocks_[lane_of_[i] / width], lane_of_[i] % width);
+    }
+    // The bodies' double velocities hold none of the rows' impulses yet: the warm start is
+    // the first change of the corrections.
+    taken_.assign(rows.size(), {});
+    warm_blocks(blocks_, velocities_.data());
+}
+
+void BlockRows::solve() { solve_blocks(blocks_, velocities_.data()); }
+
+void BlockRows::flush(std::span<BlockBody> bodies) const {
+    for (const std::uint32_t i : moved_) {
+        const simd::Float4& d = velocities_[i].packed;
+        bodies[i].v = start_[i].v + V2(d[0], d[1]);
+        bodies[i].omega = start_[i].omega + d[2];
+    }
+}
+
+void BlockRows::reload(std::span<const BlockBody> bodies) {
+    for (const std::uint32_t i : moved_) {
+        const V2 dv = bodies[i].v - start_[i].v;
+        velocities_[i].packed = simd::Float4{static_cast<float>(dv.x()), static_cast<float>(dv.y()),
+                                             static_cast<float>(bodies[i].omega - start_[i].omega),
+                                             0.0F};
+    }
+    for (std::size_t i = 0; i < taken_.size(); ++i) {
+        const Block& block = blocks_[lane_of_[i] / width];
         const unsigned l = lane_of_[i] % width;
-        const RowRef& r = rows[i];
-        const BlockContact& c = *r.contact;
-        const BlockPoint& p1 = c.points[0];
-        const bool two = c.count > 1;
-        // A single point's second does nothing: no offset, no mass, no impulse, and a 1
-        // where the block would divide by it. Every field is written: a lane kept from the
-        // last layout may have held two points.
-        const BlockPoint none{};
-        const BlockPoint& p2 = two ? c.points[1] : none;
-        block.a_inv_mass[l] = bodies[r.a].inv_mass;
-        block.a_inv_inertia[l] = bodies[r.a].inv_inertia;
-        block.b_inv_mass[l] = bodies[r.b].inv_mass;
-        block.b_inv_inertia[l] = bodies[r.b].inv_inertia;
-        block.normal_x[l] = c.normal.x();
-        block.normal_y[l] = c.normal.y();
-        block.ra1_x[l] = p1.ra.x();
-        block.ra1_y[l] = p1.ra.y();
-        block.rb1_x[l] = p1.rb.x();
-        block.rb1_y[l] = p1.rb.y();
-        block.tangent_mass1[l] = p1.tangent_mass;
-        block.target1[l] = p1.target;
-        block.normal1[l] = p1.normal_impulse;
-        block.tangent1[l] = p1.tangent_impulse;
-        block.friction[l] = c.friction;
-        block.k11[l] = c.k11;
-        block.inv_k11[l] = c.k11 > 0 ? 1 / c.k11 : 0;
-        block.two[l] = two ? 1 : 0;
-        block.ra2_x[l] = p2.ra.x();
-        block.ra2_y[l] = p2.ra.y();
-        block.rb2_x[l] = p2.rb.x();
-        block.rb2_y[l] = p2.rb.y();
-        block.tangent_mass2[l] = p2.tangent_mass;
-        block.target2[l] = p2.target;
-        block.normal2[l] = p2.normal_impulse;
-        block.tangent2[l] = p2.tangent_impulse;
-        block.k12[l] = two ? c.k12 : 0;
-        block.k22[l] = two ? c.k22 : 1;
-        block.inv_k22[l] = two && c.k22 > 0 ? 1 / c.k22 : 0;
-        const double det = c.k11 * c.k22 - c.k12 * c.k12;
-        // Points so close together that K is nearly singular are one point: the last cases.
-        const bool regular = two && det > 1e-12 * c.k11 * c.k22;
-        block.regular[l] = regular ? 1 : 0;
-        block.inv_det[l] = regular ? 1 / det : 0;
+        taken_[i] = {block.normal1[l] * mass_unit_, block.normal2[l] * mass_unit_,
+                     block.tangent1[l] * mass_unit_, block.tangent2[l] * mass_unit_};
     }
 }
 
-// Built for AVX2 and for baseline x86-64 (clones.hpp): the same IEEE operations, lane by lane.
-DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks,
-                                  std::span<BlockBody> bodies) {
-    using Block = BlockRows::Block;
-    const Lanes zero{};
-    for (Block& r : blocks) {
-        Ends a = gather(bodies, r.a, r.a_inv_mass, r.a_inv_inertia);
-        Ends b = gather(bodies, r.b, r.b_inv_mass, r.b_inv_inertia);
-        const Lanes tx = r.normal_y, ty = -r.normal_x;   // -perp(normal)
-        friction_at(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, tx, ty, r.tangent_mass1,
-                    r.friction, r.normal1, r.tangent1);
-        friction_at(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, tx, ty, r.tangent_mass2,
-                    r.friction, r.normal2, r.tangent2);
-
-        // The normal block: K x + b = w, x >= 0, w >= 0, x_i w_i = 0 (block_solver.cpp).
-        const Lanes old1 = r.normal1, old2 = r.normal2;
-        Lanes vn1, vn2;
-        along(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, r.normal_x, r.normal_y, vn1);
-        along(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, r.normal_x, r.normal_y, vn2);
-        const Lanes b1 = vn1 - r.target1 - (r.k11 * old1 + r.k12 * old2);
-        const Lanes b2 = vn2 - r.target2 - (r.k12 * old1 + r.k22 * old2);
-        const Mask two = r.two > zero;
-        // Both points pushing.
-        const Lanes both1 = (-r.k22 * b1 + r.k12 * b2) * r.inv_det;
-        const Lanes both2 = (r.k12 * b1 - r.k11 * b2) * r.inv_det;
-        const Mask use_both = (r.regular > zero) & two & (both1 >= zero) & (both2 >= zero);
-        // Only the first: the second separates by itself (or there is none).
-        const Lanes first = -b1 * r.inv_k11;
-        const Mask use_first =
-            (r.k11 > zero) & (first >= zero) & (~two | (r.k12 * first + b2 >= zero));
-        // Only the second.
-        const Lanes second = -b2 * r.inv_k22;
-        const Mask use_second =
-            two & (r.k22 > zero) & (second >= zero) & (r.k12 * second + b1 >= zero);
-        const Lanes first_or_none = use_first ? first : zero;
-        const Lanes x1 = use_both ? both1 : first_or_none;
-        const Lanes second_or_none = use_second ? second : zero;
-        const Lanes x2_single = use_first ? zero : second_or_none;
-        const Lanes x2 = use_both ? both2 : x2_single;
-        const Lanes d1 = x1 - old1, d2 = x2 - old2;
-        push(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, d1 * r.normal_x, d1 * r.normal_y);
-        push(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, d2 * r.normal_x, d2 * r.normal_y);
-        r.normal1 = x1;
-        r.normal2 = x2;
-        scatter(bodies, r.a, a);
-        scatter(bodies, r.b, b);
-    }
-}
-
-void BlockRows::solve(std::span<BlockBody> bodies) { solve_blocks(blocks_, bodies); }
-
-void BlockRows::store(std::span<const RowRef> rows) const {
+void BlockRows::finish(std::span<const RowRef> rows, std::span<BlockBody> bodies) const {
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Block& block = blocks_[lane_of_[i] / width];
         const unsigned l = lane_of_[i] % width;
         BlockContact& c = *rows[i].contact;
-        c.points[0].normal_impulse = block.normal1[l];
-        c.points[0].tangent_impulse = block.tangent1[l];
-        if (c.count < 2) continue;
-        c.points[1].normal_impulse = block.normal2[l];
-        c.points[1].tangent_impulse = block.tangent2[l];
+        const V2 tangent(c.normal.y(), -c.normal.x());
+        const double now[4] = {block.normal1[l] * mass_unit_, block.normal2[l] * mass_unit_,
+                               block.tangent1[l] * mass_unit_, block.tangent2[l] * mass_unit_};
+        for (int k = 0; k < c.count; ++k) {
+            const auto q = static_cast<std::size_t>(k);
+            BlockPoint& p = c.points[k];
+            apply_impulse(bodies[rows[i].a], bodies[rows[i].b], p,
+                          (now[q] - taken_[i][q]) * c.normal +
+                              (now[q + 2] - taken_[i][q + 2]) * tangent);
+            p.normal_impulse = now[q];
+            p.tangent_impulse = now[q + 2];
+        }
     }
 }
 

@@ -1,14 +1,20 @@
 #pragma once
-// The velocity iterations of many contact manifolds, four at a time: each manifold is one row
+// The velocity iterations of many contact manifolds, eight at a time: each manifold is one row
 // (its two points' normal impulses solved together as a 2x2 block, block_solver.hpp, and a
 // friction impulse per point), and rows are coloured so that no two rows of a colour share a
-// moving body. A colour's rows are independent, so four of them run in the lanes of one vector
+// moving body. A colour's rows are independent, so eight of them run in the lanes of one vector
 // (simd.hpp), each lane doing the IEEE operations one row alone would: the same bits on every
 // CPU. The block's four cases are all computed and the first that holds is selected, as the
 // scalar solve tries them in order, without a branch.
 //
-// Rows read and write the solver's body states directly; an immovable body (wall, peg, held
-// body) is never changed by a row, so rows of one colour may share it.
+// As in the disc solver's rows (substep.hpp), the iterations run in single precision on
+// corrections only: each row is built in doubles with its bodies' velocities at build() folded
+// into its bounds, and floats carry each body's change of velocity, added to its double
+// velocity by flush(). A body no row moves keeps its velocity bit for bit; the rounding left is
+// about 1e-7 of the corrections. Masses and impulses are in units of a power of two near the
+// heaviest moving body's mass, which keeps them inside a float's range whatever the scene's
+// masses.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -25,44 +31,68 @@ struct RowRef {
 
 class BlockRows {
 public:
-    // Lays out `rows` by colour; `bodies` must hold one more record than there are bodies, a
-    // scratch record (zero velocity, zero inverse masses) that empty lanes point at.
+    // Lays out `rows` by colour, builds them from the bodies' velocities now and applies the
+    // contacts' impulses (the warm start) to the corrections.
     void build(std::span<const RowRef> rows, std::span<const BlockBody> bodies);
     // One pass over every row, colour by colour, in the order build() was given within one.
-    void solve(std::span<BlockBody> bodies);
-    // The accumulated impulses back into the rows' contacts.
-    void store(std::span<const RowRef> rows) const;
+    void solve();
+    // Before a solve in doubles between two passes: the bodies the rows move get their
+    // velocities at build() plus the corrections so far.
+    void flush(std::span<BlockBody> bodies) const;
+    // After it: the corrections taken again from the bodies' velocities now.
+    void reload(std::span<const BlockBody> bodies);
+    // The end: each row's impulses (since the last reload, if any) applied to its bodies in
+    // doubles, pairwise, so that momentum is kept to double rounding; and the accumulated
+    // impulses back into the rows' contacts.
+    void finish(std::span<const RowRef> rows, std::span<BlockBody> bodies) const;
 
-    using Lanes = simd::Double4;
-    static constexpr unsigned width = 4;
+    using Floats = simd::Float8;
+    static constexpr unsigned width = 8;
     // Rows whose bodies have all 64 colours go to one last group, a row to a block.
     static constexpr unsigned overflow = 64;
 
+    // What the iterations change of a body: dv x, dv y (m/s), d omega (rad/s), and a pad, in
+    // one 16-byte record that a block gathers with one load (simd.hpp's transposes).
+    struct alignas(16) Velocity {
+        simd::Float4 packed = {};
+    };
     // 32-byte aligned for the AVX2 build's loads: a 256-bit vector type is only 16-byte
     // aligned where the baseline target has no 256-bit registers.
     struct alignas(32) Block {
-        std::uint32_t a[width] = {}, b[width] = {};
-        // The ends' inverse masses: the iterations never change them, so only velocities are
-        // gathered.
-        Lanes a_inv_mass{}, a_inv_inertia{}, b_inv_mass{}, b_inv_inertia{};
-        Lanes normal_x{}, normal_y{};
-        Lanes ra1_x{}, ra1_y{}, rb1_x{}, rb1_y{}, ra2_x{}, ra2_y{}, rb2_x{}, rb2_y{};
-        Lanes k11{}, k12{}, k22{};
-        Lanes inv_k11{}, inv_k22{}, inv_det{};   // 0 where not usable
-        Lanes regular{};                         // 1 where the 2x2 block is well-conditioned
-        Lanes two{};                             // 1 for two points, 0 for one
-        Lanes tangent_mass1{}, tangent_mass2{};
-        Lanes target1{}, target2{};
-        Lanes friction{};
-        Lanes normal1{}, normal2{}, tangent1{}, tangent2{};   // accumulated impulses
+        std::uint32_t a[width] = {}, b[width] = {};   // indices into the velocity records
+        // The ends' inverse masses in mass units: the iterations never change them, so only
+        // velocities are gathered.
+        Floats a_inv_mass{}, a_inv_inertia{}, b_inv_mass{}, b_inv_inertia{};
+        Floats normal_x{}, normal_y{};
+        Floats ra1_x{}, ra1_y{}, rb1_x{}, rb1_y{}, ra2_x{}, ra2_y{}, rb2_x{}, rb2_y{};
+        Floats k11{}, k12{}, k22{};               // mass units
+        Floats inv_k11{}, inv_k22{}, inv_det{};   // 0 where not usable
+        Floats regular{};                         // 1 where the 2x2 block is well-conditioned
+        Floats two{};                             // 1 for two points, 0 for one
+        Floats tangent_mass1{}, tangent_mass2{};  // mass units
+        // m/s: each point's target less its normal velocity at build(), the bound on the
+        // corrections' normal velocity; and its tangential velocity at build().
+        Floats bias1{}, bias2{}, slip1{}, slip2{};
+        Floats friction{};
+        Floats normal1{}, normal2{}, tangent1{}, tangent2{};   // accumulated, mass units m/s
     };
 
 private:
     static std::uint64_t key_of(const RowRef& r, std::span<const BlockBody> bodies);
     bool same_layout(std::span<const RowRef> rows, std::span<const BlockBody> bodies) const;
     void lay_out(std::span<const RowRef> rows, std::span<const BlockBody> bodies);
+    void fill(const RowRef& r, std::span<const BlockBody> bodies, Block& block, unsigned l) const;
 
     std::vector<Block> blocks_;
+    // Per row: its points' impulses (normal, normal, tangent, tangent; N s) that the bodies'
+    // double velocities already hold: none after build(), all at the last reload().
+    std::vector<std::array<double, 4>> taken_;
+    // Per body, then one per row end on an immovable body (all zeros: it never changes, its
+    // velocity is folded into the row), then the empty lanes' scratch one.
+    std::vector<Velocity> velocities_;
+    std::vector<std::uint32_t> moved_;         // the bodies the rows move, ascending
+    std::vector<BlockBody> start_;             // per body: its velocities at build()
+    double mass_unit_ = 1;                     // kg, a power of two
     std::vector<std::uint64_t> layout_;        // per row at the last layout: bodies, movable
     std::size_t bodies_at_layout_ = 0;
     std::vector<std::uint32_t> lane_of_;       // per row: block * width + lane

@@ -48,6 +48,8 @@ void BodySolver::integrate_positions(std::vector<RigidBody>& bodies, double dt) 
         b.x += moved[i];
         b.angle += turned[i];
     }
+    spin_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) spin_[i] = {std::cos(turned[i]), std::sin(turned[i])};
 
 }
 
@@ -58,8 +60,6 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
     // so no velocity (and no energy) is added. A point's separation follows from how far its
     // two anchors moved along the manifold's normal since the manifold was made, which is
     // accurate for the small motions of a step and costs no new manifold.
-    spin_.resize(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) spin_[i] = {std::cos(turned[i]), std::sin(turned[i])};
     const auto rotate_by = [&](const V2& v, std::size_t i) {
         const auto [c, s] = spin_[i];
         return V2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
@@ -71,6 +71,23 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
         rb = rotate_by(an.rb, pc.b);
         const V2 drift = (moved[pc.b] + rb - an.rb) - (moved[pc.a] + ra - an.ra);
         return an.separation + pc.contact.normal.dot(drift);
+    };
+    // Turns body i's record of its turn in the step by `by` radians, and its cosine and sine
+    // with it by the angle-sum rule: a push turns a body by little, and below a hundredth of a
+    // radian the series (to the sixth power) is exact to rounding and needs no libm call.
+    const auto turn = [&](std::uint32_t i, double by) {
+        turned[i] += by;
+        double c = 0, s = 0;
+        if (std::abs(by) < 0.01) {
+            const double by2 = by * by;
+            c = 1 - by2 / 2 + by2 * by2 / 24;
+            s = by * (1 - by2 / 6 + by2 * by2 / 120);
+        } else {
+            c = std::cos(by);
+            s = std::sin(by);
+        }
+        const auto [c0, s0] = spin_[i];
+        spin_[i] = {c0 * c - s0 * s, s0 * c + c0 * s};
     };
     // Moves a and b apart by `amount` (kg m) of positional impulse along n at offsets ra, rb.
     const auto push_apart = [&](const PairContact& pc, const V2& ra, const V2& rb,
@@ -86,11 +103,12 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
         b.x += db;
         b.angle += tb;
         moved[pc.a] -= da;
-        turned[pc.a] -= ta;
         moved[pc.b] += db;
-        turned[pc.b] += tb;
-        spin_[pc.a] = {std::cos(turned[pc.a]), std::sin(turned[pc.a])};
-        spin_[pc.b] = {std::cos(turned[pc.b]), std::sin(turned[pc.b])};
+        turn(pc.a, -ta);
+        turn(pc.b, tb);
+        ++pushes_;
+        pushed_at_[pc.a] = pushes_;
+        pushed_at_[pc.b] = pushes_;
     };
     // A direct island: every point to within the slop at once, through the same matrix; the
     // blocks of larger islands the same way, one after the other, in sweeps.
@@ -123,10 +141,20 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
         for_each_group(blocks_, block_start_, push_out_together);
     }
+    // A contact neither of whose bodies was pushed since it was last looked at would be
+    // looked at in vain: its separations are what they were (a resting pile's later sweeps
+    // cost next to nothing).
+    pushes_ = 0;
+    pushed_at_.assign(bodies.size(), 0);
+    seen_at_.assign(fresh_.size(), 0);
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
         for (std::size_t i = 0; i < fresh_.size(); ++i) {
             if (direct_[i] || blocked_[i]) continue;
             const PairContact& pc = fresh_[i];
+            if (sweep > 0 && pushed_at_[pc.a] <= seen_at_[i] && pushed_at_[pc.b] <= seen_at_[i]) {
+                continue;
+            }
+            seen_at_[i] = pushes_;
             const RigidBody& a = bodies[pc.a];
             const RigidBody& b = bodies[pc.b];
             const V2& n = pc.contact.normal;
@@ -135,17 +163,18 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
                 // first push turns the body and the second turns it back only in part, which
                 // sets a resting stack rocking.
                 std::array<V2, 2> ra, rb;
-                std::array<double, 2> overlap{};
+                std::array<double, 2> separation{};
                 for (int k = 0; k < 2; ++k) {
-                    overlap[static_cast<std::size_t>(k)] =
+                    separation[static_cast<std::size_t>(k)] =
                         separation_now(pc, k, ra[static_cast<std::size_t>(k)],
-                                       rb[static_cast<std::size_t>(k)]) + def_.slop;
+                                       rb[static_cast<std::size_t>(k)]);
                 }
-                if (overlap[0] >= 0 && overlap[1] >= 0) continue;
+                if (separation[0] >= -def_.slop && separation[1] >= -def_.slop) continue;
+                const auto short_of = [&](double s) {
+                    return std::max(s + def_.slop, -def_.max_correction);
+                };
                 const std::array<double, 2> push =
-                    block_push(a, b, n, ra, rb,
-                               {std::max(overlap[0], -def_.max_correction),
-                                std::max(overlap[1], -def_.max_correction)});
+                    block_push(a, b, n, ra, rb, {short_of(separation[0]), short_of(separation[1])});
                 for (int k = 0; k < 2; ++k) {
                     const auto q = static_cast<std::size_t>(k);
                     if (push[q] > 0) push_apart(pc, ra[q], rb[q], push[q]);
@@ -154,9 +183,9 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
             }
             for (int k = 0; k < pc.contact.count; ++k) {
                 V2 ra, rb;
-                const double overlap = separation_now(pc, k, ra, rb) + def_.slop;
-                if (overlap >= 0) continue;
-                const double push = std::min(-overlap, def_.max_correction);
+                const double separation = separation_now(pc, k, ra, rb);
+                if (separation >= -def_.slop) continue;
+                const double push = std::min(-(separation + def_.slop), def_.max_correction);
                 const double rna = cross(ra, n), rnb = cross(rb, n);
                 const double k_n = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna +
                                    b.inv_inertia * rnb * rnb;
@@ -186,9 +215,15 @@ void BodySolver::mark_sunk(const std::vector<RigidBody>& bodies) {
         double apart = HUGE_VAL;
         for (int k = 0; k < pc.manifold.count; ++k) apart = std::min(apart, pc.manifold.points[k].separation);
         if (apart <= 0) continue;
+        const double deep = def_.slop + 0.05 * std::min(a.inner, b.inner);
+        // No point of either body moved farther than its centre's travel and its turn at its
+        // bounding radius: a pair that far apart cannot have sunk in so deep.
+        const auto travel = [&](std::uint32_t i) {
+            return moved[i].norm() + std::abs(turned[i]) * bodies[i].bound;
+        };
+        if (apart - (travel(pc.a) + travel(pc.b)) > -deep) continue;
         const Manifold now = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
                                      Transform::of(b.x, b.angle), 0);
-        const double deep = def_.slop + 0.05 * std::min(a.inner, b.inner);
         for (int k = 0; k < now.count; ++k) {
             if (now.points[k].separation >= -deep) continue;
             fast_[pc.a] = a.inv_mass > 0;

@@ -331,6 +331,10 @@ private:
     std::size_t predictions_made_ = 0;       // in the last step
     double settle_ = 0;                      // m/s: slower approaches are not impacts
     std::vector<double> separation_, push_;   // scratch, per point of an island
+    // Scratch of push_out: pushes so far in the step, per body the count after its last push,
+    // per contact the count when its separations were last looked at.
+    std::uint32_t pushes_ = 0;
+    std::vector<std::uint32_t> pushed_at_, seen_at_;
 };
 
 }  // namespace discreel::physics::detail

@@ -24,18 +24,17 @@ double kinetic_energy(const BlockBody& b, const V2& frame = V2::Zero()) {
     return energy;
 }
 
-V2 rotate(const V2& v, double angle) {
-    const double c = std::cos(angle), s = std::sin(angle);
+// v turned by the angle whose cosine and sine are `spin`.
+V2 rotate(const V2& v, const std::pair<double, double>& spin) {
+    const auto [c, s] = spin;
     return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
 }
 
 }  // namespace
 
 void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {
-    // One more record than bodies: the scratch one the rows' empty lanes point at.
-    state_.resize(bodies.size() + 1);
+    state_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) state_[i] = velocity_of(bodies[i]);
-    state_.back() = BlockBody{};
     // Islands of masses far apart are checked against the kinetic energy their bodies came
     // with (below, and in bounce).
     if (far_islands_) arrived_ = state_;
@@ -50,7 +49,9 @@ void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {
         PairContact& pc = fresh_[i];
         if (direct_[i]) continue;
         prepare_block(pc.contact, state_[pc.a], state_[pc.b]);
-        apply_totals(pc, 1);
+        // The rows apply their own warm start (block_rows.hpp); a block's is in the velocities
+        // its solve starts from.
+        if (blocked_[i]) apply_totals(pc, 1);
         if (!far_islands_) continue;
         for (int k = 0; k < pc.contact.count; ++k) {
             const BlockPoint& p = pc.contact.points[k];
@@ -64,15 +65,18 @@ void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {
     }
     block_rows_.build(rows_, state_);
     for (int it = 0; it < def_.iterations; ++it) {
-        block_rows_.solve(state_);
-        // A block's impulses are taken back out and solved again, together.
+        block_rows_.solve();
+        if (blocks_.empty()) continue;
+        // A block's impulses are taken back out and solved again, together, in doubles.
+        block_rows_.flush(state_);
         for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
             if (direct_solver_.velocities(block, state_)) return;
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
         });
+        block_rows_.reload(state_);
     }
-    block_rows_.store(rows_);
+    block_rows_.finish(rows_, state_);
     if (far_islands_) solve_gainers_again(bodies);
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 }
@@ -129,25 +133,30 @@ void BodySolver::solve_gainers_again(const std::vector<RigidBody>& bodies) {
                 pc.contact.points[k].normal_impulse = share * normal;
                 pc.contact.points[k].tangent_impulse = share * tangent;
             }
-            apply_totals(pc, 1);
-            if (!blocked_[i]) rows_.push_back(RowRef{pc.a, pc.b, &pc.contact});
+            if (blocked_[i]) {
+                apply_totals(pc, 1);
+            } else {
+                rows_.push_back(RowRef{pc.a, pc.b, &pc.contact});
+            }
         }
         block_rows_.build(rows_, state_);
         for (int it = 0; it < def_.iterations; ++it) {
-            block_rows_.solve(state_);
+            block_rows_.solve();
+            if (blocks_.empty()) continue;
+            block_rows_.flush(state_);
             for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
                 if (again_[island_of(*pair_of(block.front()), bodies)] != 1) return;
                 for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
                 if (direct_solver_.velocities(block, state_)) return;
                 for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
             });
+            block_rows_.reload(state_);
         }
-        block_rows_.store(rows_);
+        block_rows_.finish(rows_, state_);
     }
 }
 
 void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
-    const std::vector<double>& turned = turned_;
     // Restitution: points that arrived faster than settling and pushed this step leave at e
     // times their approach speed, both points of a manifold solved together (no spin from a
     // flat landing). Velocities only, frictionless, from the impulses already applied. The
@@ -169,7 +178,7 @@ void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
         if (!bounce && !direct_[i]) continue;
         for (int k = 0; k < c.count; ++k) {
             BlockPoint& p = c.points[k];
-            const V2 ra = rotate(p.ra, turned[pc.a]), rb = rotate(p.rb, turned[pc.b]);
+            const V2 ra = rotate(p.ra, spin_[pc.a]), rb = rotate(p.rb, spin_[pc.b]);
             const V2 point = 0.5 * ((bodies[pc.a].x + ra) + (bodies[pc.b].x + rb));
             p.ra = point - bodies[pc.a].x;
             p.rb = point - bodies[pc.b].x;

@@ -98,35 +98,42 @@ std::pair<int, double> max_separation(const Polygon& poly, const Polygon& other)
     return {face, best};
 }
 
-Polygon in_frame(const Polygon& poly, const Transform& from, const Transform& to) {
-    Polygon out = poly;
+// `poly`'s core in another frame: `to` is where its own frame lies in that one. Only the
+// vertices and normals in use are written.
+void into_frame(const Polygon& poly, const Transform& to, Polygon& out) {
+    out.count = poly.count;
+    out.radius = poly.radius;
     for (int i = 0; i < poly.count; ++i) {
-        out.vertices[i] = to.inverse_apply(from.apply(poly.vertices[i]));
-        out.normals[i] = to.inverse_rotate(from.rotate(poly.normals[i]));
+        out.vertices[i] = to.apply(poly.vertices[i]);
+        out.normals[i] = to.rotate(poly.normals[i]);
     }
-    return out;
 }
 
 // Polygon against polygon (capsules included: two vertices, two opposite faces) by separating
 // axes on the cores, then the reference face (the one of the axis found) clipped against the
 // incident face of the other (the one most against the reference normal): up to two points.
+// Everything in A's frame: B is moved into it once.
 Manifold polygons(const Polygon& a, const Transform& xa, const Polygon& b, const Transform& xb,
                   double speculative) {
     Manifold m;
     const double radius = a.radius + b.radius;
-    const Polygon b_in_a = in_frame(b, xb, xa);
-    const Polygon a_in_b = in_frame(a, xa, xb);
+    // Where B's frame lies in A's: its offset and its turn against A (cos, sin of the angle
+    // difference).
+    const Transform b_to_a{xa.inverse_rotate(xb.p - xa.p), xa.c * xb.c + xa.s * xb.s,
+                           xa.c * xb.s - xa.s * xb.c};
+    Polygon b_in_a;
+    into_frame(b, b_to_a, b_in_a);
     const auto [face_a, separation_a] = max_separation(a, b_in_a);
-    const auto [face_b, separation_b] = max_separation(b, a_in_b);
-    if (std::max(separation_a, separation_b) - radius > speculative) return m;
+    if (separation_a - radius > speculative) return m;
+    const auto [face_b, separation_b] = max_separation(b_in_a, a);
+    if (separation_b - radius > speculative) return m;
     // The reference is A unless B's axis separates clearly more: the bias (half a millimetre)
     // keeps the choice, and so the feature ids, from flickering between two nearly equal axes
     // (a box resting flat on a box) from one step to the next.
     constexpr double axis_bias = 5e-4;
     const bool flip = separation_b > separation_a + axis_bias;
-    const Polygon& ref = flip ? b : a;
-    const Polygon& inc = flip ? a_in_b : b_in_a;
-    const Transform& xref = flip ? xb : xa;
+    const Polygon& ref = flip ? b_in_a : a;
+    const Polygon& inc = flip ? a : b_in_a;
     const int face = flip ? face_b : face_a;
     const V2& normal = ref.normals[face];
     const V2& v1 = ref.vertices[face];
@@ -164,7 +171,7 @@ Manifold polygons(const Polygon& a, const Transform& xa, const Polygon& b, const
             clip_ids[k] = 0x80 | (side == 0 ? face : (face + 1) % ref.count);
         }
     }
-    const V2 world_normal = xref.rotate(normal);
+    const V2 world_normal = xa.rotate(normal);
     m.normal = flip ? V2(-world_normal) : world_normal;
     for (int k = 0; k < 2; ++k) {
         const double separation = normal.dot(clip[k] - v1) - radius;
@@ -174,7 +181,7 @@ Manifold polygons(const Polygon& a, const Transform& xa, const Polygon& b, const
         const double inc_radius = flip ? a.radius : b.radius;
         const V2 point = clip[k] - normal * (inc_radius + 0.5 * separation);
         const std::uint16_t id = flip ? make_id(clip_ids[k], face) : make_id(face, clip_ids[k]);
-        m.points[m.count++] = {xref.apply(point), separation, id};
+        m.points[m.count++] = {xa.apply(point), separation, id};
     }
     return m;
 }
