@@ -171,7 +171,7 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
                 }
                 if (separation[0] >= -def_.slop && separation[1] >= -def_.slop) continue;
                 const auto short_of = [&](double s) {
-                    return std::max(s + def_.slop, -def_.max_correction);
+                    return std::max(s + def_.push_to, -def_.max_correction);
                 };
                 const std::array<double, 2> push =
                     block_push(a, b, n, ra, rb, {short_of(separation[0]), short_of(separation[1])});
@@ -185,7 +185,7 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
                 V2 ra, rb;
                 const double separation = separation_now(pc, k, ra, rb);
                 if (separation >= -def_.slop) continue;
-                const double push = std::min(-(separation + def_.slop), def_.max_correction);
+                const double push = std::min(-(separation + def_.push_to), def_.max_correction);
                 const double rna = cross(ra, n), rnb = cross(rb, n);
                 const double k_n = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna +
                                    b.inv_inertia * rnb * rnb;

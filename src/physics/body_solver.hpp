@@ -57,9 +57,12 @@ inline BlockBody velocity_of(const RigidBody& b) {
 
 struct BodySolverDef {
     int iterations = 6;            // velocity iterations per step (docs/physics.md)
-    int position_iterations = 3;   // overlap-removal sweeps per step
+    int position_iterations = 8;   // overlap-removal sweeps per step
     double speculative = 0.02;     // metres: points this far apart are already contacts
     double slop = 5e-4;            // metres of overlap left alone (resting contact jitters less)
+    // Metres of overlap a push-out leaves: under the slop, so that a point just pushed is not
+    // pushed again by the sliver its neighbours' pushes give back.
+    double push_to = 2.5e-4;
     double max_correction = 0.02;  // metres pushed out per point and sweep at most
     // An island (bodies that contacts between moving bodies connect) whose moving bodies'
     // masses differ by this factor or more is solved directly (island.hpp) when it has at most

@@ -171,7 +171,7 @@ void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
             // A larger island of masses far apart does not bounce: its block iterations leave
             // light bodies rattling between heavy ones, and bouncing them by either rule pumps
             // energy in (heavy_light_bench's box; docs/tried.md).
-            const bool hit = vn < -settle && c.points[k].normal_impulse > 0 && !blocked_[i];
+            const bool hit = vn < -settle && c.points[k].normal_impulse > 0 && !blocked_[i] && !pc.touched;
             c.points[k].target = hit ? -pc.restitution * vn : 0;
             bounce = bounce || (hit && pc.restitution > 0);
         }

@@ -1,8 +1,11 @@
 #include "manifold.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 namespace discreel::physics::detail {
 namespace {
@@ -98,6 +101,44 @@ std::pair<int, double> max_separation(const Polygon& poly, const Polygon& other)
     return {face, best};
 }
 
+// The point of segment [p, q] nearest to x.
+V2 nearest_on(const V2& x, const V2& p, const V2& q) {
+    const V2 d = q - p;
+    const double t = std::clamp((x - p).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return p + t * d;
+}
+
+// A reference face [v1, v2] and an incident face [w1, w2] that do not overlap sideways (corner
+// against corner): the contact is between their nearest points, along the line joining them,
+// one point. Faces in the same frame; `radius` the two radii summed, `ref_radius` the
+// reference shape's; the normal from the reference shape to the incident one.
+struct CornerContact {
+    V2 normal = V2::UnitY();
+    V2 point = V2::Zero();       // midway between the surfaces
+    double separation = 0;       // metres
+};
+std::optional<CornerContact> corner_to_corner(const V2& v1, const V2& v2, const V2& w1,
+                                              const V2& w2, double radius, double ref_radius) {
+    // Between two segments that do not cross, the nearest pair has an end on one of them.
+    const std::array<std::pair<V2, V2>, 4> candidates{{{v1, nearest_on(v1, w1, w2)},
+                                                       {v2, nearest_on(v2, w1, w2)},
+                                                       {nearest_on(w1, v1, v2), w1},
+                                                       {nearest_on(w2, v1, v2), w2}}};
+    const auto* best = &candidates[0];
+    for (const auto& c : candidates) {
+        if ((c.second - c.first).squaredNorm() < (best->second - best->first).squaredNorm()) {
+            best = &c;
+        }
+    }
+    const double distance = (best->second - best->first).norm();
+    if (distance <= 0) return std::nullopt;
+    CornerContact c;
+    c.normal = (best->second - best->first) / distance;
+    c.separation = distance - radius;
+    c.point = best->first + c.normal * (ref_radius + 0.5 * c.separation);
+    return c;
+}
+
 // `poly`'s core in another frame: `to` is where its own frame lies in that one. Only the
 // vertices and normals in use are written.
 void into_frame(const Polygon& poly, const Transform& to, Polygon& out) {
@@ -161,7 +202,21 @@ Manifold polygons(const Polygon& a, const Transform& xa, const Polygon& b, const
             return side == 0 ? lower - along : along - upper;
         };
         const double d0 = outside(clip[0]), d1 = outside(clip[1]);
-        if (d0 > 0 && d1 > 0) return m;   // the faces do not overlap sideways at all
+        if (d0 > 0 && d1 > 0) {
+            // The faces do not overlap sideways: corner against corner. Without a point here
+            // such a pair would have no contact at all and close unchecked within the step.
+            const std::optional<CornerContact> c = corner_to_corner(
+                v1, v2, inc.vertices[incident], inc.vertices[(incident + 1) % inc.count], radius,
+                ref.radius);
+            if (!c || c->separation > speculative) return m;
+            const V2 world_normal = xa.rotate(c->normal);
+            m.normal = flip ? V2(-world_normal) : world_normal;
+            const int corner = 0x40 | incident;
+            const std::uint16_t id = flip ? make_id(corner, face | 0x40) : make_id(face | 0x40, corner);
+            m.points[0] = {xa.apply(c->point), c->separation, id};
+            m.count = 1;
+            return m;
+        }
         if (d0 > 0 || d1 > 0) {
             const V2 cut = clip[0] + (d0 / (d0 - d1)) * (clip[1] - clip[0]);
             const int k = d0 > 0 ? 0 : 1;

@@ -163,6 +163,34 @@ TEST(Bodies, ADiscHitsABoxHeadOnAsTheOneDimensionalFormulaSays) {
     EXPECT_NEAR(world.bodies()[1].angular_velocity, 0, 1e-9);
 }
 
+// Two 0.5 m boxes flying at each other corner first along their diagonal at 5 m/s each (1 cm
+// a step: slow, so their contact is the speculative one), e = 1, no friction: the corners meet
+// and the boxes come back along the diagonal at the same speeds, never overlapping by more
+// than the slop. (When the corners' faces did not overlap sideways the pair got no contact
+// and the boxes slid a step's travel into each other before their faces caught.)
+TEST(Bodies, BoxesMeetingCornerToCornerBounceBackAlongTheDiagonal) {
+    const double v = 5, side = 0.5;
+    WorldDef def;
+    def.gravity = {0, 0};
+    const double u = v * std::sqrt(0.5);
+    BodyDef a = body(box_of(side, side), {-1, -1}, 1, {.restitution = 1, .friction = 0});
+    a.velocity = {u, u};
+    BodyDef b = body(box_of(side, side), {1, 1}, 1, {.restitution = 1, .friction = 0});
+    b.velocity = {-u, -u};
+    def.bodies = {a, b};
+    World world(def);
+    double deepest = 0;
+    for (int k = 0; k < world.rate() / 2; ++k) {
+        world.step();
+        deepest = std::max(deepest, world.stats().max_overlap);
+    }
+    EXPECT_LT(deepest, 5e-4);
+    EXPECT_NEAR(world.bodies()[0].velocity.x, -u, 1e-6 * v);
+    EXPECT_NEAR(world.bodies()[0].velocity.y, -u, 1e-6 * v);
+    EXPECT_NEAR(world.bodies()[1].velocity.x, u, 1e-6 * v);
+    EXPECT_NEAR(world.bodies()[0].angular_velocity, 0, 1e-6);
+}
+
 // The bars: stacks within 5 mm of their ideal heights and 2 mm sideways.
 void expect_stands(const WorldDef& def, double seconds, std::size_t first) {
     World world(def);

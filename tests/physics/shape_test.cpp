@@ -164,6 +164,29 @@ TEST(ManifoldTest, BoxOnItsCornerHasOnePoint) {
     EXPECT_NEAR(m.normal.y(), 1, 1e-12);
 }
 
+// Two unit boxes corner to corner along the diagonal, 1 cm apart: no face overlaps the other
+// sideways, so clipping leaves nothing; the contact is the one point between the corners,
+// along the diagonal, apart by the corners' distance (without it such a pair had no contact
+// at all and could close a whole step's travel into each other).
+TEST(ManifoldTest, BoxesCornerToCornerHaveOnePointBetweenTheCorners) {
+    const Polygon crate = box(1, 1);
+    const double gap = 0.01, offset = 1 + gap / std::sqrt(2.0);
+    const Transform xa = Transform::of(V2(0, 0), 0), xb = Transform::of(V2(offset, offset), 0);
+    for (const bool swapped : {false, true}) {
+        const Manifold m = swapped ? collide(crate, xb, crate, xa, 0.02) : collide(crate, xa, crate, xb, 0.02);
+        ASSERT_EQ(m.count, 1) << swapped;
+        EXPECT_NEAR(m.points[0].separation, gap, 1e-12);
+        const double toward = swapped ? -std::sqrt(0.5) : std::sqrt(0.5);   // from A to B
+        EXPECT_NEAR(m.normal.x(), toward, 1e-12);
+        EXPECT_NEAR(m.normal.y(), toward, 1e-12);
+        const double middle = 0.5 + 0.25 * gap * std::sqrt(2.0);
+        EXPECT_NEAR(m.points[0].point.x(), middle, 1e-12);
+        EXPECT_NEAR(m.points[0].point.y(), middle, 1e-12);
+    }
+    // Beyond the speculative distance, nothing.
+    EXPECT_EQ(collide(crate, xa, crate, xb, 0.005).count, 0);
+}
+
 // A circle against a box: in front of a face the face's normal; beyond a corner the direction
 // from the corner to the centre.
 TEST(ManifoldTest, CircleAgainstABoxFaceAndCorner) {
