@@ -56,6 +56,10 @@ void BodySolver::integrate_positions(std::vector<RigidBody>& bodies, double dt) 
 void BodySolver::push_out(std::vector<RigidBody>& bodies) {
     std::vector<V2>& moved = moved_;
     std::vector<double>& turned = turned_;
+    // Every push counts (the islands' below too): see the sweeps.
+    pushes_ = 0;
+    pushed_at_.assign(bodies.size(), 0);
+    seen_at_.assign(fresh_.size(), 0);
     // Whatever overlap is left beyond the slop is pushed out, point by point: positions only,
     // so no velocity (and no energy) is added. A point's separation follows from how far its
     // two anchors moved along the manifold's normal since the manifold was made, which is
@@ -125,6 +129,38 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
             }
         }
         if (!overlaps || !direct_solver_.positions(island, state_, separation_, push_)) return;
+        // As a single point is pushed by at most max_correction a sweep, so is an island's
+        // body: a light body crushed between a wall and a heavy body whose faces meet at a
+        // slant can only get out along the slant, and was pushed metres along it at once.
+        shifts_.clear();
+        const auto shift = [&](std::uint32_t body, const V2& by, double turn_by) {
+            for (Shift& s : shifts_) {
+                if (s.body != body) continue;
+                s.by += by;
+                s.turn += turn_by;
+                return;
+            }
+            shifts_.push_back({body, by, turn_by});
+        };
+        std::size_t at = 0;
+        for (const IslandContact& ic : island) {
+            const PairContact& pc = *pair_of(ic);
+            for (int q = 0; q < pc.contact.count; ++q, ++at) {
+                const BlockPoint& p = pc.contact.points[q];
+                const V2 impulse = push_[at] * pc.contact.normal;
+                const RigidBody& a = bodies[pc.a];
+                const RigidBody& b = bodies[pc.b];
+                shift(pc.a, -a.inv_mass * impulse, -a.inv_inertia * cross(p.ra, impulse));
+                shift(pc.b, b.inv_mass * impulse, b.inv_inertia * cross(p.rb, impulse));
+            }
+        }
+        double farthest = 0;
+        for (const Shift& s : shifts_) {
+            farthest = std::max(farthest, s.by.norm() + std::abs(s.turn) * bodies[s.body].bound);
+        }
+        if (farthest > def_.max_correction) {
+            for (double& x : push_) x *= def_.max_correction / farthest;
+        }
         std::size_t point = 0;
         for (const IslandContact& ic : island) {
             const PairContact& pc = *pair_of(ic);
@@ -144,9 +180,6 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
     // A contact neither of whose bodies was pushed since it was last looked at would be
     // looked at in vain: its separations are what they were (a resting pile's later sweeps
     // cost next to nothing).
-    pushes_ = 0;
-    pushed_at_.assign(bodies.size(), 0);
-    seen_at_.assign(fresh_.size(), 0);
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
         for (std::size_t i = 0; i < fresh_.size(); ++i) {
             if (direct_[i] || blocked_[i]) continue;

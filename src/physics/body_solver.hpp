@@ -334,6 +334,13 @@ private:
     std::size_t predictions_made_ = 0;       // in the last step
     double settle_ = 0;                      // m/s: slower approaches are not impacts
     std::vector<double> separation_, push_;   // scratch, per point of an island
+    // Scratch of push_out: how far an island's push would move and turn each of its bodies.
+    struct Shift {
+        std::uint32_t body = 0;
+        V2 by = V2::Zero();        // metres
+        double turn = 0;           // radians
+    };
+    std::vector<Shift> shifts_;
     // Scratch of push_out: pushes so far in the step, per body the count after its last push,
     // per contact the count when its separations were last looked at.
     std::uint32_t pushes_ = 0;
