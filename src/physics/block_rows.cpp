@@ -20,50 +20,22 @@ struct Ends {
     Floats vx, vy, w, pad, inv_mass, inv_inertia;
 };
 
-// Gathers the records of one end of a block's rows into lanes: records l and l + 4 share a
-// register, and an in-lane 4x4 transpose of each half turns eight records into four vectors of
-// eight lanes; each record is read with one access of its own size.
+// One end of a block's rows gathered into lanes, and scattered back (simd.hpp). The lanes of a
+// block share no record but the scratch one: a colour shares no moving body, immovable ends
+// have private records, and empty lanes all point at the scratch record and all store back the
+// zeros it holds.
 [[gnu::always_inline]] inline Ends gather(const Velocity* v, const std::uint32_t (&at)[8],
                                           const Floats& inv_mass, const Floats& inv_inertia) {
-    const Floats r04 = simd::join(v[at[0]].packed, v[at[4]].packed);
-    const Floats r15 = simd::join(v[at[1]].packed, v[at[5]].packed);
-    const Floats r26 = simd::join(v[at[2]].packed, v[at[6]].packed);
-    const Floats r37 = simd::join(v[at[3]].packed, v[at[7]].packed);
-    const Floats xy01 = simd::unpack_low(r04, r15);
-    const Floats wp01 = simd::unpack_high(r04, r15);
-    const Floats xy23 = simd::unpack_low(r26, r37);
-    const Floats wp23 = simd::unpack_high(r26, r37);
     Ends e;
-    e.vx = simd::low_pairs(xy01, xy23);
-    e.vy = simd::high_pairs(xy01, xy23);
-    e.w = simd::low_pairs(wp01, wp23);
-    e.pad = simd::high_pairs(wp01, wp23);
+    simd::gather8(v, at, e.vx, e.vy, e.w, e.pad);
     e.inv_mass = inv_mass;
     e.inv_inertia = inv_inertia;
     return e;
 }
 
-// The lanes of a block share no record but the scratch one: a colour shares no moving body,
-// immovable ends have private records, and empty lanes all point at the scratch record and all
-// store back the zeros it holds.
 [[gnu::always_inline]] inline void scatter(Velocity* v, const std::uint32_t (&at)[8],
                                            const Ends& e) {
-    const Floats xy01 = simd::unpack_low(e.vx, e.vy);
-    const Floats wp01 = simd::unpack_low(e.w, e.pad);
-    const Floats xy23 = simd::unpack_high(e.vx, e.vy);
-    const Floats wp23 = simd::unpack_high(e.w, e.pad);
-    const Floats r04 = simd::low_pairs(xy01, wp01);
-    const Floats r15 = simd::high_pairs(xy01, wp01);
-    const Floats r26 = simd::low_pairs(xy23, wp23);
-    const Floats r37 = simd::high_pairs(xy23, wp23);
-    v[at[0]].packed = simd::low_half(r04);
-    v[at[1]].packed = simd::low_half(r15);
-    v[at[2]].packed = simd::low_half(r26);
-    v[at[3]].packed = simd::low_half(r37);
-    v[at[4]].packed = simd::high_half(r04);
-    v[at[5]].packed = simd::high_half(r15);
-    v[at[6]].packed = simd::high_half(r26);
-    v[at[7]].packed = simd::high_half(r37);
+    simd::scatter8(v, at, e.vx, e.vy, e.w, e.pad);
 }
 
 // The impulse (px, py) on B, and its opposite on A, at offsets ra and rb.

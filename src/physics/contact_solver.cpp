@@ -55,25 +55,11 @@ inline void ContactSolver::transpose(const Lanes& r0, const Lanes& r1, const Lan
     c3 = simd::high_halves(t1, t3);
 }
 
-// Gathers the velocity records of one end of a block's rows into lanes, and scatters them back:
-// records l and l + 4 share a register, and an in-lane 4x4 transpose of each half turns eight
-// records into four vectors of eight lanes; each record is read and written with one access of
-// its own size.
+// Gathers the velocity records of one end of a block's rows into lanes, and scatters them back
+// (simd.hpp: one access of a record's own size each).
 inline void ContactSolver::load(const std::uint32_t (&records)[width], Floats& x, Floats& y,
                                 Floats& u, Floats& inv_mass) const {
-    const Velocity* const v = velocities_.data();
-    const Floats r04 = simd::join(v[records[0]].packed, v[records[4]].packed);
-    const Floats r15 = simd::join(v[records[1]].packed, v[records[5]].packed);
-    const Floats r26 = simd::join(v[records[2]].packed, v[records[6]].packed);
-    const Floats r37 = simd::join(v[records[3]].packed, v[records[7]].packed);
-    const Floats xy01 = simd::unpack_low(r04, r15);
-    const Floats uw01 = simd::unpack_high(r04, r15);
-    const Floats xy23 = simd::unpack_low(r26, r37);
-    const Floats uw23 = simd::unpack_high(r26, r37);
-    x = simd::low_pairs(xy01, xy23);
-    y = simd::high_pairs(xy01, xy23);
-    u = simd::low_pairs(uw01, uw23);
-    inv_mass = simd::high_pairs(uw01, uw23);
+    simd::gather8(velocities_.data(), records, x, y, u, inv_mass);
 }
 
 inline void ContactSolver::store(const std::uint32_t (&records)[width], const Floats& x,
@@ -81,23 +67,7 @@ inline void ContactSolver::store(const std::uint32_t (&records)[width], const Fl
     // The lanes of a block share no record but the scratch one: a colour shares no disc and
     // immovable ends have private copies; empty lanes all point at the scratch record, and all
     // store back the zeros it holds.
-    Velocity* const v = velocities_.data();
-    const Floats xy01 = simd::unpack_low(x, y);
-    const Floats uw01 = simd::unpack_low(u, inv_mass);
-    const Floats xy23 = simd::unpack_high(x, y);
-    const Floats uw23 = simd::unpack_high(u, inv_mass);
-    const Floats r04 = simd::low_pairs(xy01, uw01);
-    const Floats r15 = simd::high_pairs(xy01, uw01);
-    const Floats r26 = simd::low_pairs(xy23, uw23);
-    const Floats r37 = simd::high_pairs(xy23, uw23);
-    v[records[0]].packed = simd::low_half(r04);
-    v[records[1]].packed = simd::low_half(r15);
-    v[records[2]].packed = simd::low_half(r26);
-    v[records[3]].packed = simd::low_half(r37);
-    v[records[4]].packed = simd::high_half(r04);
-    v[records[5]].packed = simd::high_half(r15);
-    v[records[6]].packed = simd::high_half(r26);
-    v[records[7]].packed = simd::high_half(r37);
+    simd::scatter8(velocities_.data(), records, x, y, u, inv_mass);
 }
 
 // Pegs and held discs take colours too, so the colours stay valid whatever moves.

@@ -21,6 +21,8 @@
 #endif
 #endif
 
+#include <cstdint>
+
 namespace discreel::physics::detail::simd {
 
 using Double4 = double __attribute__((vector_size(32)));
@@ -110,6 +112,50 @@ template <class R, int... i, class V>
     return Float4{static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]),
                   static_cast<float>(v[3])};
 #endif
+}
+
+// Eight 16-byte records (a `packed` Float4 each) gathered into four vectors of eight lanes:
+// lane l of x, y, z, w is record at[l]'s first to fourth float. Records l and l + 4 share a
+// register and an in-lane 4x4 transpose of each half does the rest, so each record is read
+// with one access of its own size.
+template <class Record>
+[[gnu::always_inline]] inline void gather8(const Record* base, const std::uint32_t (&at)[8],
+                                           Float8& x, Float8& y, Float8& z, Float8& w) {
+    const Float8 r04 = join(base[at[0]].packed, base[at[4]].packed);
+    const Float8 r15 = join(base[at[1]].packed, base[at[5]].packed);
+    const Float8 r26 = join(base[at[2]].packed, base[at[6]].packed);
+    const Float8 r37 = join(base[at[3]].packed, base[at[7]].packed);
+    const Float8 xy01 = unpack_low(r04, r15);
+    const Float8 zw01 = unpack_high(r04, r15);
+    const Float8 xy23 = unpack_low(r26, r37);
+    const Float8 zw23 = unpack_high(r26, r37);
+    x = low_pairs(xy01, xy23);
+    y = high_pairs(xy01, xy23);
+    z = low_pairs(zw01, zw23);
+    w = high_pairs(zw01, zw23);
+}
+
+// The inverse of gather8: record at[l] gets lane l of x, y, z, w, one access each.
+template <class Record>
+[[gnu::always_inline]] inline void scatter8(Record* base, const std::uint32_t (&at)[8],
+                                            const Float8& x, const Float8& y, const Float8& z,
+                                            const Float8& w) {
+    const Float8 xy01 = unpack_low(x, y);
+    const Float8 zw01 = unpack_low(z, w);
+    const Float8 xy23 = unpack_high(x, y);
+    const Float8 zw23 = unpack_high(z, w);
+    const Float8 r04 = low_pairs(xy01, zw01);
+    const Float8 r15 = high_pairs(xy01, zw01);
+    const Float8 r26 = low_pairs(xy23, zw23);
+    const Float8 r37 = high_pairs(xy23, zw23);
+    base[at[0]].packed = low_half(r04);
+    base[at[1]].packed = low_half(r15);
+    base[at[2]].packed = low_half(r26);
+    base[at[3]].packed = low_half(r37);
+    base[at[4]].packed = high_half(r04);
+    base[at[5]].packed = high_half(r15);
+    base[at[6]].packed = high_half(r26);
+    base[at[7]].packed = high_half(r37);
 }
 
 #pragma GCC diagnostic pop

@@ -330,32 +330,43 @@ INSTANTIATE_TEST_SUITE_P(Seeds, Crowd,
                                     "Seed" + std::to_string(std::get<1>(info.param));
                          });
 
+// limits_bench's crowd: 64 boxes of side 0.8 m in a 10 m box, every other one `ratio` times
+// heavier, thrown in the directions of generator 7 at `radii_per_step` times 0.4 m a step.
+constexpr double crowd_side = 10;
+WorldDef thrown_boxes(double ratio, double radii_per_step) {
+    constexpr double r = 0.4;
+    WorldDef def;
+    const Material material{.restitution = 0.5, .friction = 0.5};
+    def.walls.push_back(testing::box({0, 0}, {crowd_side, crowd_side}, material));
+    testing::Rng rng(7);
+    const double speed = radii_per_step * r * def.rate;
+    for (int k = 0; k < 64; ++k) {
+        const double angle = rng.uniform(0, 2 * 3.141592653589793);
+        BodyDef d = circle({(1 + k % 8) * 1.1, (1 + k / 8) * 1.1},
+                           {speed * std::cos(angle), speed * std::sin(angle)}, r,
+                           k % 2 ? ratio : 1.0, material);
+        d.shape = *box_shape(2 * r, 2 * r);
+        def.bodies.push_back(d);
+    }
+    return def;
+}
+
+void expect_inside(const World& world) {
+    for (const BodyState& s : world.bodies()) {
+        EXPECT_GT(std::min(s.position.x, s.position.y), 0.0);
+        EXPECT_LT(std::max(s.position.x, s.position.y), crowd_side);
+    }
+}
+
 // limits_bench's crowd of boxes 100 times apart thrown at 10 radii per step (1 920 m/s): its
 // first steps push out block islands (larger islands of masses 100 apart) before the sweeps
 // over the other contacts, which once wrote past the push-out's per-body records (a crash in
 // Release, an error under ASan). It stays finite, and every box inside its walls.
 TEST(HeavyLight, BoxesFarApartInMassThrownFastStayFiniteAndInside) {
-    constexpr double r = 0.4, side = 10;
-    WorldDef def;
-    const Material material{.restitution = 0.5, .friction = 0.5};
-    def.walls.push_back(testing::box({0, 0}, {side, side}, material));
-    testing::Rng rng(7);
-    const double speed = 10 * r * def.rate;
-    for (int k = 0; k < 64; ++k) {
-        const double angle = rng.uniform(0, 2 * 3.141592653589793);
-        BodyDef d = circle({(1 + k % 8) * 1.1, (1 + k / 8) * 1.1},
-                           {speed * std::cos(angle), speed * std::sin(angle)}, r,
-                           k % 2 ? 100.0 : 1.0, material);
-        d.shape = *box_shape(2 * r, 2 * r);
-        def.bodies.push_back(d);
-    }
-    World world(def);
+    World world(thrown_boxes(100, 10));
     for (int k = 0; k < world.rate() / 4; ++k) world.step();
     ASSERT_FALSE(world.failure().has_value());
-    for (const BodyState& s : world.bodies()) {
-        EXPECT_GT(std::min(s.position.x, s.position.y), 0.0);
-        EXPECT_LT(std::max(s.position.x, s.position.y), side);
-    }
+    expect_inside(world);
 }
 
 // limits_bench's crowd of boxes 1e6 times apart thrown at 1 radius per step: at 1.38 s a light
@@ -366,21 +377,7 @@ TEST(HeavyLight, BoxesFarApartInMassThrownFastStayFiniteAndInside) {
 // most its inner radius a sweep (held to 2 cm, the box was pushed through the wall instead);
 // the energy rises by at most 0.001 % of the start, and every box stays inside.
 TEST(HeavyLight, ACrushedLightBoxIsPushedOutInSmallSteps) {
-    constexpr double r = 0.4, side = 10;
-    WorldDef def;
-    const Material material{.restitution = 0.5, .friction = 0.5};
-    def.walls.push_back(testing::box({0, 0}, {side, side}, material));
-    testing::Rng rng(7);
-    const double speed = r * def.rate;
-    for (int k = 0; k < 64; ++k) {
-        const double angle = rng.uniform(0, 2 * 3.141592653589793);
-        BodyDef d = circle({(1 + k % 8) * 1.1, (1 + k / 8) * 1.1},
-                           {speed * std::cos(angle), speed * std::sin(angle)}, r,
-                           k % 2 ? 1e6 : 1.0, material);
-        d.shape = *box_shape(2 * r, 2 * r);
-        def.bodies.push_back(d);
-    }
-    World world(def);
+    World world(thrown_boxes(1e6, 1));
     const double start = world.energy();
     double frame = start, rise = 0;
     for (int k = 1; k <= 700; ++k) {
@@ -390,10 +387,7 @@ TEST(HeavyLight, ACrushedLightBoxIsPushedOutInSmallSteps) {
         frame = world.energy();
     }
     EXPECT_LT(rise, 0.01 * start);
-    for (const BodyState& s : world.bodies()) {
-        EXPECT_GT(std::min(s.position.x, s.position.y), 0.0);
-        EXPECT_LT(std::max(s.position.x, s.position.y), side);
-    }
+    expect_inside(world);
 }
 
 }  // namespace
