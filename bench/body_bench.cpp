@@ -12,6 +12,8 @@
 //
 //   body_bench [seconds [rate...]]   default: 5 s at 480 Hz, the default physics.rate (a lower
 //                                    rate takes substeps of at most 1/480 s: the same work)
+//   DISCREEL_SEED=s                  another layout of the polygons (default 12345): the pile is
+//                                    chaotic, its deepest overlap differs by seed
 #include <time.h>
 
 #include <algorithm>
@@ -90,7 +92,8 @@ WorldDef polygons(int rate) {
     box.restitution = 0.3;
     box.friction = 0.4;
     def.walls.push_back(box);
-    std::uint64_t state = 12345;
+    const char* seed = std::getenv("DISCREEL_SEED");
+    std::uint64_t state = seed != nullptr ? std::strtoull(seed, nullptr, 10) : 12345;
     const auto uniform = [&](double lo, double hi) {
         std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
         z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -230,7 +233,11 @@ int main(int argc, char** argv) {
                            : run_of.scene == "pyramid" ? pyramid(rate)
                                                        : polygons(rate);
             def.sleep = run_of.sleep;
-            const std::string name = run_of.sleep ? run_of.scene + "/sleep" : run_of.scene;
+            std::string name = run_of.sleep ? run_of.scene + "/sleep" : run_of.scene;
+            // Rows of another layout say which (the CSV has no seed column).
+            if (run_of.scene == "polygons" && std::getenv("DISCREEL_SEED") != nullptr) {
+                name += std::string("/seed=") + std::getenv("DISCREEL_SEED");
+            }
             const Result r = run(def, seconds, run_of.scene == "polygons");
             std::printf("%-15s %6zu %5d %10.1f %8.2f %8.2f %10.3f %10.2f %10.3f\n", name.c_str(),
                         def.bodies.size(), rate, r.ms_per_second, r.sag_mm, r.drift_mm,
