@@ -90,10 +90,11 @@ DISCREEL_CLONES void warm_blocks(std::span<const BlockRows::Block> blocks, Veloc
         Ends a = gather(records, r.a, r.a_inv_mass, r.a_inv_inertia);
         Ends b = gather(records, r.b, r.b_inv_mass, r.b_inv_inertia);
         const Floats tx = r.normal_y, ty = -r.normal_x;   // -perp(normal)
-        push(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, r.normal1 * r.normal_x + r.tangent1 * tx,
-             r.normal1 * r.normal_y + r.tangent1 * ty);
-        push(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, r.normal2 * r.normal_x + r.tangent2 * tx,
-             r.normal2 * r.normal_y + r.tangent2 * ty);
+        for (unsigned k = 0; k < 2; ++k) {
+            push(a, b, r.ra_x[k], r.ra_y[k], r.rb_x[k], r.rb_y[k],
+                 r.normal[k] * r.normal_x + r.tangent[k] * tx,
+                 r.normal[k] * r.normal_y + r.tangent[k] * ty);
+        }
         scatter(records, r.a, a);
         scatter(records, r.b, b);
     }
@@ -107,18 +108,18 @@ DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks, Velocity* 
         Ends a = gather(records, r.a, r.a_inv_mass, r.a_inv_inertia);
         Ends b = gather(records, r.b, r.b_inv_mass, r.b_inv_inertia);
         const Floats tx = r.normal_y, ty = -r.normal_x;   // -perp(normal)
-        friction_at(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, tx, ty, r.slip1, r.tangent_mass1,
-                    r.friction, r.normal1, r.tangent1);
-        friction_at(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, tx, ty, r.slip2, r.tangent_mass2,
-                    r.friction, r.normal2, r.tangent2);
+        for (unsigned k = 0; k < 2; ++k) {
+            friction_at(a, b, r.ra_x[k], r.ra_y[k], r.rb_x[k], r.rb_y[k], tx, ty, r.slip[k],
+                        r.tangent_mass[k], r.friction, r.normal[k], r.tangent[k]);
+        }
 
         // The normal block: K x + b = w, x >= 0, w >= 0, x_i w_i = 0 (block_solver.cpp).
-        const Floats old1 = r.normal1, old2 = r.normal2;
+        const Floats old1 = r.normal[0], old2 = r.normal[1];
         Floats vn1, vn2;
-        along(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, r.normal_x, r.normal_y, vn1);
-        along(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, r.normal_x, r.normal_y, vn2);
-        const Floats b1 = vn1 - r.bias1 - (r.k11 * old1 + r.k12 * old2);
-        const Floats b2 = vn2 - r.bias2 - (r.k12 * old1 + r.k22 * old2);
+        along(a, b, r.ra_x[0], r.ra_y[0], r.rb_x[0], r.rb_y[0], r.normal_x, r.normal_y, vn1);
+        along(a, b, r.ra_x[1], r.ra_y[1], r.rb_x[1], r.rb_y[1], r.normal_x, r.normal_y, vn2);
+        const Floats b1 = vn1 - r.bias[0] - (r.k11 * old1 + r.k12 * old2);
+        const Floats b2 = vn2 - r.bias[1] - (r.k12 * old1 + r.k22 * old2);
         const Mask two = r.two > zero;
         // Both points pushing.
         const Floats both1 = (-r.k22 * b1 + r.k12 * b2) * r.inv_det;
@@ -138,10 +139,10 @@ DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks, Velocity* 
         const Floats x2_single = use_first ? zero : second_or_none;
         const Floats x2 = use_both ? both2 : x2_single;
         const Floats d1 = x1 - old1, d2 = x2 - old2;
-        push(a, b, r.ra1_x, r.ra1_y, r.rb1_x, r.rb1_y, d1 * r.normal_x, d1 * r.normal_y);
-        push(a, b, r.ra2_x, r.ra2_y, r.rb2_x, r.rb2_y, d2 * r.normal_x, d2 * r.normal_y);
-        r.normal1 = x1;
-        r.normal2 = x2;
+        push(a, b, r.ra_x[0], r.ra_y[0], r.rb_x[0], r.rb_y[0], d1 * r.normal_x, d1 * r.normal_y);
+        push(a, b, r.ra_x[1], r.ra_y[1], r.rb_x[1], r.rb_y[1], d2 * r.normal_x, d2 * r.normal_y);
+        r.normal[0] = x1;
+        r.normal[1] = x2;
         scatter(records, r.a, a);
         scatter(records, r.b, b);
     }
@@ -238,9 +239,6 @@ void BlockRows::fill(const RowRef& r, std::span<const BlockBody> bodies, Block& 
     // A single point's second does nothing: no offset, no mass, no impulse, and a 1 where the
     // block would divide by it. Every field is written: a lane kept from the last layout may
     // have held two points.
-    const BlockPoint none{};
-    const BlockPoint& p1 = c.points[0];
-    const BlockPoint& p2 = two ? c.points[1] : none;
     block.a_inv_mass[l] = f(a.inv_mass * unit);
     block.a_inv_inertia[l] = f(a.inv_inertia * unit);
     block.b_inv_mass[l] = f(b.inv_mass * unit);
@@ -249,33 +247,24 @@ void BlockRows::fill(const RowRef& r, std::span<const BlockBody> bodies, Block& 
     block.normal_y[l] = f(c.normal.y());
     block.friction[l] = f(c.friction);
     block.two[l] = two ? 1 : 0;
-    // The velocities at build(), folded into the bounds in doubles.
+    // The velocities at build(), folded into the bounds in doubles: each point's bias (its
+    // target less its normal velocity) and slip (its tangential velocity).
     const V2 tangent(c.normal.y(), -c.normal.x());
-    // A point's bias (its target less its normal velocity) and slip (its tangential velocity).
-    const auto fold = [&](const BlockPoint& p) {
-        const V2 rel = relative_velocity(p, a, b);
-        return std::pair{f(p.target - rel.dot(c.normal)), f(rel.dot(tangent))};
-    };
-    const auto [bias1, slip1] = fold(p1);
-    block.bias1[l] = bias1;
-    block.slip1[l] = slip1;
-    block.ra1_x[l] = f(p1.ra.x());
-    block.ra1_y[l] = f(p1.ra.y());
-    block.rb1_x[l] = f(p1.rb.x());
-    block.rb1_y[l] = f(p1.rb.y());
-    block.tangent_mass1[l] = f(p1.tangent_mass / unit);
-    block.normal1[l] = f(p1.normal_impulse / unit);
-    block.tangent1[l] = f(p1.tangent_impulse / unit);
-    const auto [bias2, slip2] = two ? fold(p2) : std::pair{0.0F, 0.0F};
-    block.bias2[l] = bias2;
-    block.slip2[l] = slip2;
-    block.ra2_x[l] = f(p2.ra.x());
-    block.ra2_y[l] = f(p2.ra.y());
-    block.rb2_x[l] = f(p2.rb.x());
-    block.rb2_y[l] = f(p2.rb.y());
-    block.tangent_mass2[l] = f(p2.tangent_mass / unit);
-    block.normal2[l] = f(p2.normal_impulse / unit);
-    block.tangent2[l] = f(p2.tangent_impulse / unit);
+    const BlockPoint none{};
+    for (unsigned k = 0; k < 2; ++k) {
+        const bool used = k < static_cast<unsigned>(c.count);
+        const BlockPoint& p = used ? c.points[k] : none;
+        const V2 rel = used ? relative_velocity(p, a, b) : V2(V2::Zero());
+        block.bias[k][l] = f(p.target - rel.dot(c.normal));
+        block.slip[k][l] = f(rel.dot(tangent));
+        block.ra_x[k][l] = f(p.ra.x());
+        block.ra_y[k][l] = f(p.ra.y());
+        block.rb_x[k][l] = f(p.rb.x());
+        block.rb_y[k][l] = f(p.rb.y());
+        block.tangent_mass[k][l] = f(p.tangent_mass / unit);
+        block.normal[k][l] = f(p.normal_impulse / unit);
+        block.tangent[k][l] = f(p.tangent_impulse / unit);
+    }
     const double k11 = c.k11 * unit;
     const double k12 = two ? c.k12 * unit : 0;
     const double k22 = two ? c.k22 * unit : 1;
@@ -303,9 +292,12 @@ void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> b
     for (const std::uint32_t i : moved_) {
         start_[i] = bodies[i];
         velocities_[i] = Velocity{};
-        if (bodies[i].inv_mass > 0) lightest_inverse = std::min(lightest_inverse, bodies[i].inv_mass);
+        if (bodies[i].inv_mass > 0) {
+            lightest_inverse = std::min(lightest_inverse, bodies[i].inv_mass);
+        }
     }
-    mass_unit_ = std::isfinite(lightest_inverse) ? std::ldexp(1.0, std::ilogb(1 / lightest_inverse)) : 1;
+    mass_unit_ =
+        std::isfinite(lightest_inverse) ? std::ldexp(1.0, std::ilogb(1 / lightest_inverse)) : 1;
     for (std::size_t i = 0; i < rows.size(); ++i) {
         fill(rows[i], bodies, blocks_[lane_of_[i] / width], lane_of_[i] % width);
     }
@@ -332,22 +324,21 @@ void BlockRows::reload(std::span<const BlockBody> bodies) {
                                              static_cast<float>(bodies[i].omega - start_[i].omega),
                                              0.0F};
     }
-    for (std::size_t i = 0; i < taken_.size(); ++i) {
-        const Block& block = blocks_[lane_of_[i] / width];
-        const unsigned l = lane_of_[i] % width;
-        taken_[i] = {block.normal1[l] * mass_unit_, block.normal2[l] * mass_unit_,
-                     block.tangent1[l] * mass_unit_, block.tangent2[l] * mass_unit_};
-    }
+    for (std::size_t i = 0; i < taken_.size(); ++i) taken_[i] = impulses_of(i);
+}
+
+std::array<double, 4> BlockRows::impulses_of(std::size_t i) const {
+    const Block& block = blocks_[lane_of_[i] / width];
+    const unsigned l = lane_of_[i] % width;
+    return {block.normal[0][l] * mass_unit_, block.normal[1][l] * mass_unit_,
+            block.tangent[0][l] * mass_unit_, block.tangent[1][l] * mass_unit_};
 }
 
 void BlockRows::finish(std::span<const RowRef> rows, std::span<BlockBody> bodies) const {
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        const Block& block = blocks_[lane_of_[i] / width];
-        const unsigned l = lane_of_[i] % width;
         BlockContact& c = *rows[i].contact;
         const V2 tangent(c.normal.y(), -c.normal.x());
-        const double now[4] = {block.normal1[l] * mass_unit_, block.normal2[l] * mass_unit_,
-                               block.tangent1[l] * mass_unit_, block.tangent2[l] * mass_unit_};
+        const std::array<double, 4> now = impulses_of(i);
         for (int k = 0; k < c.count; ++k) {
             const auto q = static_cast<std::size_t>(k);
             BlockPoint& p = c.points[k];

@@ -64,17 +64,18 @@ public:
         // velocities are gathered.
         Floats a_inv_mass{}, a_inv_inertia{}, b_inv_mass{}, b_inv_inertia{};
         Floats normal_x{}, normal_y{};
-        Floats ra1_x{}, ra1_y{}, rb1_x{}, rb1_y{}, ra2_x{}, ra2_y{}, rb2_x{}, rb2_y{};
         Floats k11{}, k12{}, k22{};               // mass units
         Floats inv_k11{}, inv_k22{}, inv_det{};   // 0 where not usable
         Floats regular{};                         // 1 where the 2x2 block is well-conditioned
         Floats two{};                             // 1 for two points, 0 for one
-        Floats tangent_mass1{}, tangent_mass2{};  // mass units
-        // m/s: each point's target less its normal velocity at build(), the bound on the
-        // corrections' normal velocity; and its tangential velocity at build().
-        Floats bias1{}, bias2{}, slip1{}, slip2{};
         Floats friction{};
-        Floats normal1{}, normal2{}, tangent1{}, tangent2{};   // accumulated, mass units m/s
+        // Per point of the manifold (a single point's second is all zeros):
+        Floats ra_x[2]{}, ra_y[2]{}, rb_x[2]{}, rb_y[2]{};   // metres
+        Floats tangent_mass[2]{};                 // mass units
+        // m/s: the point's target less its normal velocity at build(), the bound on the
+        // corrections' normal velocity; and its tangential velocity at build().
+        Floats bias[2]{}, slip[2]{};
+        Floats normal[2]{}, tangent[2]{};         // accumulated impulses, mass units m/s
     };
 
 private:
@@ -82,6 +83,8 @@ private:
     bool same_layout(std::span<const RowRef> rows, std::span<const BlockBody> bodies) const;
     void lay_out(std::span<const RowRef> rows, std::span<const BlockBody> bodies);
     void fill(const RowRef& r, std::span<const BlockBody> bodies, Block& block, unsigned l) const;
+    // Row i's accumulated impulses (normal, normal, tangent, tangent), N s.
+    std::array<double, 4> impulses_of(std::size_t i) const;
 
     std::vector<Block> blocks_;
     // Per row: its points' impulses (normal, normal, tangent, tangent; N s) that the bodies'

@@ -1,6 +1,7 @@
 #pragma once
 // Internal representation shared by the solver stages. Discs come first in World's body array,
 // followed by one fixed body per wall feature, so every contact is a pair of body indices.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -12,6 +13,14 @@ using V2 = Eigen::Vector2d;
 
 inline double cross(const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); }
 inline V2 perp(const V2& a) { return V2(-a.y(), a.x()); }
+// The point of segment [a, b] nearest to x.
+inline V2 closest_on_segment(const V2& x, const V2& a, const V2& b) {
+    const V2 ab = b - a;
+    const double length2 = ab.squaredNorm();
+    if (length2 <= 0) return a;
+    const double s = std::clamp((x - a).dot(ab) / length2, 0.0, 1.0);
+    return a + s * ab;
+}
 
 enum class Motion : std::uint8_t {
     dynamic,  // moved by gravity and contacts

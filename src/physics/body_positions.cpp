@@ -49,7 +49,9 @@ void BodySolver::integrate_positions(std::vector<RigidBody>& bodies, double dt) 
         b.angle += turned[i];
     }
     spin_.resize(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) spin_[i] = {std::cos(turned[i]), std::sin(turned[i])};
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        spin_[i] = {std::cos(turned[i]), std::sin(turned[i])};
+    }
 
 }
 
@@ -64,15 +66,11 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
     // so no velocity (and no energy) is added. A point's separation follows from how far its
     // two anchors moved along the manifold's normal since the manifold was made, which is
     // accurate for the small motions of a step and costs no new manifold.
-    const auto rotate_by = [&](const V2& v, std::size_t i) {
-        const auto [c, s] = spin_[i];
-        return V2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
-    };
     // The separation of point k of pc now, and its anchors' offsets now.
     const auto separation_now = [&](const PairContact& pc, int k, V2& ra, V2& rb) {
         const Anchor& an = pc.anchors[static_cast<std::size_t>(k)];
-        ra = rotate_by(an.ra, pc.a);
-        rb = rotate_by(an.rb, pc.b);
+        ra = turned_by(an.ra, spin_[pc.a]);
+        rb = turned_by(an.rb, spin_[pc.b]);
         const V2 drift = (moved[pc.b] + rb - an.rb) - (moved[pc.a] + ra - an.ra);
         return an.separation + pc.contact.normal.dot(drift);
     };

@@ -50,6 +50,13 @@ struct RigidBody {
 // Awake and able to move (held bodies too): a pair needs one such body to be solved.
 inline bool stirs(const RigidBody& b) { return !b.asleep && b.motion != Motion::fixed; }
 
+// v turned by the angle whose cosine and sine are `spin` (BodySolver's spin_: each body's
+// turn in the step).
+inline V2 turned_by(const V2& v, const std::pair<double, double>& spin) {
+    const auto [c, s] = spin;
+    return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+}
+
 // A body's velocities and inverse masses as the block solve reads them.
 inline BlockBody velocity_of(const RigidBody& b) {
     return BlockBody{b.v, b.omega, b.inv_mass, b.inv_inertia};

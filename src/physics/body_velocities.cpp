@@ -24,11 +24,6 @@ double kinetic_energy(const BlockBody& b, const V2& frame = V2::Zero()) {
     return energy;
 }
 
-// v turned by the angle whose cosine and sine are `spin`.
-V2 rotate(const V2& v, const std::pair<double, double>& spin) {
-    const auto [c, s] = spin;
-    return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
-}
 
 }  // namespace
 
@@ -170,15 +165,19 @@ void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
             const double vn = pc.approach[static_cast<std::size_t>(k)];
             // A larger island of masses far apart does not bounce: its block iterations leave
             // light bodies rattling between heavy ones, and bouncing them by either rule pumps
-            // energy in (heavy_light_bench's box; docs/tried.md).
-            const bool hit = vn < -settle && c.points[k].normal_impulse > 0 && !blocked_[i] && !pc.touched;
+            // energy in (heavy_light_bench's box; docs/tried.md). Nor does a pair that touched
+            // in the step before: a light body wedged in a pile took Newton's bounce from each
+            // neighbour in turn and rattled.
+            const bool hit = vn < -settle && c.points[k].normal_impulse > 0 && !blocked_[i] &&
+                             !pc.touched;
             c.points[k].target = hit ? -pc.restitution * vn : 0;
             bounce = bounce || (hit && pc.restitution > 0);
         }
         if (!bounce && !direct_[i]) continue;
         for (int k = 0; k < c.count; ++k) {
             BlockPoint& p = c.points[k];
-            const V2 ra = rotate(p.ra, spin_[pc.a]), rb = rotate(p.rb, spin_[pc.b]);
+            const V2 ra = turned_by(p.ra, spin_[pc.a]);
+            const V2 rb = turned_by(p.rb, spin_[pc.b]);
             const V2 point = 0.5 * ((bodies[pc.a].x + ra) + (bodies[pc.b].x + rb));
             p.ra = point - bodies[pc.a].x;
             p.rb = point - bodies[pc.b].x;

@@ -92,16 +92,6 @@ std::vector<Feature> features_of(const std::vector<WallDef>& walls) {
     return out;
 }
 
-namespace {
-V2 closest_on_segment(const V2& x, const V2& a, const V2& b) {
-    const V2 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    if (len2 == 0.0) return a;
-    const double s = std::clamp((x - a).dot(ab) / len2, 0.0, 1.0);
-    return a + ab * s;
-}
-}  // namespace
-
 Proximity disc_capsule(const V2& x, double r, const Feature& f) {
     const V2 q = closest_on_segment(x, f.a, f.b);
     const V2 d = x - q;

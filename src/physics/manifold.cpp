@@ -101,13 +101,6 @@ std::pair<int, double> max_separation(const Polygon& poly, const Polygon& other)
     return {face, best};
 }
 
-// The point of segment [p, q] nearest to x.
-V2 nearest_on(const V2& x, const V2& p, const V2& q) {
-    const V2 d = q - p;
-    const double t = std::clamp((x - p).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    return p + t * d;
-}
-
 // A reference face [v1, v2] and an incident face [w1, w2] that do not overlap sideways (corner
 // against corner): the contact is between their nearest points, along the line joining them,
 // one point. Faces in the same frame; `radius` the two radii summed, `ref_radius` the
@@ -120,10 +113,10 @@ struct CornerContact {
 std::optional<CornerContact> corner_to_corner(const V2& v1, const V2& v2, const V2& w1,
                                               const V2& w2, double radius, double ref_radius) {
     // Between two segments that do not cross, the nearest pair has an end on one of them.
-    const std::array<std::pair<V2, V2>, 4> candidates{{{v1, nearest_on(v1, w1, w2)},
-                                                       {v2, nearest_on(v2, w1, w2)},
-                                                       {nearest_on(w1, v1, v2), w1},
-                                                       {nearest_on(w2, v1, v2), w2}}};
+    const std::array<std::pair<V2, V2>, 4> candidates{{{v1, closest_on_segment(v1, w1, w2)},
+                                                       {v2, closest_on_segment(v2, w1, w2)},
+                                                       {closest_on_segment(w1, v1, v2), w1},
+                                                       {closest_on_segment(w2, v1, v2), w2}}};
     const auto* best = &candidates[0];
     for (const auto& c : candidates) {
         if ((c.second - c.first).squaredNorm() < (best->second - best->first).squaredNorm()) {
@@ -212,7 +205,8 @@ Manifold polygons(const Polygon& a, const Transform& xa, const Polygon& b, const
             const V2 world_normal = xa.rotate(c->normal);
             m.normal = flip ? V2(-world_normal) : world_normal;
             const int corner = 0x40 | incident;
-            const std::uint16_t id = flip ? make_id(corner, face | 0x40) : make_id(face | 0x40, corner);
+            const std::uint16_t id =
+                flip ? make_id(corner, face | 0x40) : make_id(face | 0x40, corner);
             m.points[0] = {xa.apply(c->point), c->separation, id};
             m.count = 1;
             return m;

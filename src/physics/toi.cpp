@@ -32,14 +32,6 @@ struct Core {
     }
 };
 
-V2 closest_on_segment(const V2& p, const V2& a, const V2& b) {
-    const V2 ab = b - a;
-    const double length2 = ab.squaredNorm();
-    if (length2 <= 0) return a;
-    const double s = std::clamp((p - a).dot(ab) / length2, 0.0, 1.0);
-    return a + s * ab;
-}
-
 bool segments_cross(const V2& a, const V2& b, const V2& c, const V2& d) {
     const double o1 = cross(b - a, c - a), o2 = cross(b - a, d - a);
     const double o3 = cross(d - c, a - c), o4 = cross(d - c, b - c);
