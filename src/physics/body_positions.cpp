@@ -129,8 +129,8 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
         if (!overlaps || !direct_solver_.positions(island, state_, separation_, push_)) return;
         // An island's body moves at most its inner radius a sweep: a light body crushed between
         // a wall and a heavy body whose faces meet at a slant can only get out along the slant,
-        // and was pushed metres along it at once (and launched at 4e4 m/s the next step). Held
-        // to single points' 2 cm, such a body was pushed through the wall instead.
+        // and its LCP would push it metres along it at once (and the next step launch it). A
+        // bound as small as a single point's 2 cm would leave it to be pushed through the wall.
         shifts_.clear();
         const auto shift = [&](std::uint32_t body, const V2& by, double turn_by) {
             for (Shift& s : shifts_) {

@@ -166,8 +166,8 @@ void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
             // A larger island of masses far apart does not bounce: its block iterations leave
             // light bodies rattling between heavy ones, and bouncing them by either rule pumps
             // energy in (heavy_light_bench's box; docs/tried.md). Nor does a pair that touched
-            // in the step before: a light body wedged in a pile took Newton's bounce from each
-            // neighbour in turn and rattled.
+            // in the step before: a light body wedged in a pile would take Newton's bounce from
+            // each neighbour in turn and rattle.
             const bool hit = vn < -settle && c.points[k].normal_impulse > 0 && !blocked_[i] &&
                              !pc.touched;
             c.points[k].target = hit ? -pc.restitution * vn : 0;
