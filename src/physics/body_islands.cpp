@@ -1,6 +1,7 @@
 // The islands of the manifold solver's step (body_solver.hpp): which contacts are solved
 // directly, as one problem per island of masses far apart, and which by blocks.
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <utility>
 
@@ -31,6 +32,25 @@ std::uint32_t BodySolver::island_of(const PairContact& pc, const std::vector<Rig
 
 void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
     const std::size_t n = bodies.size();
+    direct_.assign(fresh_.size(), 0);
+    blocked_.assign(fresh_.size(), 0);
+    far_islands_ = false;
+    // No island's masses can be further apart than the world's: where every moving body is
+    // within direct_mass_ratio of every other (a pile of alike bodies), every island iterates
+    // and none needs finding.
+    double lightest = 0, heaviest = HUGE_VAL;   // by inverse mass
+    for (const RigidBody& b : bodies) {
+        if (b.inv_mass <= 0) continue;
+        lightest = std::max(lightest, b.inv_mass);
+        heaviest = std::min(heaviest, b.inv_mass);
+    }
+    if (lightest < def_.direct_mass_ratio * heaviest) {
+        islands_.clear();
+        island_start_.assign(1, 0);
+        blocks_.clear();
+        block_start_.assign(1, 0);
+        return;
+    }
     parent_.resize(n);
     lightest_.resize(n);
     heaviest_.resize(n);
@@ -51,10 +71,7 @@ void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
         }
     }
     for (const PairContact& pc : fresh_) points_[island_of(pc, bodies)] += pc.contact.count;
-    direct_.assign(fresh_.size(), 0);
-    blocked_.assign(fresh_.size(), 0);
     group_key_.resize(fresh_.size());
-    far_islands_ = false;
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         const PairContact& pc = fresh_[i];
         const std::uint32_t r = island_of(pc, bodies);

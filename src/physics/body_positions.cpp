@@ -177,10 +177,15 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
         for_each_group(blocks_, block_start_, push_out_together);
     }
+    std::uint32_t pushes_before_sweep = 0;
     // A contact neither of whose bodies was pushed since it was last looked at would be
     // looked at in vain: its separations are what they were (a resting pile's later sweeps
     // cost next to nothing).
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
+        // A sweep that pushed nothing leaves every contact as it was looked at: the next would
+        // skip them all.
+        if (sweep > 0 && pushes_ == pushes_before_sweep) break;
+        pushes_before_sweep = pushes_;
         for (std::size_t i = 0; i < fresh_.size(); ++i) {
             if (direct_[i] || blocked_[i]) continue;
             const PairContact& pc = fresh_[i];
@@ -246,7 +251,9 @@ void BodySolver::mark_sunk(const std::vector<RigidBody>& bodies) {
         };
         if (!moved_far(pc.a) && !moved_far(pc.b)) continue;
         double apart = HUGE_VAL;
-        for (int k = 0; k < pc.manifold.count; ++k) apart = std::min(apart, pc.manifold.points[k].separation);
+        for (int k = 0; k < pc.contact.count; ++k) {
+            apart = std::min(apart, pc.anchors[static_cast<std::size_t>(k)].separation);
+        }
         if (apart <= 0) continue;
         const double deep = def_.slop + 0.05 * std::min(a.inner, b.inner);
         // No point of either body moved farther than its centre's travel and its turn at its

@@ -61,8 +61,8 @@ void BodySolver::list_pairs(const std::vector<RigidBody>& bodies) {
     }
 }
 
-void BodySolver::manifold_of(PairContact& pc, const PairContact* before,
-                             const std::vector<RigidBody>& bodies) {
+Manifold BodySolver::manifold_of(PairContact& pc, const PairContact* before,
+                                 const std::vector<RigidBody>& bodies) {
     const RigidBody& a = bodies[pc.a];
     const RigidBody& b = bodies[pc.b];
     const Transform& xa = transforms_[pc.a];
@@ -73,31 +73,32 @@ void BodySolver::manifold_of(PairContact& pc, const PairContact* before,
                        (offset - before->made.offset).norm() <=
                            def_.recycle_travel * std::min(a.inner, b.inner) &&
                        std::abs(turn - before->made.turn) <= def_.recycle_turn;
+    Manifold m;
     if (still) {
         // The points stay fixed to the bodies; each one's separation is how far apart its two
         // surface points are along the normal now.
         pc.made = before->made;
-        Manifold& m = pc.manifold;
         m.normal = xa.rotate(pc.made.normal);
-        m.count = before->manifold.count;
+        m.count = pc.made.count;
         for (int k = 0; k < m.count; ++k) {
             const Made::Point& p = pc.made.points[static_cast<std::size_t>(k)];
             const V2 on_a = xa.apply(p.a), on_b = xb.apply(p.b);
             m.points[k] = {0.5 * (on_a + on_b), m.normal.dot(on_b - on_a), p.id};
         }
-        return;
+        return m;
     }
-    pc.manifold = collide(a.shape, xa, b.shape, xb, margin_[pc.a] + margin_[pc.b]);
-    const Manifold& m = pc.manifold;
+    m = collide(a.shape, xa, b.shape, xb, margin_[pc.a] + margin_[pc.b]);
     pc.made.normal = xa.inverse_rotate(m.normal);
     pc.made.offset = offset;
     pc.made.turn = turn;
+    pc.made.count = m.count;
     for (int k = 0; k < m.count; ++k) {
         const ManifoldPoint& mp = m.points[k];
         const V2 half = 0.5 * mp.separation * m.normal;
         pc.made.points[static_cast<std::size_t>(k)] = {xa.inverse_apply(mp.point - half),
                                                        xb.inverse_apply(mp.point + half), mp.id};
     }
+    return m;
 }
 
 void BodySolver::apply_totals(const PairContact& pc, double sign) {
@@ -182,8 +183,8 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
             ++previous;
         }
         const bool had = previous != contacts_.end() && previous->a == i && previous->b == j;
-        manifold_of(pc, had ? &*previous : nullptr, bodies);
-        if (pc.manifold.count == 0) {
+        const Manifold m = manifold_of(pc, had ? &*previous : nullptr, bodies);
+        if (m.count == 0) {
             fresh_.pop_back();
             continue;
         }
@@ -198,24 +199,22 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
         const bool wall = heavier == 0;
         if ((fast_[i] || fast_[j]) && (wall || lighter < def_.direct_mass_ratio * heavier)) {
             double apart = HUGE_VAL;
-            for (int k = 0; k < pc.manifold.count; ++k) {
-                apart = std::min(apart, pc.manifold.points[k].separation);
-            }
+            for (int k = 0; k < m.count; ++k) apart = std::min(apart, m.points[k].separation);
             if (apart > def_.slop) {
                 fresh_.pop_back();
                 continue;
             }
         }
         BlockContact& c = pc.contact;
-        c.normal = pc.manifold.normal;
-        c.count = pc.manifold.count;
+        c.normal = m.normal;
+        c.count = m.count;
         c.friction = mix_friction(a.friction, b.friction);
         pc.restitution = mix_restitution(a.restitution, b.restitution);
         // Warm start: the impulses of the same features last step.
         pc.touched = had && previous->touched;   // until this step's impulses say otherwise
         const BlockBody va = velocity_of(a), vb = velocity_of(b);
         for (int k = 0; k < c.count; ++k) {
-            const ManifoldPoint& mp = pc.manifold.points[k];
+            const ManifoldPoint& mp = m.points[k];
             BlockPoint& p = c.points[k];
             p.ra = mp.point - a.x;
             p.rb = mp.point - b.x;
@@ -227,7 +226,7 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
             pc.approach[static_cast<std::size_t>(k)] = normal_velocity(c, p, va, vb);
             if (!had) continue;
             for (int q = 0; q < previous->contact.count; ++q) {
-                if (previous->manifold.points[q].id != mp.id) continue;
+                if (previous->made.points[static_cast<std::size_t>(q)].id != mp.id) continue;
                 p.normal_impulse = previous->contact.points[q].normal_impulse;
                 p.tangent_impulse = previous->contact.points[q].tangent_impulse;
             }

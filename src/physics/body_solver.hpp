@@ -172,13 +172,13 @@ private:
             std::uint16_t id = 0;
         };
         std::array<Point, 2> points{};
+        int count = 0;                 // points
         V2 normal = V2::UnitY();       // in A's frame
         V2 offset = V2::Zero();        // B's centroid in A's frame, metres
         double turn = 0;               // B's angle less A's, radians
     };
     struct PairContact {
         std::uint32_t a = 0, b = 0;    // body indices, a < b
-        Manifold manifold;
         Made made;
         BlockContact contact;
         std::array<Anchor, 2> anchors{};
@@ -219,10 +219,11 @@ private:
     // Counts each awake body's time at rest, puts islands at rest long enough to sleep and
     // parks their contacts.
     void fall_asleep(std::vector<RigidBody>& bodies, double dt);
-    // The manifold of pair (i, j) now: the one made before, moved with the bodies, while they
-    // moved little against each other since (def_.recycle_*), else a new one from collide.
-    void manifold_of(PairContact& pc, const PairContact* before,
-                     const std::vector<RigidBody>& bodies);
+    // The manifold of pc's pair now: the one made before, moved with the bodies, while they
+    // moved little against each other since (def_.recycle_*), else a new one from collide
+    // (kept in pc.made).
+    Manifold manifold_of(PairContact& pc, const PairContact* before,
+                         const std::vector<RigidBody>& bodies);
     // Sweeps the pairs with a fast body (or one fast_ marks) from the step's start to its end
     // and takes their impacts in time order (body_impacts.cpp); approaches slower than `settle`
     // are not impacts.
