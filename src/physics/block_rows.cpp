@@ -230,9 +230,10 @@ void BlockRows::lay_out(std::span<const RowRef> rows, std::span<const BlockBody>
 
 void BlockRows::fill(const RowRef& r, std::span<const BlockBody> bodies, Block& block,
                      unsigned l) const {
-    const BlockContact& c = *r.contact;
     const BlockBody& a = bodies[r.a];
     const BlockBody& b = bodies[r.b];
+    prepare_block(*r.contact, a, b);
+    const BlockContact& c = *r.contact;
     const double unit = mass_unit_;
     const auto f = [](double x) { return static_cast<float>(x); };
     const bool two = c.count > 1;

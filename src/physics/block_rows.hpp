@@ -26,13 +26,14 @@ namespace discreel::physics::detail {
 
 struct RowRef {
     std::uint32_t a = 0, b = 0;    // body indices
-    BlockContact* contact = nullptr;   // prepared (prepare_block), impulses accumulated
+    BlockContact* contact = nullptr;   // impulses accumulated; build() prepares it
 };
 
 class BlockRows {
 public:
-    // Lays out `rows` by colour, builds them from the bodies' velocities now and applies the
-    // contacts' impulses (the warm start) to the corrections.
+    // Lays out `rows` by colour, prepares their contacts (prepare_block), builds them from the
+    // bodies' velocities now and applies the contacts' impulses (the warm start) to the
+    // corrections.
     void build(std::span<const RowRef> rows, std::span<const BlockBody> bodies);
     // One pass over every row, colour by colour, in the order build() was given within one.
     void solve();

@@ -165,16 +165,18 @@ bool BodySolver::moves_fast(const RigidBody& b, double dt) const {
 }
 
 void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) {
-    fresh_.clear();
+    // fresh_'s elements are reused in place, each field written below before it is read:
+    // made afresh, a contact is some hundreds of bytes of zeros written for nothing.
+    std::size_t made = 0;
     auto previous = contacts_.begin();
     for (const std::uint64_t key : pairs_) {
         const auto i = static_cast<std::uint32_t>(key >> 32);
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
         const RigidBody& a = bodies[i];
         const RigidBody& b = bodies[j];
-        // Made in its place in fresh_ (a contact is some hundreds of bytes), and taken back
-        // out if the pair makes none.
-        PairContact& pc = fresh_.emplace_back();
+        // Taken back if the pair makes none.
+        PairContact& pc = made < fresh_.size() ? fresh_[made] : fresh_.emplace_back();
+        ++made;
         pc.a = i;
         pc.b = j;
         // The same pair last step (both lists in pair order): its manifold and its impulses.
@@ -185,7 +187,7 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
         const bool had = previous != contacts_.end() && previous->a == i && previous->b == j;
         const Manifold m = manifold_of(pc, had ? &*previous : nullptr, bodies);
         if (m.count == 0) {
-            fresh_.pop_back();
+            --made;
             continue;
         }
         // A fast body's pair that starts apart, against a wall or a body of alike mass, is met
@@ -201,11 +203,12 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
             double apart = HUGE_VAL;
             for (int k = 0; k < m.count; ++k) apart = std::min(apart, m.points[k].separation);
             if (apart > def_.slop) {
-                fresh_.pop_back();
+                --made;
                 continue;
             }
         }
         BlockContact& c = pc.contact;
+        c = BlockContact{};
         c.normal = m.normal;
         c.count = m.count;
         c.friction = mix_friction(a.friction, b.friction);
@@ -232,7 +235,7 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
             }
         }
     }
-
+    fresh_.resize(made);
 }
 
 void BodySolver::record_touches() {

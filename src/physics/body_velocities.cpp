@@ -39,15 +39,17 @@ void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {
         // the island iterates like the others.
         for (const IslandContact& ic : island) direct_[ic.pair] = 0;
     });
+    // The rows prepare themselves and apply their own warm start as they are built
+    // (block_rows.hpp); a block's is prepared here and is in the velocities its solve starts
+    // from. An even world has neither blocks nor warm starts to keep.
     if (far_islands_) warm_.resize(fresh_.size());
-    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+    for (std::size_t i = 0; far_islands_ && i < fresh_.size(); ++i) {
         PairContact& pc = fresh_[i];
         if (direct_[i]) continue;
-        prepare_block(pc.contact, state_[pc.a], state_[pc.b]);
-        // The rows apply their own warm start (block_rows.hpp); a block's is in the velocities
-        // its solve starts from.
-        if (blocked_[i]) apply_totals(pc, 1);
-        if (!far_islands_) continue;
+        if (blocked_[i]) {
+            prepare_block(pc.contact, state_[pc.a], state_[pc.b]);
+            apply_totals(pc, 1);
+        }
         for (int k = 0; k < pc.contact.count; ++k) {
             const BlockPoint& p = pc.contact.points[k];
             warm_[i][static_cast<std::size_t>(k)] = {p.normal_impulse, p.tangent_impulse};
