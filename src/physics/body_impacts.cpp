@@ -175,11 +175,11 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
                         static_cast<std::size_t>(def_.predictions_base);
     for (std::size_t i = 0; i < n; ++i) swept_[i] = swept_box(sweeps_[i], dt);
 
-    // The first predictions: pairs of swept boxes that overlap, one of them fast, by a sweep
-    // over the boxes' low x.
     impacts_.clear();
-    for_each_overlapping_pair(swept_, order_, [&](std::uint32_t i, std::uint32_t j) {
-        if (fast_[i] || fast_[j]) predict_impact(bodies, std::min(i, j), std::max(i, j), 0, dt);
+    order_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(i);
+    std::sort(order_.begin(), order_.end(), [&](std::uint32_t i, std::uint32_t j) {
+        return swept_[i][0] != swept_[j][0] ? swept_[i][0] < swept_[j][0] : i < j;
     });
 
     // What a body's new sweep may reach: the bodies that cannot move (walls, held bodies: few,
@@ -216,6 +216,17 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
             if (boxes_overlap(box, swept_[j])) f(j);
         }
     };
+    // The first predictions: each fast body's swept box against those it reaches (a sweep of
+    // every pair over the boxes' low x met each fast body's neighbours too, and every pair of
+    // a tall falling column). The heap orders them by time and pair, so the order they are
+    // made in does not matter.
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (!fast_[i]) continue;
+        for_each_reachable(i, [&](std::uint32_t j) {
+            if (j == i || (fast_[j] && j < i)) return;   // a fast j meets i from its own side
+            predict_impact(bodies, std::min(i, j), std::max(i, j), 0, dt);
+        });
+    }
 
     std::size_t budget = fast_count * static_cast<std::size_t>(def_.impacts_per_fast_body);
     while (!impacts_.empty() && budget > 0) {
