@@ -150,6 +150,34 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
     impact_touches_.clear();
     predictions_made_ = 0;
     settle_ = settle;
+    const std::size_t fast_count = begin_sweeps(bodies, dt);
+    if (fast_count == 0) return;
+    list_reach(bodies, dt);
+    // The first predictions: each fast body's swept box against those it reaches (a sweep of
+    // every pair over the boxes' low x met each fast body's neighbours too, and every pair of
+    // a tall falling column). The heap orders them by time and pair, so the order they are
+    // made in does not matter.
+    impacts_.clear();
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+        if (!fast_[i]) continue;
+        for_each_reachable(i, [&](std::uint32_t j) {
+            if (j == i || (fast_[j] && j < i)) return;   // a fast j meets i from its own side
+            predict_impact(bodies, std::min(i, j), std::max(i, j), 0, dt);
+        });
+    }
+    std::size_t budget = fast_count * static_cast<std::size_t>(def_.impacts_per_fast_body);
+    while (!impacts_.empty() && budget > 0) {
+        std::pop_heap(impacts_.begin(), impacts_.end(), later<PredictedImpact>);
+        const PredictedImpact e = impacts_.back();
+        impacts_.pop_back();
+        if (e.version_a != versions_[e.a] || e.version_b != versions_[e.b]) continue;
+        --budget;
+        take_impact(bodies, e, dt);
+    }
+    stop_unfinished(bodies);
+}
+
+std::size_t BodySolver::begin_sweeps(const std::vector<RigidBody>& bodies, double dt) {
     const std::size_t n = bodies.size();
     sweeps_.resize(n);
     swept_.resize(n);
@@ -167,175 +195,164 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
         if (b.inv_mass > 0 && travel > def_.impact_travel * b.inner) fast_[i] = 1;
         fast_count += fast_[i];
     }
-    if (fast_count == 0) return;
+    return fast_count;
+}
+
+void BodySolver::list_reach(const std::vector<RigidBody>& bodies, double dt) {
+    const std::size_t n = bodies.size();
     versions_.assign(n, 0);
     nudged_.assign(n, 0);
     unchecked_.assign(n, 0);
     predictions_left_ = static_cast<std::size_t>(def_.predictions_per_body) * n +
                         static_cast<std::size_t>(def_.predictions_base);
     for (std::size_t i = 0; i < n; ++i) swept_[i] = swept_box(sweeps_[i], dt);
-
-    impacts_.clear();
     order_.resize(n);
     for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(i);
     std::sort(order_.begin(), order_.end(), [&](std::uint32_t i, std::uint32_t j) {
         return swept_[i][0] != swept_[j][0] ? swept_[i][0] < swept_[j][0] : i < j;
     });
-
     // What a body's new sweep may reach: the bodies that cannot move (walls, held bodies: few,
     // and a container's slabs are wide), the moving ones by their boxes' low x (a box as wide
     // as the widest moving one starting up to that far to the left may overlap), and those an
     // impact has changed since.
     still_.clear();
     moving_.clear();
-    double widest = 0;
+    widest_ = 0;
     for (const std::uint32_t i : order_) {
         if (bodies[i].inv_mass == 0) {
             still_.push_back(i);
         } else {
             moving_.push_back(i);
-            widest = std::max(widest, swept_[i][2] - swept_[i][0]);
+            widest_ = std::max(widest_, swept_[i][2] - swept_[i][0]);
         }
     }
     moving_lo_.resize(moving_.size());
     for (std::size_t k = 0; k < moving_.size(); ++k) moving_lo_[k] = swept_[moving_[k]][0];
     changed_.clear();
     changed_flag_.assign(n, 0);
-    const auto for_each_reachable = [&](std::uint32_t i, auto&& f) {
-        const std::array<double, 4>& box = swept_[i];
-        for (const std::uint32_t j : still_) {
-            if (boxes_overlap(box, swept_[j])) f(j);
-        }
-        auto from = std::lower_bound(moving_lo_.begin(), moving_lo_.end(), box[0] - widest);
-        for (auto k = static_cast<std::size_t>(from - moving_lo_.begin());
-             k < moving_.size() && moving_lo_[k] <= box[2]; ++k) {
-            const std::uint32_t j = moving_[k];
-            if (!changed_flag_[j] && boxes_overlap(box, swept_[j])) f(j);
-        }
-        for (const std::uint32_t j : changed_) {
-            if (boxes_overlap(box, swept_[j])) f(j);
-        }
-    };
-    // The first predictions: each fast body's swept box against those it reaches (a sweep of
-    // every pair over the boxes' low x met each fast body's neighbours too, and every pair of
-    // a tall falling column). The heap orders them by time and pair, so the order they are
-    // made in does not matter.
-    for (std::uint32_t i = 0; i < n; ++i) {
-        if (!fast_[i]) continue;
-        for_each_reachable(i, [&](std::uint32_t j) {
-            if (j == i || (fast_[j] && j < i)) return;   // a fast j meets i from its own side
-            predict_impact(bodies, std::min(i, j), std::max(i, j), 0, dt);
-        });
-    }
+}
 
-    std::size_t budget = fast_count * static_cast<std::size_t>(def_.impacts_per_fast_body);
-    while (!impacts_.empty() && budget > 0) {
-        std::pop_heap(impacts_.begin(), impacts_.end(), later<PredictedImpact>);
-        const PredictedImpact e = impacts_.back();
-        impacts_.pop_back();
-        if (e.version_a != versions_[e.a] || e.version_b != versions_[e.b]) continue;
-        --budget;
-        RigidBody& a = bodies[e.a];
-        RigidBody& b = bodies[e.b];
-        const Transform xa = sweeps_[e.a].at(e.t), xb = sweeps_[e.b].at(e.t);
-        Manifold m = collide(a.shape, xa, b.shape, xb, e.gap + 2 * impact_gap);
-        if (m.count == 0) {
-            // Corner on corner: the reference face's clipping leaves no point. The closest
-            // points are the contact.
-            const std::optional<Distance> d = distance(a.shape, xa, b.shape, xb);
-            if (!d) continue;
-            m.normal = d->normal;
-            m.points[0] = {d->point, d->distance, 0};
-            m.count = 1;
-        }
-        BlockContact c;
-        c.normal = m.normal;
-        c.count = m.count;
-        c.friction = mix_friction(a.friction, b.friction);
-        BlockBody va = velocity_of(a), vb = velocity_of(b);
-        // Closing now, and closing along the sweeps (the motion that brought them here: the
-        // step's contacts may have turned them apart only after they had moved into each other).
-        const BlockBody sa{sweeps_[e.a].v, sweeps_[e.a].omega, 0, 0};
-        const BlockBody sb{sweeps_[e.b].v, sweeps_[e.b].omega, 0, 0};
-        bool closing = false, swept_in = false;
+template <class F>
+void BodySolver::for_each_reachable(std::uint32_t i, F&& f) const {
+    const std::array<double, 4>& box = swept_[i];
+    for (const std::uint32_t j : still_) {
+        if (boxes_overlap(box, swept_[j])) f(j);
+    }
+    auto from = std::lower_bound(moving_lo_.begin(), moving_lo_.end(), box[0] - widest_);
+    for (auto k = static_cast<std::size_t>(from - moving_lo_.begin());
+         k < moving_.size() && moving_lo_[k] <= box[2]; ++k) {
+        const std::uint32_t j = moving_[k];
+        if (!changed_flag_[j] && boxes_overlap(box, swept_[j])) f(j);
+    }
+    for (const std::uint32_t j : changed_) {
+        if (boxes_overlap(box, swept_[j])) f(j);
+    }
+}
+
+void BodySolver::take_impact(std::vector<RigidBody>& bodies, const PredictedImpact& e, double dt) {
+    RigidBody& a = bodies[e.a];
+    RigidBody& b = bodies[e.b];
+    const Transform xa = sweeps_[e.a].at(e.t), xb = sweeps_[e.b].at(e.t);
+    Manifold m = collide(a.shape, xa, b.shape, xb, e.gap + 2 * impact_gap);
+    if (m.count == 0) {
+        // Corner on corner: the reference face's clipping leaves no point. The closest
+        // points are the contact.
+        const std::optional<Distance> d = distance(a.shape, xa, b.shape, xb);
+        if (!d) return;
+        m.normal = d->normal;
+        m.points[0] = {d->point, d->distance, 0};
+        m.count = 1;
+    }
+    BlockContact c;
+    c.normal = m.normal;
+    c.count = m.count;
+    c.friction = mix_friction(a.friction, b.friction);
+    BlockBody va = velocity_of(a), vb = velocity_of(b);
+    // Closing now, and closing along the sweeps (the motion that brought them here: the
+    // step's contacts may have turned them apart only after they had moved into each other).
+    const BlockBody sa{sweeps_[e.a].v, sweeps_[e.a].omega, 0, 0};
+    const BlockBody sb{sweeps_[e.b].v, sweeps_[e.b].omega, 0, 0};
+    bool closing = false, swept_in = false;
+    for (int k = 0; k < c.count; ++k) {
+        BlockPoint& p = c.points[k];
+        p.ra = m.points[k].point - xa.p;
+        p.rb = m.points[k].point - xb.p;
+        closing = closing || normal_velocity(c, p, va, vb) < -settle_;
+        swept_in = swept_in || normal_velocity(c, p, sa, sb) < -settle_;
+    }
+    if (!closing && !swept_in) {
+        // Not meeting where they touch: looked at again only for a later sinking in.
+        predict_impact(bodies, e.a, e.b, e.t, dt, true);
+        return;
+    }
+    if (closing) {
+        // Poisson's rule, as a direct island bounces (body_solver.cpp): the points are
+        // stopped together (one pair: the normal block is exact, a few passes settle
+        // friction against it), then each gets e times the normal impulse that stopped it,
+        // which never adds energy; Newton's rule at two points can.
+        prepare_block(c, va, vb);
+        for (int it = 0; it < 4; ++it) solve_block(c, va, vb);
+        const double e_mix = mix_restitution(a.restitution, b.restitution);
         for (int k = 0; k < c.count; ++k) {
             BlockPoint& p = c.points[k];
-            p.ra = m.points[k].point - xa.p;
-            p.rb = m.points[k].point - xb.p;
-            closing = closing || normal_velocity(c, p, va, vb) < -settle;
-            swept_in = swept_in || normal_velocity(c, p, sa, sb) < -settle;
-        }
-        if (!closing && !swept_in) {
-            // Not meeting where they touch: looked at again only for a later sinking in.
-            predict_impact(bodies, e.a, e.b, e.t, dt, true);
-            continue;
-        }
-        if (closing) {
-            // Poisson's rule, as a direct island bounces (body_solver.cpp): the points are
-            // stopped together (one pair: the normal block is exact, a few passes settle
-            // friction against it), then each gets e times the normal impulse that stopped it,
-            // which never adds energy; Newton's rule at two points can.
-            prepare_block(c, va, vb);
-            for (int it = 0; it < 4; ++it) solve_block(c, va, vb);
-            const double e_mix = mix_restitution(a.restitution, b.restitution);
-            for (int k = 0; k < c.count; ++k) {
-                BlockPoint& p = c.points[k];
-                apply_impulse(va, vb, p, e_mix * p.normal_impulse * c.normal);
-                p.normal_impulse *= 1 + e_mix;
-            }
-        }
-
-        double impulse = 0;
-        for (int k = 0; k < c.count; ++k) impulse += c.points[k].normal_impulse;
-        const auto touch = std::find_if(impact_touches_.begin(), impact_touches_.end(),
-                                        [&](const PairTouch& t) { return t.a == e.a && t.b == e.b; });
-        if (touch != impact_touches_.end()) {
-            touch->impulse += impulse;
-        } else if (impulse > 0) {
-            impact_touches_.push_back({e.a, e.b, impulse, true});
-        }
-
-        // Each body that the impact moved starts a new sweep from where it was then.
-        const std::uint32_t pair[2] = {e.a, e.b};
-        const BlockBody* after[2] = {&va, &vb};
-        for (int side = 0; side < 2; ++side) {
-            const std::uint32_t i = pair[side];
-            RigidBody& body = bodies[i];
-            if (body.inv_mass == 0) continue;
-            Sweep& s = sweeps_[i];
-            s.x0 = s.x_at(e.t);
-            s.angle0 = s.angle_at(e.t);
-            s.t0 = e.t;
-            s.v = body.v = after[side]->v;
-            s.omega = body.omega = after[side]->omega;
-            body.x = s.x_at(dt);
-            body.angle = s.angle_at(dt);
-            swept_[i] = swept_box(s, dt);
-            ++versions_[i];
-            // Whatever it now reaches is predicted too. Struck but slow by the measure of the
-            // step's start (a pile's body nudged), it is only nudged: what it touches already
-            // is left to the next step's contacts rather than struck in turn, which would pass
-            // each blow through a pile impact by impact.
-            nudged_[i] = (!fast_[i] || nudged_[i]) && !moves_fast(body, dt);
-            fast_[i] = 1;
-            if (!changed_flag_[i]) {
-                changed_flag_[i] = 1;
-                changed_.push_back(i);
-            }
-        }
-        for (int side = 0; side < 2; ++side) {
-            const std::uint32_t i = pair[side];
-            if (bodies[i].inv_mass == 0) continue;
-            for_each_reachable(i, [&](std::uint32_t j) {
-                if (j == i || (side == 1 && j == pair[0] && bodies[j].inv_mass > 0)) return;
-                predict_impact(bodies, std::min(i, j), std::max(i, j), e.t, dt);
-            });
+            apply_impulse(va, vb, p, e_mix * p.normal_impulse * c.normal);
+            p.normal_impulse *= 1 + e_mix;
         }
     }
+
+    double impulse = 0;
+    for (int k = 0; k < c.count; ++k) impulse += c.points[k].normal_impulse;
+    const auto touch = std::find_if(impact_touches_.begin(), impact_touches_.end(),
+                                    [&](const PairTouch& t) { return t.a == e.a && t.b == e.b; });
+    if (touch != impact_touches_.end()) {
+        touch->impulse += impulse;
+    } else if (impulse > 0) {
+        impact_touches_.push_back({e.a, e.b, impulse, true});
+    }
+
+    // Each body that the impact moved starts a new sweep from where it was then.
+    const std::uint32_t pair[2] = {e.a, e.b};
+    const BlockBody* after[2] = {&va, &vb};
+    for (int side = 0; side < 2; ++side) {
+        const std::uint32_t i = pair[side];
+        RigidBody& body = bodies[i];
+        if (body.inv_mass == 0) continue;
+        Sweep& s = sweeps_[i];
+        s.x0 = s.x_at(e.t);
+        s.angle0 = s.angle_at(e.t);
+        s.t0 = e.t;
+        s.v = body.v = after[side]->v;
+        s.omega = body.omega = after[side]->omega;
+        body.x = s.x_at(dt);
+        body.angle = s.angle_at(dt);
+        swept_[i] = swept_box(s, dt);
+        ++versions_[i];
+        // Whatever it now reaches is predicted too. Struck but slow by the measure of the
+        // step's start (a pile's body nudged), it is only nudged: what it touches already
+        // is left to the next step's contacts rather than struck in turn, which would pass
+        // each blow through a pile impact by impact.
+        nudged_[i] = (!fast_[i] || nudged_[i]) && !moves_fast(body, dt);
+        fast_[i] = 1;
+        if (!changed_flag_[i]) {
+            changed_flag_[i] = 1;
+            changed_.push_back(i);
+        }
+    }
+    for (int side = 0; side < 2; ++side) {
+        const std::uint32_t i = pair[side];
+        if (bodies[i].inv_mass == 0) continue;
+        for_each_reachable(i, [&](std::uint32_t j) {
+            if (j == i || (side == 1 && j == pair[0] && bodies[j].inv_mass > 0)) return;
+            predict_impact(bodies, std::min(i, j), std::max(i, j), e.t, dt);
+        });
+    }
+}
+
+void BodySolver::stop_unfinished(std::vector<RigidBody>& bodies) {
     // Out of sweeps: a body whose sweep was not checked against everything it reaches stays
     // where that sweep starts (its last impact, or the step's start), losing the rest of its
     // step; what it would have met, it meets in the next one.
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
         if (!unchecked_[i]) continue;
         RigidBody& body = bodies[i];
         const Sweep& s = sweeps_[i];

@@ -56,131 +56,25 @@ void BodySolver::integrate_positions(std::vector<RigidBody>& bodies, double dt) 
 }
 
 void BodySolver::push_out(std::vector<RigidBody>& bodies) {
-    std::vector<V2>& moved = moved_;
-    std::vector<double>& turned = turned_;
     // Every push counts (the islands' below too): see the sweeps.
     pushes_ = 0;
     pushed_at_.assign(bodies.size(), 0);
     seen_at_.assign(fresh_.size(), 0);
     // Whatever overlap is left beyond the slop is pushed out, point by point: positions only,
-    // so no velocity (and no energy) is added. A point's separation follows from how far its
-    // two anchors moved along the manifold's normal since the manifold was made, which is
-    // accurate for the small motions of a step and costs no new manifold.
-    // The separation of point k of pc now, and its anchors' offsets now.
-    const auto separation_now = [&](const PairContact& pc, int k, V2& ra, V2& rb) {
-        const Anchor& an = pc.anchors[static_cast<std::size_t>(k)];
-        ra = turned_by(an.ra, spin_[pc.a]);
-        rb = turned_by(an.rb, spin_[pc.b]);
-        const V2 drift = (moved[pc.b] + rb - an.rb) - (moved[pc.a] + ra - an.ra);
-        return an.separation + pc.contact.normal.dot(drift);
-    };
-    // Turns body i's record of its turn in the step by `by` radians, and its cosine and sine
-    // with it by the angle-sum rule: a push turns a body by little, and below a hundredth of a
-    // radian the series (to the sixth power) is exact to rounding and needs no libm call.
-    const auto turn = [&](std::uint32_t i, double by) {
-        turned[i] += by;
-        double c = 0, s = 0;
-        if (std::abs(by) < 0.01) {
-            const double by2 = by * by;
-            c = 1 - by2 / 2 + by2 * by2 / 24;
-            s = by * (1 - by2 / 6 + by2 * by2 / 120);
-        } else {
-            c = std::cos(by);
-            s = std::sin(by);
-        }
-        const auto [c0, s0] = spin_[i];
-        spin_[i] = {c0 * c - s0 * s, s0 * c + c0 * s};
-    };
-    // Moves a and b apart by `amount` (kg m) of positional impulse along n at offsets ra, rb.
-    const auto push_apart = [&](const PairContact& pc, const V2& ra, const V2& rb,
-                                double amount) {
-        RigidBody& a = bodies[pc.a];
-        RigidBody& b = bodies[pc.b];
-        const V2 impulse = amount * pc.contact.normal;
-        const V2 da = a.inv_mass * impulse, db = b.inv_mass * impulse;
-        const double ta = a.inv_inertia * cross(ra, impulse);
-        const double tb = b.inv_inertia * cross(rb, impulse);
-        a.x -= da;
-        a.angle -= ta;
-        b.x += db;
-        b.angle += tb;
-        moved[pc.a] -= da;
-        moved[pc.b] += db;
-        turn(pc.a, -ta);
-        turn(pc.b, tb);
-        ++pushes_;
-        pushed_at_[pc.a] = pushes_;
-        pushed_at_[pc.b] = pushes_;
-    };
-    // A direct island: every point to within the slop at once, through the same matrix; the
-    // blocks of larger islands the same way, one after the other, in sweeps.
-    const auto push_out_together = [&](std::span<const IslandContact> island) {
-        separation_.clear();
-        bool overlaps = false;
-        for (const IslandContact& ic : island) {
-            const PairContact& pc = *pair_of(ic);
-            for (int q = 0; q < pc.contact.count; ++q) {
-                BlockPoint& p = ic.contact->points[q];
-                // The slop, as below: pushing a body out raises it, and energy with it.
-                separation_.push_back(separation_now(pc, q, p.ra, p.rb) + def_.slop);
-                overlaps = overlaps || separation_.back() < 0;
-            }
-        }
-        if (!overlaps || !direct_solver_.positions(island, state_, separation_, push_)) return;
-        // An island's body moves at most its inner radius a sweep: a light body crushed between
-        // a wall and a heavy body whose faces meet at a slant can only get out along the slant,
-        // and its LCP would push it metres along it at once (and the next step launch it). A
-        // bound as small as a single point's 2 cm would leave it to be pushed through the wall.
-        shifts_.clear();
-        const auto shift = [&](std::uint32_t body, const V2& by, double turn_by) {
-            for (Shift& s : shifts_) {
-                if (s.body != body) continue;
-                s.by += by;
-                s.turn += turn_by;
-                return;
-            }
-            shifts_.push_back({body, by, turn_by});
-        };
-        std::size_t at = 0;
-        for (const IslandContact& ic : island) {
-            const PairContact& pc = *pair_of(ic);
-            for (int q = 0; q < pc.contact.count; ++q, ++at) {
-                const BlockPoint& p = pc.contact.points[q];
-                const V2 impulse = push_[at] * pc.contact.normal;
-                const RigidBody& a = bodies[pc.a];
-                const RigidBody& b = bodies[pc.b];
-                shift(pc.a, -a.inv_mass * impulse, -a.inv_inertia * cross(p.ra, impulse));
-                shift(pc.b, b.inv_mass * impulse, b.inv_inertia * cross(p.rb, impulse));
-            }
-        }
-        double over = 1;   // the most any body's push exceeds its inner radius by, as a factor
-        for (const Shift& s : shifts_) {
-            const RigidBody& body = bodies[s.body];
-            over = std::max(over, (s.by.norm() + std::abs(s.turn) * body.bound) / body.inner);
-        }
-        if (over > 1) {
-            for (double& x : push_) x /= over;
-        }
-        std::size_t point = 0;
-        for (const IslandContact& ic : island) {
-            const PairContact& pc = *pair_of(ic);
-            for (int q = 0; q < pc.contact.count; ++q, ++point) {
-                const BlockPoint& p = pc.contact.points[q];
-                if (push_[point] > 0) push_apart(pc, p.ra, p.rb, push_[point]);
-            }
-        }
-    };
-    // An island whose direct solve failed iterates like the others (below), and is pushed so.
+    // so no velocity (and no energy) is added. An island whose direct solve failed iterates
+    // like the others, and is pushed so.
     for_each_group(islands_, island_start_, [&](std::span<const IslandContact> island) {
-        if (direct_[island.front().pair]) push_out_together(island);
+        if (direct_[island.front().pair]) push_out_together(bodies, island);
     });
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
-        for_each_group(blocks_, block_start_, push_out_together);
+        for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
+            push_out_together(bodies, block);
+        });
     }
-    std::uint32_t pushes_before_sweep = 0;
     // A contact neither of whose bodies was pushed since it was last looked at would be
     // looked at in vain: its separations are what they were (a resting pile's later sweeps
     // cost next to nothing).
+    std::uint32_t pushes_before_sweep = 0;
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
         // A sweep that pushed nothing leaves every contact as it was looked at: the next would
         // skip them all.
@@ -193,44 +87,155 @@ void BodySolver::push_out(std::vector<RigidBody>& bodies) {
                 continue;
             }
             seen_at_[i] = pushes_;
+            push_out_contact(bodies, pc);
+        }
+    }
+}
+
+double BodySolver::separation_now(const PairContact& pc, int k, V2& ra, V2& rb) const {
+    // A point's separation follows from how far its two anchors moved along the manifold's
+    // normal since the manifold was made, which is accurate for the small motions of a step
+    // and costs no new manifold.
+    const Anchor& an = pc.anchors[static_cast<std::size_t>(k)];
+    ra = turned_by(an.ra, spin_[pc.a]);
+    rb = turned_by(an.rb, spin_[pc.b]);
+    const V2 drift = (moved_[pc.b] + rb - an.rb) - (moved_[pc.a] + ra - an.ra);
+    return an.separation + pc.contact.normal.dot(drift);
+}
+
+void BodySolver::turn_body(std::uint32_t i, double by) {
+    // The body's record of its turn in the step, and its cosine and sine with it by the
+    // angle-sum rule: a push turns a body by little, and below a hundredth of a radian the
+    // series (to the sixth power) is exact to rounding and needs no libm call.
+    turned_[i] += by;
+    double c = 0, s = 0;
+    if (std::abs(by) < 0.01) {
+        const double by2 = by * by;
+        c = 1 - by2 / 2 + by2 * by2 / 24;
+        s = by * (1 - by2 / 6 + by2 * by2 / 120);
+    } else {
+        c = std::cos(by);
+        s = std::sin(by);
+    }
+    const auto [c0, s0] = spin_[i];
+    spin_[i] = {c0 * c - s0 * s, s0 * c + c0 * s};
+}
+
+void BodySolver::push_apart(std::vector<RigidBody>& bodies, const PairContact& pc, const V2& ra,
+                            const V2& rb, double amount) {
+    RigidBody& a = bodies[pc.a];
+    RigidBody& b = bodies[pc.b];
+    const V2 impulse = amount * pc.contact.normal;
+    const V2 da = a.inv_mass * impulse, db = b.inv_mass * impulse;
+    const double ta = a.inv_inertia * cross(ra, impulse);
+    const double tb = b.inv_inertia * cross(rb, impulse);
+    a.x -= da;
+    a.angle -= ta;
+    b.x += db;
+    b.angle += tb;
+    moved_[pc.a] -= da;
+    moved_[pc.b] += db;
+    turn_body(pc.a, -ta);
+    turn_body(pc.b, tb);
+    ++pushes_;
+    pushed_at_[pc.a] = pushes_;
+    pushed_at_[pc.b] = pushes_;
+}
+
+void BodySolver::push_out_together(std::vector<RigidBody>& bodies,
+                                   std::span<const IslandContact> island) {
+    // A direct island: every point to within the slop at once, through the same matrix; the
+    // blocks of larger islands the same way, one after the other, in sweeps.
+    separation_.clear();
+    bool overlaps = false;
+    for (const IslandContact& ic : island) {
+        const PairContact& pc = *pair_of(ic);
+        for (int q = 0; q < pc.contact.count; ++q) {
+            BlockPoint& p = ic.contact->points[q];
+            // The slop, as below: pushing a body out raises it, and energy with it.
+            separation_.push_back(separation_now(pc, q, p.ra, p.rb) + def_.slop);
+            overlaps = overlaps || separation_.back() < 0;
+        }
+    }
+    if (!overlaps || !direct_solver_.positions(island, state_, separation_, push_)) return;
+    // An island's body moves at most its inner radius a sweep: a light body crushed between
+    // a wall and a heavy body whose faces meet at a slant can only get out along the slant,
+    // and its LCP would push it metres along it at once (and the next step launch it). A
+    // bound as small as a single point's 2 cm would leave it to be pushed through the wall.
+    shifts_.clear();
+    const auto shift = [&](std::uint32_t body, const V2& by, double turn_by) {
+        for (Shift& s : shifts_) {
+            if (s.body != body) continue;
+            s.by += by;
+            s.turn += turn_by;
+            return;
+        }
+        shifts_.push_back({body, by, turn_by});
+    };
+    std::size_t at = 0;
+    for (const IslandContact& ic : island) {
+        const PairContact& pc = *pair_of(ic);
+        for (int q = 0; q < pc.contact.count; ++q, ++at) {
+            const BlockPoint& p = pc.contact.points[q];
+            const V2 impulse = push_[at] * pc.contact.normal;
             const RigidBody& a = bodies[pc.a];
             const RigidBody& b = bodies[pc.b];
-            const V2& n = pc.contact.normal;
-            if (pc.contact.count == 2) {
-                // Both points at once, as the velocities are solved: pushed one at a time, the
-                // first push turns the body and the second turns it back only in part, which
-                // sets a resting stack rocking.
-                std::array<V2, 2> ra, rb;
-                std::array<double, 2> separation{};
-                for (int k = 0; k < 2; ++k) {
-                    separation[static_cast<std::size_t>(k)] =
-                        separation_now(pc, k, ra[static_cast<std::size_t>(k)],
-                                       rb[static_cast<std::size_t>(k)]);
-                }
-                if (separation[0] >= -def_.slop && separation[1] >= -def_.slop) continue;
-                const auto short_of = [&](double s) {
-                    return std::max(s + def_.push_to, -def_.max_correction);
-                };
-                const std::array<double, 2> push =
-                    block_push(a, b, n, ra, rb, {short_of(separation[0]), short_of(separation[1])});
-                for (int k = 0; k < 2; ++k) {
-                    const auto q = static_cast<std::size_t>(k);
-                    if (push[q] > 0) push_apart(pc, ra[q], rb[q], push[q]);
-                }
-                continue;
-            }
-            for (int k = 0; k < pc.contact.count; ++k) {
-                V2 ra, rb;
-                const double separation = separation_now(pc, k, ra, rb);
-                if (separation >= -def_.slop) continue;
-                const double push = std::min(-(separation + def_.push_to), def_.max_correction);
-                const double rna = cross(ra, n), rnb = cross(rb, n);
-                const double k_n = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna +
-                                   b.inv_inertia * rnb * rnb;
-                if (k_n <= 0) continue;
-                push_apart(pc, ra, rb, push / k_n);
-            }
+            shift(pc.a, -a.inv_mass * impulse, -a.inv_inertia * cross(p.ra, impulse));
+            shift(pc.b, b.inv_mass * impulse, b.inv_inertia * cross(p.rb, impulse));
         }
+    }
+    double over = 1;   // the most any body's push exceeds its inner radius by, as a factor
+    for (const Shift& s : shifts_) {
+        const RigidBody& body = bodies[s.body];
+        over = std::max(over, (s.by.norm() + std::abs(s.turn) * body.bound) / body.inner);
+    }
+    if (over > 1) {
+        for (double& x : push_) x /= over;
+    }
+    std::size_t point = 0;
+    for (const IslandContact& ic : island) {
+        const PairContact& pc = *pair_of(ic);
+        for (int q = 0; q < pc.contact.count; ++q, ++point) {
+            const BlockPoint& p = pc.contact.points[q];
+            if (push_[point] > 0) push_apart(bodies, pc, p.ra, p.rb, push_[point]);
+        }
+    }
+}
+
+void BodySolver::push_out_contact(std::vector<RigidBody>& bodies, const PairContact& pc) {
+    const RigidBody& a = bodies[pc.a];
+    const RigidBody& b = bodies[pc.b];
+    const V2& n = pc.contact.normal;
+    if (pc.contact.count == 2) {
+        // Both points at once, as the velocities are solved: pushed one at a time, the first
+        // push turns the body and the second turns it back only in part, which sets a resting
+        // stack rocking.
+        std::array<V2, 2> ra, rb;
+        std::array<double, 2> separation{};
+        for (std::size_t k = 0; k < 2; ++k) {
+            separation[k] = separation_now(pc, static_cast<int>(k), ra[k], rb[k]);
+        }
+        if (separation[0] >= -def_.slop && separation[1] >= -def_.slop) return;
+        const auto short_of = [&](double s) {
+            return std::max(s + def_.push_to, -def_.max_correction);
+        };
+        const std::array<double, 2> push =
+            block_push(a, b, n, ra, rb, {short_of(separation[0]), short_of(separation[1])});
+        for (std::size_t k = 0; k < 2; ++k) {
+            if (push[k] > 0) push_apart(bodies, pc, ra[k], rb[k], push[k]);
+        }
+        return;
+    }
+    for (int k = 0; k < pc.contact.count; ++k) {
+        V2 ra, rb;
+        const double separation = separation_now(pc, k, ra, rb);
+        if (separation >= -def_.slop) continue;
+        const double push = std::min(-(separation + def_.push_to), def_.max_correction);
+        const double rna = cross(ra, n), rnb = cross(rb, n);
+        const double k_n =
+            a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna + b.inv_inertia * rnb * rnb;
+        if (k_n <= 0) continue;
+        push_apart(bodies, pc, ra, rb, push / k_n);
     }
 }
 

@@ -200,10 +200,24 @@ private:
     void solve_velocities(std::vector<RigidBody>& bodies);       // body_velocities.cpp
     void integrate_positions(std::vector<RigidBody>& bodies, double dt);   // body_positions.cpp
     void bounce(std::vector<RigidBody>& bodies, double settle);  // body_velocities.cpp
+    // A direct island's bounce by Poisson's rule, undone if it would add energy; the kinetic
+    // energy of the island's bodies (members_) at these velocities, J.
+    void bounce_together(std::span<const IslandContact> island);
+    double island_kinetic(const std::vector<BlockBody>& states) const;
     // Solves again, from their arrival and with less of the warm start, the islands of masses
     // far apart that the iterations left with more kinetic energy than they came with.
     void solve_gainers_again(const std::vector<RigidBody>& bodies);   // body_velocities.cpp
     void push_out(std::vector<RigidBody>& bodies);               // body_positions.cpp
+    // Its parts: point k's separation now from its anchors (and its offsets now, into ra and
+    // rb); a body's turn in the step grown by `by` radians; a positional impulse of `amount`
+    // (kg m) along the normal at ra, rb; an island's or block's points pushed together; one
+    // contact's points pushed.
+    double separation_now(const PairContact& pc, int k, V2& ra, V2& rb) const;
+    void turn_body(std::uint32_t i, double by);
+    void push_apart(std::vector<RigidBody>& bodies, const PairContact& pc, const V2& ra,
+                    const V2& rb, double amount);
+    void push_out_together(std::vector<RigidBody>& bodies, std::span<const IslandContact> island);
+    void push_out_contact(std::vector<RigidBody>& bodies, const PairContact& pc);
     // Pairs that started apart and sank in deeper than the slop: their bodies are fast.
     void mark_sunk(const std::vector<RigidBody>& bodies);        // body_positions.cpp
     void record_touches();
@@ -230,6 +244,18 @@ private:
     // and takes their impacts in time order (body_impacts.cpp); approaches slower than `settle`
     // are not impacts.
     void time_impacts(std::vector<RigidBody>& bodies, double dt, double settle);
+    // The stages of time_impacts: each body's sweep over the step, fast_ marking those that
+    // travel far (how many); the swept boxes and what each can reach (still_, moving_ by low
+    // x); one impact taken (stopped and bounced, the bodies' sweeps begun again from it and
+    // what they now reach predicted); and the bodies left with impacts or unchecked sweeps
+    // when the budgets ran out, stopped.
+    std::size_t begin_sweeps(const std::vector<RigidBody>& bodies, double dt);
+    void list_reach(const std::vector<RigidBody>& bodies, double dt);
+    template <class F>
+    void for_each_reachable(std::uint32_t i, F&& f) const;   // f(j) for each j i's box overlaps
+    struct PredictedImpact;
+    void take_impact(std::vector<RigidBody>& bodies, const PredictedImpact& e, double dt);
+    void stop_unfinished(std::vector<RigidBody>& bodies);
     // Predicts the first impact of bodies i < j from `t_begin` into impacts_ (`after_only`:
     // only one after t_begin).
     void predict_impact(const std::vector<RigidBody>& bodies, std::uint32_t i, std::uint32_t j,
@@ -338,6 +364,7 @@ private:
     std::vector<PairTouch> impact_touches_;
     std::vector<std::uint32_t> still_, moving_, changed_;   // scratch: see time_impacts
     std::vector<double> moving_lo_;
+    double widest_ = 0;                      // metres: the widest moving swept box in x
     std::vector<unsigned char> changed_flag_;
     std::vector<unsigned char> unchecked_;   // its sweep's pairs were not all predicted
     std::size_t predictions_left_ = 0;

@@ -191,103 +191,104 @@ void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
         solve_block(c, state_[pc.a], state_[pc.b]);
         c.friction = friction;
     }
-    // A direct island bounces by Poisson's rule: its points still closing are first stopped
-    // together (the speculative solve let them close up to their gap), then each hit point gets
-    // e times all the impulse that stopped it. Asking every point to leave at e times its
-    // approach speed (Newton's rule, above) over-constrains a body struck at two places and
-    // can add energy.
-    // The kinetic energy of the island's moving bodies (members_) at these velocities, J, in
-    // the frame of the first held body among them that moves (its push is work done on the
-    // island, not energy the bounce made; walls and pegs stand still).
-    const auto kinetic = [&](const std::vector<BlockBody>& states) {
-        V2 frame = V2::Zero();
-        for (const std::uint32_t m : members_) {
-            if (states[m].inv_mass == 0 && states[m].v != V2::Zero()) {
-                frame = states[m].v;
-                break;
-            }
-        }
-        double energy = 0;
-        for (const std::uint32_t m : members_) energy += kinetic_energy(states[m], frame);
-        return energy;
-    };
-    const auto bounce_together = [&](std::span<const IslandContact> island) {
-        const auto hit = [](const BlockPoint& p) { return p.target > 0; };   // and e > 0
-        bool bounce = false;
-        for (const IslandContact& ic : island) {
-            for (int q = 0; q < ic.contact->count; ++q) bounce = bounce || hit(ic.contact->points[q]);
-        }
-        if (!bounce || !direct_solver_.stop(island, state_, push_)) return;
-        // Kept to undo the bounce: the bodies' velocities and points' impulses before it, and
-        // the impulses that stop the island.
-        members_.clear();
-        for (const IslandContact& ic : island) {
-            members_.push_back(pair_of(ic)->a);
-            members_.push_back(pair_of(ic)->b);
-        }
-        std::sort(members_.begin(), members_.end());
-        members_.erase(std::unique(members_.begin(), members_.end()), members_.end());
-        kept_states_.clear();
-        for (const std::uint32_t m : members_) kept_states_.push_back(state_[m]);
-        kept_impulses_.clear();
-        for (const IslandContact& ic : island) {
-            for (int q = 0; q < ic.contact->count; ++q) {
-                kept_impulses_.push_back(ic.contact->points[q].normal_impulse);
-            }
-        }
-        stopping_ = push_;
-        std::size_t point = 0;
-        for (const IslandContact& ic : island) {
-            const PairContact& pc = *pair_of(ic);
-            for (int q = 0; q < ic.contact->count; ++q, ++point) {
-                BlockPoint& p = ic.contact->points[q];
-                double impulse = push_[point];
-                if (hit(p)) impulse += pc.restitution * (p.normal_impulse + push_[point]);
-                apply_impulse(state_[pc.a], state_[pc.b], p, impulse * ic.contact->normal);
-                p.normal_impulse += impulse;
-            }
-        }
-        // A bounce drives its bodies into their other contacts, which did not arrive (a light
-        // body between a heavy one landing on it and the floor would leave through the floor
-        // at e times the heavy one's momentum): they are stopped again, together, which only
-        // takes energy out. Those impulses answer this bounce, not a lasting load, so they are
-        // not kept for the next step's warm start (kept, they launched light bodies there).
-        if (direct_solver_.stop(island, state_, push_)) {
-            point = 0;
-            for (const IslandContact& ic : island) {
-                const PairContact& pc = *pair_of(ic);
-                for (int q = 0; q < ic.contact->count; ++q, ++point) {
-                    const BlockPoint& p = ic.contact->points[q];
-                    apply_impulse(state_[pc.a], state_[pc.b], p,
-                                  push_[point] * ic.contact->normal);
-                }
-            }
-        }
-        // Poisson's rule point by point is not a law of a crowd: a light body squeezed between
-        // heavy ones holds them apart with impulses far beyond its own momentum, and e times
-        // those at the point that hit launches it. A bounce that leaves the island more kinetic
-        // energy than it came with is undone: the island only stops (as the disc solver's
-        // direct islands do; heavy_light_bench). An elastic bounce keeps the energy up to
-        // rounding, which 1e-9 of it allows.
-        if (kinetic(state_) <= (1 + 1e-9) * kinetic(arrived_)) return;
-        for (std::size_t k = 0; k < members_.size(); ++k) state_[members_[k]] = kept_states_[k];
-        point = 0;
-        for (const IslandContact& ic : island) {
-            const PairContact& pc = *pair_of(ic);
-            for (int q = 0; q < ic.contact->count; ++q, ++point) {
-                BlockPoint& p = ic.contact->points[q];
-                p.normal_impulse = kept_impulses_[point] + stopping_[point];
-                apply_impulse(state_[pc.a], state_[pc.b], p,
-                              stopping_[point] * ic.contact->normal);
-            }
-        }
-    };
     // An island whose direct solve failed bounced with the others, above.
     for_each_group(islands_, island_start_, [&](std::span<const IslandContact> island) {
         if (direct_[island.front().pair]) bounce_together(island);
     });
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
+}
 
+// The kinetic energy of the island's moving bodies (members_) at these velocities, J, in
+// the frame of the first held body among them that moves (its push is work done on the
+// island, not energy the bounce made; walls and pegs stand still).
+double BodySolver::island_kinetic(const std::vector<BlockBody>& states) const {
+    V2 frame = V2::Zero();
+    for (const std::uint32_t m : members_) {
+        if (states[m].inv_mass == 0 && states[m].v != V2::Zero()) {
+            frame = states[m].v;
+            break;
+        }
+    }
+    double energy = 0;
+    for (const std::uint32_t m : members_) energy += kinetic_energy(states[m], frame);
+    return energy;
+}
+
+// A direct island bounces by Poisson's rule: its points still closing are first stopped
+// together (the speculative solve let them close up to their gap), then each hit point gets
+// e times all the impulse that stopped it. Asking every point to leave at e times its
+// approach speed (Newton's rule, above) over-constrains a body struck at two places and
+// can add energy.
+void BodySolver::bounce_together(std::span<const IslandContact> island) {
+    const auto hit = [](const BlockPoint& p) { return p.target > 0; };   // and e > 0
+    bool bounce = false;
+    for (const IslandContact& ic : island) {
+        for (int q = 0; q < ic.contact->count; ++q) bounce = bounce || hit(ic.contact->points[q]);
+    }
+    if (!bounce || !direct_solver_.stop(island, state_, push_)) return;
+    // Kept to undo the bounce: the bodies' velocities and points' impulses before it, and
+    // the impulses that stop the island.
+    members_.clear();
+    for (const IslandContact& ic : island) {
+        members_.push_back(pair_of(ic)->a);
+        members_.push_back(pair_of(ic)->b);
+    }
+    std::sort(members_.begin(), members_.end());
+    members_.erase(std::unique(members_.begin(), members_.end()), members_.end());
+    kept_states_.clear();
+    for (const std::uint32_t m : members_) kept_states_.push_back(state_[m]);
+    kept_impulses_.clear();
+    for (const IslandContact& ic : island) {
+        for (int q = 0; q < ic.contact->count; ++q) {
+            kept_impulses_.push_back(ic.contact->points[q].normal_impulse);
+        }
+    }
+    stopping_ = push_;
+    std::size_t point = 0;
+    for (const IslandContact& ic : island) {
+        const PairContact& pc = *pair_of(ic);
+        for (int q = 0; q < ic.contact->count; ++q, ++point) {
+            BlockPoint& p = ic.contact->points[q];
+            double impulse = push_[point];
+            if (hit(p)) impulse += pc.restitution * (p.normal_impulse + push_[point]);
+            apply_impulse(state_[pc.a], state_[pc.b], p, impulse * ic.contact->normal);
+            p.normal_impulse += impulse;
+        }
+    }
+    // A bounce drives its bodies into their other contacts, which did not arrive (a light
+    // body between a heavy one landing on it and the floor would leave through the floor
+    // at e times the heavy one's momentum): they are stopped again, together, which only
+    // takes energy out. Those impulses answer this bounce, not a lasting load, so they are
+    // not kept for the next step's warm start (kept, they launched light bodies there).
+    if (direct_solver_.stop(island, state_, push_)) {
+        point = 0;
+        for (const IslandContact& ic : island) {
+            const PairContact& pc = *pair_of(ic);
+            for (int q = 0; q < ic.contact->count; ++q, ++point) {
+                const BlockPoint& p = ic.contact->points[q];
+                apply_impulse(state_[pc.a], state_[pc.b], p,
+                              push_[point] * ic.contact->normal);
+            }
+        }
+    }
+    // Poisson's rule point by point is not a law of a crowd: a light body squeezed between
+    // heavy ones holds them apart with impulses far beyond its own momentum, and e times
+    // those at the point that hit launches it. A bounce that leaves the island more kinetic
+    // energy than it came with is undone: the island only stops (as the disc solver's
+    // direct islands do; heavy_light_bench). An elastic bounce keeps the energy up to
+    // rounding, which 1e-9 of it allows.
+    if (island_kinetic(state_) <= (1 + 1e-9) * island_kinetic(arrived_)) return;
+    for (std::size_t k = 0; k < members_.size(); ++k) state_[members_[k]] = kept_states_[k];
+    point = 0;
+    for (const IslandContact& ic : island) {
+        const PairContact& pc = *pair_of(ic);
+        for (int q = 0; q < ic.contact->count; ++q, ++point) {
+            BlockPoint& p = ic.contact->points[q];
+            p.normal_impulse = kept_impulses_[point] + stopping_[point];
+            apply_impulse(state_[pc.a], state_[pc.b], p,
+                          stopping_[point] * ic.contact->normal);
+        }
+    }
 }
 
 }  // namespace discreel::physics::detail
