@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "bench_results.hpp"
+#include "splitmix.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/shapes.hpp"
 
@@ -94,13 +95,7 @@ WorldDef polygons(int rate) {
     def.walls.push_back(box);
     const char* seed = std::getenv("DISCREEL_SEED");
     std::uint64_t state = seed != nullptr ? std::strtoull(seed, nullptr, 10) : 12345;
-    const auto uniform = [&](double lo, double hi) {
-        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        z ^= z >> 31;
-        return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-    };
+    const auto uniform = [&](double lo, double hi) { return bench::uniform(state, lo, hi); };
     for (int k = 0; k < 1000; ++k) {
         const int sides = 3 + static_cast<int>(uniform(0, 6));
         const double size = uniform(0.1, 0.25);

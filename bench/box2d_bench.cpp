@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "bench_results.hpp"
+#include "splitmix.hpp"
 
 namespace {
 
@@ -114,11 +115,7 @@ Scene polygons() {
     const char* seed = std::getenv("DISCREEL_SEED");
     std::uint64_t state = seed != nullptr ? std::strtoull(seed, nullptr, 10) : 12345;
     const auto uniform = [&](double lo, double hi) {
-        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        z ^= z >> 31;
-        return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
+        return discreel::bench::uniform(state, lo, hi);
     };
     for (int k = 0; k < 1000; ++k) {
         const int sides = 3 + static_cast<int>(uniform(0, 6));
@@ -162,13 +159,8 @@ Scene discs() {
     add_slab(s.world, -1, 0, 0, side, 0.6f, 0.5f);
     add_slab(s.world, side, 0, side + 1, side, 0.6f, 0.5f);
     std::uint64_t seed = 12345;
-    // physics_pile.cpp's generator (the polygons' too).
     const auto uniform = [&](double lo, double hi) {
-        std::uint64_t z = (seed += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        z ^= z >> 31;
-        return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
+        return discreel::bench::uniform(seed, lo, hi);
     };
     const b2Circle circle = {{0, 0}, 0.5f};
     for (int k = 0; k < n; ++k) {

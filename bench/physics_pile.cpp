@@ -21,20 +21,14 @@
 #include <vector>
 
 #include "bench_results.hpp"
+#include "splitmix.hpp"
 #include "discreel/physics.hpp"
 
 namespace {
 
 using namespace discreel;
 
-// splitmix64: seeded, identical on every platform.
-double uniform(std::uint64_t& state, double lo, double hi) {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-}
+using bench::uniform;
 
 struct Settings {
     int rate = 480;
