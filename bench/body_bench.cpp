@@ -8,7 +8,8 @@
 // radius and the largest rise of energy between two 60 fps frames, in % of the start. Appends
 // to bench/results/body_bench.csv (bench_results.hpp). Each scene runs awake (`sleep` off, as
 // Box2D's figures in FIELD_NOTES were measured) and as scenes run by default, islands at rest
-// asleep (rows named `<scene>/sleep`). See docs/performance.md.
+// asleep (rows named `<scene>/sleep`). See docs/physics.md; box2d_bench times Box2D v3 on the
+// same scenes.
 //
 //   body_bench [seconds [rate...]]   default: 5 s at 480 Hz, the default physics.rate (a lower
 //                                    rate takes substeps of at most 1/480 s: the same work)

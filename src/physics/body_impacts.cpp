@@ -153,10 +153,10 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
     const std::size_t fast_count = begin_sweeps(bodies, dt);
     if (fast_count == 0) return;
     list_reach(bodies, dt);
-    // The first predictions: each fast body's swept box against those it reaches (a sweep of
-    // every pair over the boxes' low x met each fast body's neighbours too, and every pair of
-    // a tall falling column). The heap orders them by time and pair, so the order they are
-    // made in does not matter.
+    // The first predictions: only a pair with a fast body can have an impact, so each fast
+    // body's swept box is tested against those it reaches, and nothing else (in a tall
+    // falling column every box overlaps every other in x). The heap orders the predictions by
+    // time and pair, so the order they are made in does not matter.
     impacts_.clear();
     for (std::uint32_t i = 0; i < bodies.size(); ++i) {
         if (!fast_[i]) continue;

@@ -46,7 +46,9 @@ bool FatPairs::update(std::span<const Box> needed, std::span<const double> margi
             square[k] += centre * centre;
         }
     }
-    const auto spread = [&](std::size_t k) { return square[k] - sum[k] * sum[k] / std::max(count, 1.0); };
+    const auto spread = [&](std::size_t k) {
+        return square[k] - sum[k] * sum[k] / std::max(count, 1.0);
+    };
     const int axis = spread(1) > spread(0) ? 1 : 0;
     for_each_overlapping_pair(
         fat_, order_,

@@ -4,8 +4,9 @@
 // speculative distance), is fattened further by a margin when the list is built; the list
 // holds while every body's needed box stays inside its fat box and no body starts or stops
 // being movable, so a resting pile rebuilds rarely. A rebuild sorts the fat boxes by their
-// low x and sweeps (for_each_overlapping_pair); pairs come out sorted by (a, b), and a pair
-// of bodies no contact can move (walls, pegs, held bodies) is left out.
+// low end along the axis the moving bodies spread over more and sweeps
+// (for_each_overlapping_pair); pairs come out sorted by (a, b), and a pair of bodies no
+// contact can move (walls, pegs, held bodies) is left out.
 #include <array>
 #include <cstdint>
 #include <span>
