@@ -113,32 +113,6 @@ struct PairTouch {
     bool began = false;            // it did not touch the step before
 };
 
-// Calls f(i, j) for every pair of `boxes` (min x, min y, max x, max y) that overlap, i before j
-// in the order of their low coordinate along `axis` (0: x, 1: y; ties by index), found by a
-// sweep over it. `order` is scratch, left holding the boxes' indices in that order.
-template <class F>
-void for_each_overlapping_pair(const std::vector<std::array<double, 4>>& boxes,
-                               std::vector<std::uint32_t>& order, F&& f, int axis = 0) {
-    const std::size_t n = boxes.size();
-    const auto lo = static_cast<std::size_t>(axis), hi = lo + 2;
-    const std::size_t other_lo = 1 - lo, other_hi = other_lo + 2;
-    order.resize(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t i, std::uint32_t j) {
-        return boxes[i][lo] != boxes[j][lo] ? boxes[i][lo] < boxes[j][lo] : i < j;
-    });
-    for (std::size_t p = 0; p < n; ++p) {
-        const std::uint32_t i = order[p];
-        const std::array<double, 4>& bi = boxes[i];
-        for (std::size_t q = p + 1; q < n && boxes[order[q]][lo] <= bi[hi]; ++q) {
-            const std::uint32_t j = order[q];
-            const std::array<double, 4>& bj = boxes[j];
-            if (bj[other_lo] > bi[other_hi] || bi[other_lo] > bj[other_hi]) continue;
-            f(i, j);
-        }
-    }
-}
-
 class BodySolver {
 public:
     explicit BodySolver(BodySolverDef def = {}) : def_(def) {}

@@ -24,7 +24,6 @@ double kinetic_energy(const BlockBody& b, const V2& frame = V2::Zero()) {
     return energy;
 }
 
-
 }  // namespace
 
 void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {

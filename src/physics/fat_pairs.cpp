@@ -3,9 +3,36 @@
 #include <algorithm>
 #include <array>
 
-#include "body_solver.hpp"
-
 namespace discreel::physics::detail {
+namespace {
+
+// Calls f(i, j) for every pair of `boxes` (min x, min y, max x, max y) that overlap, i before j
+// in the order of their low coordinate along `axis` (0: x, 1: y; ties by index), found by a
+// sweep over it. `order` is scratch, left holding the boxes' indices in that order.
+template <class F>
+void for_each_overlapping_pair(std::span<const Box> boxes, std::vector<std::uint32_t>& order,
+                               int axis, F&& f) {
+    const std::size_t n = boxes.size();
+    const auto lo = static_cast<std::size_t>(axis), hi = lo + 2;
+    const std::size_t other_lo = 1 - lo, other_hi = other_lo + 2;
+    order.resize(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t i, std::uint32_t j) {
+        return boxes[i][lo] != boxes[j][lo] ? boxes[i][lo] < boxes[j][lo] : i < j;
+    });
+    for (std::size_t p = 0; p < n; ++p) {
+        const std::uint32_t i = order[p];
+        const Box& bi = boxes[i];
+        for (std::size_t q = p + 1; q < n && boxes[order[q]][lo] <= bi[hi]; ++q) {
+            const std::uint32_t j = order[q];
+            const Box& bj = boxes[j];
+            if (bj[other_lo] > bi[other_hi] || bi[other_lo] > bj[other_hi]) continue;
+            f(i, j);
+        }
+    }
+}
+
+}  // namespace
 
 bool FatPairs::holds(std::span<const Box> needed, std::span<const unsigned char> movable) const {
     if (fat_.size() != needed.size()) return false;
@@ -50,14 +77,11 @@ bool FatPairs::update(std::span<const Box> needed, std::span<const double> margi
         return square[k] - sum[k] * sum[k] / std::max(count, 1.0);
     };
     const int axis = spread(1) > spread(0) ? 1 : 0;
-    for_each_overlapping_pair(
-        fat_, order_,
-        [&](std::uint32_t i, std::uint32_t j) {
-            if (!movable[i] && !movable[j]) return;
-            const std::uint64_t a = std::min(i, j), b = std::max(i, j);
-            pairs.push_back(a << 32 | b);
-        },
-        axis);
+    for_each_overlapping_pair(fat_, order_, axis, [&](std::uint32_t i, std::uint32_t j) {
+        if (!movable[i] && !movable[j]) return;
+        const std::uint64_t a = std::min(i, j), b = std::max(i, j);
+        pairs.push_back(a << 32 | b);
+    });
     std::sort(pairs.begin(), pairs.end());
     return true;
 }
