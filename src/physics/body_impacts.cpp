@@ -94,10 +94,10 @@ std::optional<double> sinks_in(const Polygon& a, const Sweep& sa, const Polygon&
 
 }  // namespace
 
-void BodySolver::predict_impact(const std::vector<RigidBody>& bodies, std::uint32_t i,
+void BodySolver::predict_impact(const std::vector<Body>& bodies, std::uint32_t i,
                                 std::uint32_t j, double t_begin, double dt, bool after_only) {
-    const RigidBody& a = bodies[i];
-    const RigidBody& b = bodies[j];
+    const Body& a = bodies[i];
+    const Body& b = bodies[j];
     if (a.inv_mass == 0 && b.inv_mass == 0) return;
     if (!fast_[i] && !fast_[j]) return;
     if (predictions_left_ == 0) {
@@ -111,7 +111,7 @@ void BodySolver::predict_impact(const std::vector<RigidBody>& bodies, std::uint3
     ImpactQuery q;
     q.t_begin = t_begin;
     q.t_end = dt;
-    q.target = std::min(impact_gap, 0.01 * std::min(a.inner, b.inner));
+    q.target = std::min(impact_gap, 0.01 * std::min(inner_[i], inner_[j]));
     q.tolerance = q.target;
     // Bounding circles do not turn with their bodies: if their centres cannot come within the
     // bounds (plus the target) before the step ends, neither can the surfaces. Most pairs of a
@@ -121,7 +121,7 @@ void BodySolver::predict_impact(const std::vector<RigidBody>& bodies, std::uint3
     const double centres = (sb.x_at(t_begin) - sa.x_at(t_begin)).norm();
     const double closing = (sb.v - sa.v).norm() * (dt - t_begin);
     if (centres - closing > sa.bound + sb.bound + q.target + q.tolerance) return;
-    const TimeOfImpact hit = time_of_impact(a.shape, sa, b.shape, sb, q);
+    const TimeOfImpact hit = time_of_impact(shapes_[i], sa, shapes_[j], sb, q);
     if (hit.kind == TimeOfImpact::Kind::apart) return;
     const bool swift = (fast_[i] && !nudged_[i]) || (fast_[j] && !nudged_[j]);
     if (hit.kind == TimeOfImpact::Kind::touching && !swift) return;
@@ -130,11 +130,11 @@ void BodySolver::predict_impact(const std::vector<RigidBody>& bodies, std::uint3
         // Touching already: an impact now if their sweeps close at a point of their manifold
         // (the step's iterations did not stop them, or an impact has just turned one into the
         // other); later, if they slide or turn into each other deeper than the slop by the end.
-        if (!sweeps_close(a.shape, sa, b.shape, sb, t_begin,
+        if (!sweeps_close(shapes_[i], sa, shapes_[j], sb, t_begin,
                           q.target + q.tolerance, settle_)) {
             const std::optional<double> sink =
-                sinks_in(a.shape, sa, b.shape, sb, t_begin, dt, def_.slop,
-                         q.tolerance, 0.25 * std::min(a.inner, b.inner));
+                sinks_in(shapes_[i], sa, shapes_[j], sb, t_begin, dt, def_.slop,
+                         q.tolerance, 0.25 * std::min(inner_[i], inner_[j]));
             if (!sink) return;
             t = *sink;
         } else if (after_only) {
@@ -146,7 +146,7 @@ void BodySolver::predict_impact(const std::vector<RigidBody>& bodies, std::uint3
     std::push_heap(impacts_.begin(), impacts_.end(), later<PredictedImpact>);
 }
 
-void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double settle) {
+void BodySolver::time_impacts(std::vector<Body>& bodies, double dt, double settle) {
     impact_touches_.clear();
     predictions_made_ = 0;
     settle_ = settle;
@@ -177,28 +177,28 @@ void BodySolver::time_impacts(std::vector<RigidBody>& bodies, double dt, double 
     stop_unfinished(bodies);
 }
 
-std::size_t BodySolver::begin_sweeps(const std::vector<RigidBody>& bodies, double dt) {
+std::size_t BodySolver::begin_sweeps(const std::vector<Body>& bodies, double dt) {
     const std::size_t n = bodies.size();
     sweeps_.resize(n);
     swept_.resize(n);
     std::size_t fast_count = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        const RigidBody& b = bodies[i];
+        const Body& b = bodies[i];
         Sweep& s = sweeps_[i];
         s.x0 = transforms_[i].p;
         s.angle0 = start_angle_[i];
         s.v = (b.x - s.x0) / dt;
         s.omega = (b.angle - s.angle0) / dt;
         s.t0 = 0;
-        s.bound = b.bound;
-        const double travel = (b.x - s.x0).norm() + std::abs(b.angle - s.angle0) * b.bound;
-        if (b.inv_mass > 0 && travel > def_.impact_travel * b.inner) fast_[i] = 1;
+        s.bound = b.radius;
+        const double travel = (b.x - s.x0).norm() + std::abs(b.angle - s.angle0) * b.radius;
+        if (b.inv_mass > 0 && travel > def_.impact_travel * inner_[i]) fast_[i] = 1;
         fast_count += fast_[i];
     }
     return fast_count;
 }
 
-void BodySolver::list_reach(const std::vector<RigidBody>& bodies, double dt) {
+void BodySolver::list_reach(const std::vector<Body>& bodies, double dt) {
     const std::size_t n = bodies.size();
     versions_.assign(n, 0);
     nudged_.assign(n, 0);
@@ -249,15 +249,15 @@ void BodySolver::for_each_reachable(std::uint32_t i, F&& f) const {
     }
 }
 
-void BodySolver::take_impact(std::vector<RigidBody>& bodies, const PredictedImpact& e, double dt) {
-    RigidBody& a = bodies[e.a];
-    RigidBody& b = bodies[e.b];
+void BodySolver::take_impact(std::vector<Body>& bodies, const PredictedImpact& e, double dt) {
+    Body& a = bodies[e.a];
+    Body& b = bodies[e.b];
     const Transform xa = sweeps_[e.a].at(e.t), xb = sweeps_[e.b].at(e.t);
-    Manifold m = collide(a.shape, xa, b.shape, xb, e.gap + 2 * impact_gap);
+    Manifold m = collide(shapes_[e.a], xa, shapes_[e.b], xb, e.gap + 2 * impact_gap);
     if (m.count == 0) {
         // Corner on corner: the reference face's clipping leaves no point. The closest
         // points are the contact.
-        const std::optional<Distance> d = distance(a.shape, xa, b.shape, xb);
+        const std::optional<Distance> d = distance(shapes_[e.a], xa, shapes_[e.b], xb);
         if (!d) return;
         m.normal = d->normal;
         m.points[0] = {d->point, d->distance, 0};
@@ -315,7 +315,7 @@ void BodySolver::take_impact(std::vector<RigidBody>& bodies, const PredictedImpa
     const BlockBody* after[2] = {&va, &vb};
     for (int side = 0; side < 2; ++side) {
         const std::uint32_t i = pair[side];
-        RigidBody& body = bodies[i];
+        Body& body = bodies[i];
         if (body.inv_mass == 0) continue;
         Sweep& s = sweeps_[i];
         s.x0 = s.x_at(e.t);
@@ -331,7 +331,7 @@ void BodySolver::take_impact(std::vector<RigidBody>& bodies, const PredictedImpa
         // step's start (a pile's body nudged), it is only nudged: what it touches already
         // is left to the next step's contacts rather than struck in turn, which would pass
         // each blow through a pile impact by impact.
-        nudged_[i] = (!fast_[i] || nudged_[i]) && !moves_fast(body, dt);
+        nudged_[i] = (!fast_[i] || nudged_[i]) && !moves_fast(bodies, i, dt);
         fast_[i] = 1;
         if (!changed_flag_[i]) {
             changed_flag_[i] = 1;
@@ -348,13 +348,13 @@ void BodySolver::take_impact(std::vector<RigidBody>& bodies, const PredictedImpa
     }
 }
 
-void BodySolver::stop_unfinished(std::vector<RigidBody>& bodies) {
+void BodySolver::stop_unfinished(std::vector<Body>& bodies) {
     // Out of sweeps: a body whose sweep was not checked against everything it reaches stays
     // where that sweep starts (its last impact, or the step's start), losing the rest of its
     // step; what it would have met, it meets in the next one.
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         if (!unchecked_[i]) continue;
-        RigidBody& body = bodies[i];
+        Body& body = bodies[i];
         const Sweep& s = sweeps_[i];
         body.x = s.x_at(s.t0);
         body.angle = s.angle_at(s.t0);
@@ -369,7 +369,7 @@ void BodySolver::stop_unfinished(std::vector<RigidBody>& bodies) {
         impacts_.pop_back();
         if (e.version_a != versions_[e.a] || e.version_b != versions_[e.b]) continue;
         for (const std::uint32_t i : {e.a, e.b}) {
-            RigidBody& body = bodies[i];
+            Body& body = bodies[i];
             if (body.inv_mass == 0) continue;
             const Sweep& s = sweeps_[i];
             body.x = s.x_at(e.t);

@@ -26,11 +26,11 @@ std::optional<std::pair<std::uint32_t, std::uint32_t>> BodySolver::unite(std::ui
     return std::pair{low, high};
 }
 
-std::uint32_t BodySolver::island_of(const PairContact& pc, const std::vector<RigidBody>& bodies) {
+std::uint32_t BodySolver::island_of(const PairContact& pc, const std::vector<Body>& bodies) {
     return root(bodies[pc.a].inv_mass > 0 ? pc.a : pc.b);
 }
 
-void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
+void BodySolver::find_islands(const std::vector<Body>& bodies) {
     const std::size_t n = bodies.size();
     direct_.assign(fresh_.size(), 0);
     blocked_.assign(fresh_.size(), 0);
@@ -39,7 +39,7 @@ void BodySolver::find_islands(const std::vector<RigidBody>& bodies) {
     // within direct_mass_ratio of every other (a pile of alike bodies), every island iterates
     // and none needs finding.
     double lightest = 0, heaviest = HUGE_VAL;   // by inverse mass
-    for (const RigidBody& b : bodies) {
+    for (const Body& b : bodies) {
         if (b.inv_mass <= 0) continue;
         lightest = std::max(lightest, b.inv_mass);
         heaviest = std::min(heaviest, b.inv_mass);

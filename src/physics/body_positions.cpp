@@ -14,7 +14,7 @@ namespace {
 // separations, `gap` short of their allowed value (negative: too deep), to it or beyond, each
 // zero where its point separates by itself: the velocity block's complementarity problem
 // (block_solver.cpp) with the gaps in place of the velocities.
-std::array<double, 2> block_push(const RigidBody& a, const RigidBody& b, const V2& n,
+std::array<double, 2> block_push(const Body& a, const Body& b, const V2& n,
                                  const std::array<V2, 2>& ra, const std::array<V2, 2>& rb,
                                  const std::array<double, 2>& gap) {
     const double ra1 = cross(ra[0], n), rb1 = cross(rb[0], n);
@@ -36,13 +36,13 @@ std::array<double, 2> block_push(const RigidBody& a, const RigidBody& b, const V
 
 }  // namespace
 
-void BodySolver::integrate_positions(std::vector<RigidBody>& bodies, double dt) {
+void BodySolver::integrate_positions(std::vector<Body>& bodies, double dt) {
     std::vector<V2>& moved = moved_;
     moved.resize(bodies.size());
     std::vector<double>& turned = turned_;
     turned.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-        RigidBody& b = bodies[i];
+        Body& b = bodies[i];
         moved[i] = b.v * dt;
         turned[i] = b.omega * dt;
         b.x += moved[i];
@@ -55,7 +55,7 @@ void BodySolver::integrate_positions(std::vector<RigidBody>& bodies, double dt) 
 
 }
 
-void BodySolver::push_out(std::vector<RigidBody>& bodies) {
+void BodySolver::push_out(std::vector<Body>& bodies) {
     // Every push counts (the islands' below too): see the sweeps.
     pushes_ = 0;
     pushed_at_.assign(bodies.size(), 0);
@@ -121,10 +121,10 @@ void BodySolver::turn_body(std::uint32_t i, double by) {
     spin_[i] = {c0 * c - s0 * s, s0 * c + c0 * s};
 }
 
-void BodySolver::push_apart(std::vector<RigidBody>& bodies, const PairContact& pc, const V2& ra,
+void BodySolver::push_apart(std::vector<Body>& bodies, const PairContact& pc, const V2& ra,
                             const V2& rb, double amount) {
-    RigidBody& a = bodies[pc.a];
-    RigidBody& b = bodies[pc.b];
+    Body& a = bodies[pc.a];
+    Body& b = bodies[pc.b];
     const V2 impulse = amount * pc.contact.normal;
     const V2 da = a.inv_mass * impulse, db = b.inv_mass * impulse;
     const double ta = a.inv_inertia * cross(ra, impulse);
@@ -142,7 +142,7 @@ void BodySolver::push_apart(std::vector<RigidBody>& bodies, const PairContact& p
     pushed_at_[pc.b] = pushes_;
 }
 
-void BodySolver::push_out_together(std::vector<RigidBody>& bodies,
+void BodySolver::push_out_together(std::vector<Body>& bodies,
                                    std::span<const IslandContact> island) {
     // A direct island: every point to within the slop at once, through the same matrix; the
     // blocks of larger islands the same way, one after the other, in sweeps.
@@ -178,16 +178,16 @@ void BodySolver::push_out_together(std::vector<RigidBody>& bodies,
         for (int q = 0; q < pc.contact.count; ++q, ++at) {
             const BlockPoint& p = pc.contact.points[q];
             const V2 impulse = push_[at] * pc.contact.normal;
-            const RigidBody& a = bodies[pc.a];
-            const RigidBody& b = bodies[pc.b];
+            const Body& a = bodies[pc.a];
+            const Body& b = bodies[pc.b];
             shift(pc.a, -a.inv_mass * impulse, -a.inv_inertia * cross(p.ra, impulse));
             shift(pc.b, b.inv_mass * impulse, b.inv_inertia * cross(p.rb, impulse));
         }
     }
     double over = 1;   // the most any body's push exceeds its inner radius by, as a factor
     for (const Shift& s : shifts_) {
-        const RigidBody& body = bodies[s.body];
-        over = std::max(over, (s.by.norm() + std::abs(s.turn) * body.bound) / body.inner);
+        const Body& body = bodies[s.body];
+        over = std::max(over, (s.by.norm() + std::abs(s.turn) * body.radius) / inner_[s.body]);
     }
     if (over > 1) {
         for (double& x : push_) x /= over;
@@ -202,9 +202,9 @@ void BodySolver::push_out_together(std::vector<RigidBody>& bodies,
     }
 }
 
-void BodySolver::push_out_contact(std::vector<RigidBody>& bodies, const PairContact& pc) {
-    const RigidBody& a = bodies[pc.a];
-    const RigidBody& b = bodies[pc.b];
+void BodySolver::push_out_contact(std::vector<Body>& bodies, const PairContact& pc) {
+    const Body& a = bodies[pc.a];
+    const Body& b = bodies[pc.b];
     const V2& n = pc.contact.normal;
     if (pc.contact.count == 2) {
         // Both points at once, as the velocities are solved: pushed one at a time, the first
@@ -239,7 +239,7 @@ void BodySolver::push_out_contact(std::vector<RigidBody>& bodies, const PairCont
     }
 }
 
-void BodySolver::mark_sunk(const std::vector<RigidBody>& bodies) {
+void BodySolver::mark_sunk(const std::vector<Body>& bodies) {
     const std::vector<V2>& moved = moved_;
     const std::vector<double>& turned = turned_;
     // A pair that started the step apart and ends deeper in than the slop was not kept apart
@@ -249,10 +249,10 @@ void BodySolver::mark_sunk(const std::vector<RigidBody>& bodies) {
     // iterations share out; only pairs with a body that moved a hundredth of its inner radius
     // are looked at again.
     for (const PairContact& pc : fresh_) {
-        const RigidBody& a = bodies[pc.a];
-        const RigidBody& b = bodies[pc.b];
+        const Body& a = bodies[pc.a];
+        const Body& b = bodies[pc.b];
         const auto moved_far = [&](std::uint32_t i) {
-            return moved[i].norm() + std::abs(turned[i]) * bodies[i].bound > 0.01 * bodies[i].inner;
+            return moved[i].norm() + std::abs(turned[i]) * bodies[i].radius > 0.01 * inner_[i];
         };
         if (!moved_far(pc.a) && !moved_far(pc.b)) continue;
         double apart = HUGE_VAL;
@@ -260,14 +260,14 @@ void BodySolver::mark_sunk(const std::vector<RigidBody>& bodies) {
             apart = std::min(apart, pc.anchors[static_cast<std::size_t>(k)].separation);
         }
         if (apart <= 0) continue;
-        const double deep = def_.slop + 0.05 * std::min(a.inner, b.inner);
+        const double deep = def_.slop + 0.05 * std::min(inner_[pc.a], inner_[pc.b]);
         // No point of either body moved farther than its centre's travel and its turn at its
         // bounding radius: a pair that far apart cannot have sunk in so deep.
         const auto travel = [&](std::uint32_t i) {
-            return moved[i].norm() + std::abs(turned[i]) * bodies[i].bound;
+            return moved[i].norm() + std::abs(turned[i]) * bodies[i].radius;
         };
         if (apart - (travel(pc.a) + travel(pc.b)) > -deep) continue;
-        const Manifold now = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
+        const Manifold now = collide(shapes_[pc.a], Transform::of(a.x, a.angle), shapes_[pc.b],
                                      Transform::of(b.x, b.angle), 0);
         for (int k = 0; k < now.count; ++k) {
             if (now.points[k].separation >= -deep) continue;

@@ -19,12 +19,13 @@ bool by_pair(const auto& x, const auto& y) { return x.a != y.a ? x.a < y.a : x.b
 
 }  // namespace
 
-bool BodySolver::wake_flagged(std::vector<RigidBody>& bodies, const V2& kick) {
+bool BodySolver::wake_flagged(std::vector<Body>& bodies, const V2& kick) {
     bool woke = false;
-    for (RigidBody& b : bodies) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        Body& b = bodies[i];
         if (!b.asleep || !waking_[b.island]) continue;
         b.asleep = false;
-        b.still_for = 0;
+        still_for_[i] = 0;
         if (b.inv_mass > 0) b.v += kick;
         --asleep_count_;
         woke = true;
@@ -33,12 +34,12 @@ bool BodySolver::wake_flagged(std::vector<RigidBody>& bodies, const V2& kick) {
     return woke;
 }
 
-bool BodySolver::wake_moved(std::vector<RigidBody>& bodies) {
+bool BodySolver::wake_moved(std::vector<Body>& bodies) {
     if (asleep_count_ == 0) return true;
     waking_.assign(bodies.size(), 0);
     bool stirring = false;
     // Moved by a throw (a flick's velocity, a grab) or by an impact in the last step.
-    for (const RigidBody& b : bodies) {
+    for (const Body& b : bodies) {
         if (b.asleep && (b.motion == Motion::held || b.v != V2::Zero() || b.omega != 0)) {
             waking_[b.island] = 1;
         }
@@ -52,7 +53,7 @@ void BodySolver::count_parked() {
     parked_touching_ = static_cast<std::size_t>(std::count_if(parked_.begin(), parked_.end(), touched));
 }
 
-void BodySolver::wake_reached(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
+void BodySolver::wake_reached(std::vector<Body>& bodies, const V2& gravity, double dt) {
     if (asleep_count_ == 0) return;
     // Again while islands wake, as a woken island may reach others; begin_step left the woken
     // bodies out, so they start the step as the awake ones did.
@@ -60,13 +61,13 @@ void BodySolver::wake_reached(std::vector<RigidBody>& bodies, const V2& gravity,
         for (const std::uint64_t key : pairs_) {
             const auto i = static_cast<std::uint32_t>(key >> 32);
             const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
-            const RigidBody& a = bodies[i];
-            const RigidBody& b = bodies[j];
+            const Body& a = bodies[i];
+            const Body& b = bodies[j];
             if (!a.asleep && !b.asleep) continue;
             // The other one is awake and can move: the step lists no other pairs.
             const std::uint32_t island = (a.asleep ? a : b).island;
             if (waking_[island]) continue;
-            if (collide(a.shape, transforms_[i], b.shape, transforms_[j], margin_[i] + margin_[j])
+            if (collide(shapes_[i], transforms_[i], shapes_[j], transforms_[j], margin_[i] + margin_[j])
                     .count > 0) {
                 waking_[island] = 1;
             }
@@ -77,7 +78,7 @@ void BodySolver::wake_reached(std::vector<RigidBody>& bodies, const V2& gravity,
     unpark(bodies);
 }
 
-void BodySolver::unpark(const std::vector<RigidBody>& bodies) {
+void BodySolver::unpark(const std::vector<Body>& bodies) {
     // A parked contact joins two bodies of one island, or one and a wall: it rejoins the
     // step's, in pair order, once its island is awake.
     const std::size_t before = contacts_.size();
@@ -92,15 +93,16 @@ void BodySolver::unpark(const std::vector<RigidBody>& bodies) {
     count_parked();
 }
 
-void BodySolver::fall_asleep(std::vector<RigidBody>& bodies, double dt) {
+void BodySolver::fall_asleep(std::vector<Body>& bodies, double dt) {
     if (!def_.sleep) return;
     const std::size_t n = bodies.size();
     const double slow = def_.sleep_speed;
-    for (RigidBody& b : bodies) {
+    for (std::size_t i = 0; i < n; ++i) {
+        const Body& b = bodies[i];
         if (b.asleep) continue;
         const bool still = b.motion == Motion::dynamic && b.v.squaredNorm() < slow * slow &&
-                           std::abs(b.omega) * b.bound < slow;
-        b.still_for = still ? b.still_for + dt : 0;
+                           std::abs(b.omega) * b.radius < slow;
+        still_for_[i] = still ? still_for_[i] + dt : 0;
     }
     // The islands: union-find by the lower index, over contacts with points between bodies
     // that move (a held body joins its island and keeps it awake).
@@ -108,7 +110,7 @@ void BodySolver::fall_asleep(std::vector<RigidBody>& bodies, double dt) {
     lightest_.resize(n);   // here: the shortest time at rest in the island, s
     for (std::size_t i = 0; i < n; ++i) {
         parent_[i] = static_cast<std::uint32_t>(i);
-        lightest_[i] = bodies[i].still_for;
+        lightest_[i] = still_for_[i];
     }
     const auto joins = [&](std::uint32_t i) { return bodies[i].motion != Motion::fixed; };
     for (const PairContact& pc : contacts_) {
@@ -119,7 +121,7 @@ void BodySolver::fall_asleep(std::vector<RigidBody>& bodies, double dt) {
     }
     bool fell = false;
     for (std::size_t i = 0; i < n; ++i) {
-        RigidBody& b = bodies[i];
+        Body& b = bodies[i];
         if (b.asleep || b.motion != Motion::dynamic) continue;
         const std::uint32_t r = root(static_cast<std::uint32_t>(i));
         if (lightest_[r] < def_.sleep_after) continue;
@@ -142,8 +144,14 @@ void BodySolver::fall_asleep(std::vector<RigidBody>& bodies, double dt) {
     count_parked();
 }
 
-void BodySolver::forget(std::vector<RigidBody>& bodies, std::size_t first, std::size_t last) {
+void BodySolver::forget(std::vector<Body>& bodies, std::size_t first, std::size_t last) {
     fat_pairs_.invalidate();
+    // The bodies that replace them have shapes of their own, and have not rested yet.
+    fit(bodies.size());
+    for (std::size_t i = first; i < last; ++i) {
+        inner_[i] = -1;
+        still_for_[i] = 0;
+    }
     waking_.assign(bodies.size(), 0);
     for (std::size_t i = first; i < last; ++i) {
         if (bodies[i].asleep) waking_[bodies[i].island] = 1;

@@ -8,7 +8,7 @@
 
 namespace discreel::physics::detail {
 
-void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall) {
+void BodySolver::find_pairs(const std::vector<Body>& bodies, double dt, double fall) {
     const std::size_t n = bodies.size();
     boxes_.resize(n);
     margin_.resize(n);
@@ -16,21 +16,22 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
     // An asleep body has not moved since its box was made (a respawn makes bodies afresh,
     // awake, and every body is awake in its first step).
     for (std::size_t i = 0; i < n; ++i) {
-        const RigidBody& b = bodies[i];
+        const Body& b = bodies[i];
         if (b.asleep) continue;
         // How far the body's surface can move in the step: the pair's speculative distance
         // is the sum of the two, so contacts are found before a fast body passes through.
-        margin_[i] = (b.v.norm() + std::abs(b.omega) * b.bound) * dt +
+        margin_[i] = (b.v.norm() + std::abs(b.omega) * b.radius) * dt +
                      (b.inv_mass > 0 ? fall : 0.0) + 0.5 * def_.speculative;
         transforms_[i] = Transform::of(b.x, b.angle);
         const Transform& xf = transforms_[i];
         std::array<double, 4> box{HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-        for (int k = 0; k < b.shape.count; ++k) {
-            const V2 p = xf.apply(b.shape.vertices[k]);
+        const Polygon& shape = shapes_[i];
+        for (int k = 0; k < shape.count; ++k) {
+            const V2 p = xf.apply(shape.vertices[k]);
             box = {std::min(box[0], p.x()), std::min(box[1], p.y()), std::max(box[2], p.x()),
                    std::max(box[3], p.y())};
         }
-        const double grow = b.shape.radius + margin_[i];
+        const double grow = shape.radius + margin_[i];
         boxes_[i] = {box[0] - grow, box[1] - grow, box[2] + grow, box[3] + grow};
     }
     // The fat list holds every pair these boxes can make while it is kept (fat_pairs.hpp).
@@ -38,14 +39,14 @@ void BodySolver::find_pairs(const std::vector<RigidBody>& bodies, double dt, dou
     fat_margin_.resize(n);
     movable_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        fat_margin_[i] = 0.25 * bodies[i].bound + 4 * margin_[i];
+        fat_margin_[i] = 0.25 * bodies[i].radius + 4 * margin_[i];
         movable_[i] = bodies[i].inv_mass > 0;
     }
     fat_pairs_.update(boxes_, fat_margin_, movable_, fat_list_);
     list_pairs(bodies);
 }
 
-void BodySolver::list_pairs(const std::vector<RigidBody>& bodies) {
+void BodySolver::list_pairs(const std::vector<Body>& bodies) {
     // The step's pairs: those of the fat list whose boxes overlap now, in (a, b) order, with
     // an awake body that can move (body_sleep.cpp parks the others).
     const std::size_t n = bodies.size();
@@ -62,16 +63,16 @@ void BodySolver::list_pairs(const std::vector<RigidBody>& bodies) {
 }
 
 Manifold BodySolver::manifold_of(PairContact& pc, const PairContact* before,
-                                 const std::vector<RigidBody>& bodies) {
-    const RigidBody& a = bodies[pc.a];
-    const RigidBody& b = bodies[pc.b];
+                                 const std::vector<Body>& bodies) {
+    const Body& a = bodies[pc.a];
+    const Body& b = bodies[pc.b];
     const Transform& xa = transforms_[pc.a];
     const Transform& xb = transforms_[pc.b];
     const V2 offset = xa.inverse_rotate(xb.p - xa.p);
     const double turn = b.angle - a.angle;
     const bool still = before != nullptr && !fast_[pc.a] && !fast_[pc.b] &&
                        (offset - before->made.offset).norm() <=
-                           def_.recycle_travel * std::min(a.inner, b.inner) &&
+                           def_.recycle_travel * std::min(inner_[pc.a], inner_[pc.b]) &&
                        std::abs(turn - before->made.turn) <= def_.recycle_turn;
     Manifold m;
     if (still) {
@@ -87,7 +88,7 @@ Manifold BodySolver::manifold_of(PairContact& pc, const PairContact* before,
         }
         return m;
     }
-    m = collide(a.shape, xa, b.shape, xb, margin_[pc.a] + margin_[pc.b]);
+    m = collide(shapes_[pc.a], xa, shapes_[pc.b], xb, margin_[pc.a] + margin_[pc.b]);
     pc.made.normal = xa.inverse_rotate(m.normal);
     pc.made.offset = offset;
     pc.made.turn = turn;
@@ -110,7 +111,10 @@ void BodySolver::apply_totals(const PairContact& pc, double sign) {
     }
 }
 
-void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
+void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes,
+                      const V2& gravity, double dt) {
+    shapes_ = shapes;
+    fit(bodies.size());
     if (!wake_moved(bodies)) {
         // Every body that can move is asleep and stays so: nothing touches, nothing is swept.
         touches_.clear();
@@ -140,31 +144,31 @@ void BodySolver::step(std::vector<RigidBody>& bodies, const V2& gravity, double 
     fall_asleep(bodies, dt);
 }
 
-void BodySolver::begin_step(std::vector<RigidBody>& bodies, const V2& gravity, double dt) {
+void BodySolver::begin_step(std::vector<Body>& bodies, const V2& gravity, double dt) {
     start_angle_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-        RigidBody& b = bodies[i];
-        if (b.bound < 0) b.bound = bounding_radius(b.shape);
-        if (b.inner < 0) b.inner = inner_radius(b.shape);
+        Body& b = bodies[i];
+        if (inner_[i] < 0) inner_[i] = inner_radius(shapes_[i]);
         if (b.inv_mass > 0 && !b.asleep) b.v += gravity * dt;
         start_angle_[i] = b.angle;
     }
 }
 
-void BodySolver::mark_fast(const std::vector<RigidBody>& bodies, double dt) {
+void BodySolver::mark_fast(const std::vector<Body>& bodies, double dt) {
     // A body that will travel more than impact_travel of its inner radius is fast: its pairs
     // that start the step apart are left to the impacts (body_impacts.cpp), timed exactly,
     // rather than to a speculative contact made from where the step starts.
     fast_.assign(bodies.size(), 0);
-    for (std::size_t i = 0; i < bodies.size(); ++i) fast_[i] = moves_fast(bodies[i], dt);
+    for (std::size_t i = 0; i < bodies.size(); ++i) fast_[i] = moves_fast(bodies, i, dt);
 }
 
-bool BodySolver::moves_fast(const RigidBody& b, double dt) const {
-    const double travel = (b.v.norm() + std::abs(b.omega) * b.bound) * dt;
-    return b.inv_mass > 0 && travel > def_.impact_travel * b.inner;
+bool BodySolver::moves_fast(const std::vector<Body>& bodies, std::size_t i, double dt) const {
+    const Body& b = bodies[i];
+    const double travel = (b.v.norm() + std::abs(b.omega) * b.radius) * dt;
+    return b.inv_mass > 0 && travel > def_.impact_travel * inner_[i];
 }
 
-void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) {
+void BodySolver::make_contacts(const std::vector<Body>& bodies, double dt) {
     // fresh_'s elements are reused in place, each field written below before it is read:
     // made afresh, a contact is some hundreds of bytes of zeros written for nothing.
     std::size_t made = 0;
@@ -172,8 +176,8 @@ void BodySolver::make_contacts(const std::vector<RigidBody>& bodies, double dt) 
     for (const std::uint64_t key : pairs_) {
         const auto i = static_cast<std::uint32_t>(key >> 32);
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
-        const RigidBody& a = bodies[i];
-        const RigidBody& b = bodies[j];
+        const Body& a = bodies[i];
+        const Body& b = bodies[j];
         // Taken back if the pair makes none.
         PairContact& pc = made < fresh_.size() ? fresh_[made] : fresh_.emplace_back();
         ++made;
@@ -274,17 +278,18 @@ void BodySolver::record_touches() {
     }
 }
 
-BodySolver::Overlap BodySolver::max_overlap(const std::vector<RigidBody>& bodies) const {
+BodySolver::Overlap BodySolver::max_overlap(const std::vector<Body>& bodies,
+                                            std::span<const Polygon> shapes) const {
     // Every pair of the broad phase's whose boxes overlap (a fast pair left to its impacts has
     // no contact, an asleep one none solved).
     Overlap deepest;
     for (const std::uint64_t key : fat_list_) {
         const auto i = static_cast<std::uint32_t>(key >> 32);
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
-        const RigidBody& a = bodies[i];
-        const RigidBody& b = bodies[j];
+        const Body& a = bodies[i];
+        const Body& b = bodies[j];
         if (!boxes_overlap(boxes_[i], boxes_[j])) continue;
-        const Manifold m = collide(a.shape, Transform::of(a.x, a.angle), b.shape,
+        const Manifold m = collide(shapes[i], Transform::of(a.x, a.angle), shapes[j],
                                    Transform::of(b.x, b.angle), 0);
         for (int k = 0; k < m.count; ++k) {
             if (-m.points[k].separation <= deepest.depth) continue;

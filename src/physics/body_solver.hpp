@@ -25,30 +25,8 @@
 
 namespace discreel::physics::detail {
 
-struct RigidBody {
-    Polygon shape;
-    V2 x = V2::Zero();             // centroid, metres
-    double angle = 0;              // radians
-    V2 v = V2::Zero();             // m/s
-    double omega = 0;              // rad/s
-    double mass = 0;               // kg (kept while held, for the release)
-    double inertia = 0;            // kg m^2
-    double inv_mass = 0;           // 1/kg; 0: static or held
-    double inv_inertia = 0;        // 1/(kg m^2)
-    double restitution = 0;
-    double friction = 0;
-    Motion motion = Motion::dynamic;   // read by throws; the solver reads inv_mass
-    double bound = -1;             // bounding radius, metres; < 0: not computed yet
-    double inner = -1;             // inner radius (toi.hpp), metres; < 0: not computed yet
-    // Sleeping (body_sleep.cpp): an asleep body is left out of the step, at rest, until an
-    // awake body reaches it or a throw moves it.
-    bool asleep = false;
-    double still_for = 0;          // seconds it has moved slower than BodySolverDef::sleep_speed
-    std::uint32_t island = 0;      // while asleep: the island it fell asleep with (a body index)
-};
-
 // Awake and able to move (held bodies too): a pair needs one such body to be solved.
-inline bool stirs(const RigidBody& b) { return !b.asleep && b.motion != Motion::fixed; }
+inline bool stirs(const Body& b) { return !b.asleep && b.motion != Motion::fixed; }
 
 // v turned by the angle whose cosine and sine are `spin` (BodySolver's spin_: each body's
 // turn in the step).
@@ -58,7 +36,7 @@ inline V2 turned_by(const V2& v, const std::pair<double, double>& spin) {
 }
 
 // A body's velocities and inverse masses as the block solve reads them.
-inline BlockBody velocity_of(const RigidBody& b) {
+inline BlockBody velocity_of(const Body& b) {
     return BlockBody{b.v, b.omega, b.inv_mass, b.inv_inertia};
 }
 
@@ -117,7 +95,10 @@ class BodySolver {
 public:
     explicit BodySolver(BodySolverDef def = {}) : def_(def) {}
     const BodySolverDef& def() const { return def_; }
-    void step(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
+    // `shapes`: each body's, in the bodies' order; `radius` of each body is its shape's
+    // bounding radius.
+    void step(std::vector<Body>& bodies, std::span<const Polygon> shapes, const V2& gravity,
+              double dt);
 
     // The pairs that touched during the last step, in (a, b) order.
     std::span<const PairTouch> touches() const { return touches_; }
@@ -126,12 +107,12 @@ public:
         double depth = 0;              // metres
         std::uint32_t a = 0, b = 0;    // the pair
     };
-    Overlap max_overlap(const std::vector<RigidBody>& bodies) const;
+    Overlap max_overlap(const std::vector<Body>& bodies, std::span<const Polygon> shapes) const;
     // Times of impact computed during the last step (at most the budget of BodySolverDef).
     std::size_t sweeps() const { return predictions_made_; }
     // Forgets contacts of bodies [first, last): they were replaced. The islands they slept in
     // wake (they may have rested on them).
-    void forget(std::vector<RigidBody>& bodies, std::size_t first, std::size_t last);
+    void forget(std::vector<Body>& bodies, std::size_t first, std::size_t last);
     // Pairs touching now: those that touched in the last step and those asleep touching.
     std::size_t touching() const;
 
@@ -163,84 +144,84 @@ private:
         bool touched = false;
     };
     // The stages of a step, in order (body_solver.cpp unless said).
-    void begin_step(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
-    void find_pairs(const std::vector<RigidBody>& bodies, double dt, double fall);
-    void list_pairs(const std::vector<RigidBody>& bodies);
-    void mark_fast(const std::vector<RigidBody>& bodies, double dt);
+    void begin_step(std::vector<Body>& bodies, const V2& gravity, double dt);
+    void find_pairs(const std::vector<Body>& bodies, double dt, double fall);
+    void list_pairs(const std::vector<Body>& bodies);
+    void mark_fast(const std::vector<Body>& bodies, double dt);
     // Whether a body at its velocities now travels more than impact_travel of its inner
     // radius in a step (it cannot move: never).
-    bool moves_fast(const RigidBody& b, double dt) const;
-    void make_contacts(const std::vector<RigidBody>& bodies, double dt);
-    void solve_velocities(std::vector<RigidBody>& bodies);       // body_velocities.cpp
-    void integrate_positions(std::vector<RigidBody>& bodies, double dt);   // body_positions.cpp
-    void bounce(std::vector<RigidBody>& bodies, double settle);  // body_velocities.cpp
+    bool moves_fast(const std::vector<Body>& bodies, std::size_t i, double dt) const;
+    void make_contacts(const std::vector<Body>& bodies, double dt);
+    void solve_velocities(std::vector<Body>& bodies);       // body_velocities.cpp
+    void integrate_positions(std::vector<Body>& bodies, double dt);   // body_positions.cpp
+    void bounce(std::vector<Body>& bodies, double settle);  // body_velocities.cpp
     // A direct island's bounce by Poisson's rule, undone if it would add energy; the kinetic
     // energy of the island's bodies (members_) at these velocities, J.
     void bounce_together(std::span<const IslandContact> island);
     double island_kinetic(const std::vector<BlockBody>& states) const;
     // Solves again, from their arrival and with less of the warm start, the islands of masses
     // far apart that the iterations left with more kinetic energy than they came with.
-    void solve_gainers_again(const std::vector<RigidBody>& bodies);   // body_velocities.cpp
-    void push_out(std::vector<RigidBody>& bodies);               // body_positions.cpp
+    void solve_gainers_again(const std::vector<Body>& bodies);   // body_velocities.cpp
+    void push_out(std::vector<Body>& bodies);               // body_positions.cpp
     // Its parts: point k's separation now from its anchors (and its offsets now, into ra and
     // rb); a body's turn in the step grown by `by` radians; a positional impulse of `amount`
     // (kg m) along the normal at ra, rb; an island's or block's points pushed together; one
     // contact's points pushed.
     double separation_now(const PairContact& pc, int k, V2& ra, V2& rb) const;
     void turn_body(std::uint32_t i, double by);
-    void push_apart(std::vector<RigidBody>& bodies, const PairContact& pc, const V2& ra,
+    void push_apart(std::vector<Body>& bodies, const PairContact& pc, const V2& ra,
                     const V2& rb, double amount);
-    void push_out_together(std::vector<RigidBody>& bodies, std::span<const IslandContact> island);
-    void push_out_contact(std::vector<RigidBody>& bodies, const PairContact& pc);
+    void push_out_together(std::vector<Body>& bodies, std::span<const IslandContact> island);
+    void push_out_contact(std::vector<Body>& bodies, const PairContact& pc);
     // Pairs that started apart and sank in deeper than the slop: their bodies are fast.
-    void mark_sunk(const std::vector<RigidBody>& bodies);        // body_positions.cpp
+    void mark_sunk(const std::vector<Body>& bodies);        // body_positions.cpp
     void record_touches();
     // (body_sleep.cpp) Wakes the sleeping islands that a throw or an impact moved; whether
     // any body that can move is awake now (if none, the step has nothing to do).
-    bool wake_moved(std::vector<RigidBody>& bodies);
+    bool wake_moved(std::vector<Body>& bodies);
     void count_parked();   // parked_touching_ from parked_
     // Moves the parked contacts of awake islands back into contacts_.
-    void unpark(const std::vector<RigidBody>& bodies);
+    void unpark(const std::vector<Body>& bodies);
     // Wakes the sleeping islands an awake body can reach within the step.
-    void wake_reached(std::vector<RigidBody>& bodies, const V2& gravity, double dt);
+    void wake_reached(std::vector<Body>& bodies, const V2& gravity, double dt);
     // Wakes the islands flagged in waking_, adding `kick` to their velocities; whether there
     // were any.
-    bool wake_flagged(std::vector<RigidBody>& bodies, const V2& kick);
+    bool wake_flagged(std::vector<Body>& bodies, const V2& kick);
     // Counts each awake body's time at rest, puts islands at rest long enough to sleep and
     // parks their contacts.
-    void fall_asleep(std::vector<RigidBody>& bodies, double dt);
+    void fall_asleep(std::vector<Body>& bodies, double dt);
     // The manifold of pc's pair now: the one made before, moved with the bodies, while they
     // moved little against each other since (def_.recycle_*), else a new one from collide
     // (kept in pc.made).
     Manifold manifold_of(PairContact& pc, const PairContact* before,
-                         const std::vector<RigidBody>& bodies);
+                         const std::vector<Body>& bodies);
     // Sweeps the pairs with a fast body (or one fast_ marks) from the step's start to its end
     // and takes their impacts in time order (body_impacts.cpp); approaches slower than `settle`
     // are not impacts.
-    void time_impacts(std::vector<RigidBody>& bodies, double dt, double settle);
+    void time_impacts(std::vector<Body>& bodies, double dt, double settle);
     // The stages of time_impacts: each body's sweep over the step, fast_ marking those that
     // travel far (how many); the swept boxes and what each can reach (still_, moving_ by low
     // x); one impact taken (stopped and bounced, the bodies' sweeps begun again from it and
     // what they now reach predicted); and the bodies left with impacts or unchecked sweeps
     // when the budgets ran out, stopped.
-    std::size_t begin_sweeps(const std::vector<RigidBody>& bodies, double dt);
-    void list_reach(const std::vector<RigidBody>& bodies, double dt);
+    std::size_t begin_sweeps(const std::vector<Body>& bodies, double dt);
+    void list_reach(const std::vector<Body>& bodies, double dt);
     template <class F>
     void for_each_reachable(std::uint32_t i, F&& f) const;   // f(j) for each j i's box overlaps
     struct PredictedImpact;
-    void take_impact(std::vector<RigidBody>& bodies, const PredictedImpact& e, double dt);
-    void stop_unfinished(std::vector<RigidBody>& bodies);
+    void take_impact(std::vector<Body>& bodies, const PredictedImpact& e, double dt);
+    void stop_unfinished(std::vector<Body>& bodies);
     // Predicts the first impact of bodies i < j from `t_begin` into impacts_ (`after_only`:
     // only one after t_begin).
-    void predict_impact(const std::vector<RigidBody>& bodies, std::uint32_t i, std::uint32_t j,
+    void predict_impact(const std::vector<Body>& bodies, std::uint32_t i, std::uint32_t j,
                         double t_begin, double dt, bool after_only = false);
     // (body_islands.cpp) Groups the contacts of the islands to solve directly into islands_ (island_start_
     // delimits them, direct_ marks them) and those of larger islands of masses far apart by
     // block into blocks_ (block_start_, blocked_).
-    void find_islands(const std::vector<RigidBody>& bodies);
+    void find_islands(const std::vector<Body>& bodies);
     std::uint32_t root(std::uint32_t i);
     // The island of a contact: its moving body's root (a wall, peg or held body joins none).
-    std::uint32_t island_of(const PairContact& pc, const std::vector<RigidBody>& bodies);
+    std::uint32_t island_of(const PairContact& pc, const std::vector<Body>& bodies);
     // Joins the islands of i and j under the lower root: (that root, the other), or nothing
     // when they were one already.
     std::optional<std::pair<std::uint32_t, std::uint32_t>> unite(std::uint32_t i, std::uint32_t j);
@@ -262,6 +243,14 @@ private:
     PairContact* pair_of(const IslandContact& ic) { return &fresh_[ic.pair]; }
 
     BodySolverDef def_;
+    std::span<const Polygon> shapes_;       // the step's: each body's shape
+    // Per body: its shape's inner radius (toi.hpp), metres (< 0: not computed yet), and how
+    // long it has moved slower than def_.sleep_speed, seconds. fit() sizes them.
+    std::vector<double> inner_, still_for_;
+    void fit(std::size_t bodies) {
+        inner_.resize(bodies, -1.0);
+        still_for_.resize(bodies, 0.0);
+    }
     std::vector<PairContact> contacts_;     // the last step's, in (a, b) order
     std::vector<PairContact> fresh_;        // scratch
     FatPairs fat_pairs_;

@@ -10,7 +10,7 @@
 namespace discreel::physics::detail {
 namespace {
 
-void store(RigidBody& b, const BlockBody& s) {
+void store(Body& b, const BlockBody& s) {
     b.v = s.v;
     b.omega = s.omega;
 }
@@ -26,7 +26,7 @@ double kinetic_energy(const BlockBody& b, const V2& frame = V2::Zero()) {
 
 }  // namespace
 
-void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {
+void BodySolver::solve_velocities(std::vector<Body>& bodies) {
     state_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) state_[i] = velocity_of(bodies[i]);
     // Islands of masses far apart are checked against the kinetic energy their bodies came
@@ -77,7 +77,7 @@ void BodySolver::solve_velocities(std::vector<RigidBody>& bodies) {
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 }
 
-void BodySolver::solve_gainers_again(const std::vector<RigidBody>& bodies) {
+void BodySolver::solve_gainers_again(const std::vector<Body>& bodies) {
     // The warm start applies last step's impulses whole; iterations take back what is not
     // needed now only by a fraction set by the masses' ratio per sweep, so between masses far
     // apart it can launch a light body (heavy_light_bench: a rise of 11 % of a crowd's energy
@@ -152,7 +152,7 @@ void BodySolver::solve_gainers_again(const std::vector<RigidBody>& bodies) {
     }
 }
 
-void BodySolver::bounce(std::vector<RigidBody>& bodies, double settle) {
+void BodySolver::bounce(std::vector<Body>& bodies, double settle) {
     // Restitution: points that arrived faster than settling and pushed this step leave at e
     // times their approach speed, both points of a manifold solved together (no spin from a
     // flat landing). Velocities only, frictionless, from the impulses already applied. The

@@ -9,30 +9,12 @@ namespace {
 
 V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
 
-RigidBody make_body(const BodyDef& d) {
-    RigidBody b;
-    b.shape = d.shape ? to_polygon(*d.shape) : make_circle(d.radius);
-    b.x = to_v2(d.position);
-    b.angle = d.angle;
-    b.restitution = d.restitution;
-    b.friction = d.friction;
-    if (d.is_static) {
-        b.motion = Motion::fixed;
-        return b;
-    }
-    b.v = to_v2(d.velocity);
-    b.omega = d.angular_velocity;
-    b.mass = d.mass;
-    b.inertia = inertia_of(d);
-    b.inv_mass = 1 / b.mass;
-    b.inv_inertia = b.inertia > 0 ? 1 / b.inertia : 0;
-    return b;
-}
+Polygon shape_of(const BodyDef& d) { return d.shape ? to_polygon(*d.shape) : make_circle(d.radius); }
 
-RigidBody make_fixed(const Polygon& shape, const V2& at, double angle, const WallDef& w) {
-    RigidBody b;
-    b.shape = shape;
+Body make_fixed(const Polygon& shape, const V2& at, double angle, const WallDef& w) {
+    Body b;
     b.x = at;
+    b.radius = bounding_radius(shape);
     b.angle = angle;
     b.restitution = w.restitution;
     b.friction = w.friction;
@@ -62,7 +44,10 @@ ShapeWorld::ShapeWorld(const WorldDef& def, int substeps)
       solver_(solver_def(def)),
       throws_(def.throws),
       respawns_(def.respawns) {
-    for (const BodyDef& d : def.bodies) bodies_.push_back(make_body(d));
+    for (const BodyDef& d : def.bodies) {
+        bodies_.push_back(make_body(d));
+        shapes_.push_back(shape_of(d));
+    }
     for (std::size_t i = 0; i < def.walls.size(); ++i) {
         const WallDef& w = def.walls[i];
         if (w.shape == WallDef::Shape::box) {
@@ -70,6 +55,7 @@ ShapeWorld::ShapeWorld(const WorldDef& def, int substeps)
             const V2 hi(std::max(w.a.x, w.b.x), std::max(w.a.y, w.b.y));
             for (const Slab& s : container_slabs(lo, hi)) {
                 bodies_.push_back(make_fixed(s.shape, s.centre, 0, w));
+                shapes_.push_back(s.shape);
                 wall_of_.push_back(i);
             }
             continue;
@@ -79,6 +65,7 @@ ShapeWorld::ShapeWorld(const WorldDef& def, int substeps)
         const auto capsule = make_capsule(length, 0.5 * w.thickness);
         const Polygon shape = capsule ? *capsule : make_circle(0.5 * w.thickness);
         bodies_.push_back(make_fixed(shape, 0.5 * (a + b), std::atan2(b.y() - a.y(), b.x() - a.x()), w));
+        shapes_.push_back(shape);
         wall_of_.push_back(i);
     }
     throws_.start(bodies_);
@@ -91,7 +78,8 @@ void ShapeWorld::respawn(double t0) {
         const std::size_t last = std::min(body_count_, r.first + r.bodies.size());
         solver_.forget(bodies_, r.first, last);
         for (std::size_t i = r.first; i < last; ++i) {
-            RigidBody fresh = make_body(r.bodies[i - r.first]);
+            Body fresh = make_body(r.bodies[i - r.first]);
+            shapes_[i] = shape_of(r.bodies[i - r.first]);
             // A held body stays held: its throw still owns it.
             if (bodies_[i].motion == Motion::held) {
                 fresh.x = bodies_[i].x;
@@ -110,7 +98,7 @@ void ShapeWorld::step(double t0, double t1) {
     throws_.begin_step(t0, t1, bodies_);
     const double h = (t1 - t0) / substeps_;
     for (int k = 0; k < substeps_; ++k) {
-        solver_.step(bodies_, gravity_, h);
+        solver_.step(bodies_, shapes_, gravity_, h);
         for (const PairTouch& touch : solver_.touches()) {
             if (!touch.began) continue;
             ContactEvent e;
@@ -132,16 +120,13 @@ void ShapeWorld::step(double t0, double t1) {
 }
 
 std::span<const BodyState> ShapeWorld::states() const {
-    for (std::size_t i = 0; i < body_count_; ++i) {
-        const RigidBody& b = bodies_[i];
-        states_[i] = BodyState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
-    }
+    for (std::size_t i = 0; i < body_count_; ++i) states_[i] = state_of(bodies_[i]);
     return states_;
 }
 
 std::optional<std::size_t> ShapeWorld::non_finite() const {
     for (std::size_t i = 0; i < body_count_; ++i) {
-        const RigidBody& b = bodies_[i];
+        const Body& b = bodies_[i];
         if (!std::isfinite(b.x.x() + b.x.y() + b.v.x() + b.v.y() + b.angle + b.omega)) return i;
     }
     return std::nullopt;
@@ -149,17 +134,12 @@ std::optional<std::size_t> ShapeWorld::non_finite() const {
 
 WorldStats ShapeWorld::stats(const V2& gravity) const {
     WorldStats s;
-    for (std::size_t i = 0; i < body_count_; ++i) {
-        const RigidBody& b = bodies_[i];
-        if (b.motion == Motion::fixed) continue;
-        s.kinetic_energy += 0.5 * b.mass * b.v.squaredNorm() + 0.5 * b.inertia * b.omega * b.omega;
-        s.potential_energy -= b.mass * gravity.dot(b.x);
-    }
-    const BodySolver::Overlap o = solver_.max_overlap(bodies_);
+    add_energy(std::span(bodies_).first(body_count_), gravity, s);
+    const BodySolver::Overlap o = solver_.max_overlap(bodies_, shapes_);
     s.max_overlap = o.depth;
     if (o.depth > 0) {
-        const double a = bodies_[o.a].bound;
-        const double b = o.b < body_count_ ? bodies_[o.b].bound : a;
+        const double a = bodies_[o.a].radius;
+        const double b = o.b < body_count_ ? bodies_[o.b].radius : a;
         s.max_overlap_ratio = o.depth / std::min(a, b);
     }
     s.contact_count = touching_;

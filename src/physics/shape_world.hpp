@@ -37,7 +37,8 @@ private:
     V2 gravity_;
     int substeps_ = 1;
     std::size_t body_count_ = 0;
-    std::vector<RigidBody> bodies_;         // bodies, then walls
+    std::vector<Body> bodies_;              // bodies, then walls
+    std::vector<Polygon> shapes_;           // each one's shape
     std::vector<std::size_t> wall_of_;      // per fixed body after body_count_: its wall index
     BodySolver solver_;
     Throws throws_;

@@ -1,6 +1,5 @@
 #include "throws.hpp"
 
-#include "body_solver.hpp"
 
 namespace discreel::physics::detail {
 namespace {
@@ -28,16 +27,14 @@ V2 final_velocity(const std::vector<Waypoint>& path) {
     return (to_v2(p1.position) - to_v2(p0.position)) / (p1.t - p0.t);
 }
 
-template <class B>
-void hold(B& b) {
+void hold(Body& b) {
     b.motion = Motion::held;
     b.inv_mass = 0.0;
     b.inv_inertia = 0.0;
     b.omega = 0.0;
 }
 
-template <class B>
-void release(B& b, const V2& v) {
+void release(Body& b, const V2& v) {
     b.motion = Motion::dynamic;
     b.inv_mass = 1.0 / b.mass;
     b.inv_inertia = 1.0 / b.inertia;
@@ -50,11 +47,10 @@ Throws::Throws(const std::vector<ThrowDef>& defs) {
     for (const ThrowDef& d : defs) throws_.push_back(Throw{d, Stage::waiting});
 }
 
-template <class B>
-void Throws::start(std::vector<B>& bodies) {
+void Throws::start(std::vector<Body>& bodies) {
     for (Throw& th : throws_) {
         std::vector<Waypoint>& path = th.def.path;
-        B& b = bodies[th.def.body];
+        Body& b = bodies[th.def.body];
         if (path.empty() || b.motion == Motion::fixed) continue;
         if (path.front().t > 0) path.insert(path.begin(), Waypoint{0.0, Vec2{b.x.x(), b.x.y()}});
         b.x = to_v2(path.front().position);
@@ -64,12 +60,11 @@ void Throws::start(std::vector<B>& bodies) {
     }
 }
 
-template <class B>
-bool Throws::begin_step(double t0, double t1, std::vector<B>& bodies) {
+bool Throws::begin_step(double t0, double t1, std::vector<Body>& bodies) {
     bool changed = false;
     for (Throw& th : throws_) {
         if (th.stage == Stage::done) continue;
-        B& b = bodies[th.def.body];
+        Body& b = bodies[th.def.body];
         if (b.motion == Motion::fixed) {
             th.stage = Stage::done;
             continue;
@@ -96,19 +91,11 @@ bool Throws::begin_step(double t0, double t1, std::vector<B>& bodies) {
     return changed;
 }
 
-template <class B>
-void Throws::end_step(double t1, std::vector<B>& bodies) const {
+void Throws::end_step(double t1, std::vector<Body>& bodies) const {
     for (const Throw& th : throws_) {
         if (th.stage != Stage::holding) continue;
         bodies[th.def.body].x = path_at(th.def.path, t1);
     }
 }
-
-template void Throws::start(std::vector<Body>&);
-template void Throws::start(std::vector<RigidBody>&);
-template bool Throws::begin_step(double, double, std::vector<Body>&);
-template bool Throws::begin_step(double, double, std::vector<RigidBody>&);
-template void Throws::end_step(double, std::vector<Body>&) const;
-template void Throws::end_step(double, std::vector<RigidBody>&) const;
 
 }  // namespace discreel::physics::detail

@@ -1,12 +1,11 @@
 #pragma once
-// Scripted interaction. A flick sets a disc's velocity at the first step starting at or after
-// its time. A grab holds its disc from t = 0: the disc becomes kinematic (infinitely heavy to
+// Scripted interaction. A flick sets a body's velocity at the first step starting at or after
+// its time. A grab holds its body from t = 0: the body becomes kinematic (infinitely heavy to
 // the others) and is carried in a straight line from where it starts to the first waypoint,
-// arriving at that waypoint's time, so the disc is where the path says from then on and never
+// arriving at that waypoint's time, so the body is where the path says from then on and never
 // jumps; it then moves along the straight segments between waypoints with the path's
 // velocity, and is released at the first step starting at or after the last waypoint with the
-// `release` velocity, or the last segment's. Throws on static discs do nothing. The same for
-// the disc solver's bodies (Body) and the manifold solver's (RigidBody).
+// `release` velocity, or the last segment's. Throws on static bodies do nothing.
 #include <cstddef>
 #include <vector>
 
@@ -21,17 +20,14 @@ public:
 
     // Takes hold of the grabbed discs in `bodies`, their state at t = 0; called once, before
     // the first step.
-    template <class B>
-    void start(std::vector<B>& bodies);
+    void start(std::vector<Body>& bodies);
 
     // For the step [t0, t1]: applies due flicks, starts and ends grabs, and gives held discs
     // their position at t0 and the velocity that brings them to their path point at t1.
     // True when it changed a body.
-    template <class B>
-    bool begin_step(double t0, double t1, std::vector<B>& bodies);
+    bool begin_step(double t0, double t1, std::vector<Body>& bodies);
     // Puts held discs exactly on their paths at t1 (integration would round).
-    template <class B>
-    void end_step(double t1, std::vector<B>& bodies) const;
+    void end_step(double t1, std::vector<Body>& bodies) const;
 
 private:
     enum class Stage { waiting, holding, done };

@@ -19,7 +19,6 @@ namespace discreel::physics {
 
 using detail::Body;
 using detail::Contact;
-using detail::Motion;
 using detail::V2;
 
 namespace {
@@ -35,27 +34,6 @@ V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
 // x where mask is all ones, +0 where it is zero.
 double masked(double x, std::uint64_t mask) {
     return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) & mask);
-}
-
-Body make_disc(const BodyDef& d) {
-    Body b;
-    b.x = to_v2(d.position);
-    b.angle = d.angle;
-    b.radius = d.radius;
-    b.restitution = d.restitution;
-    b.friction = d.friction;
-    if (d.is_static) {
-        b.motion = Motion::fixed;
-        return b;
-    }
-    b.motion = Motion::dynamic;
-    b.v = to_v2(d.velocity);
-    b.omega = d.angular_velocity;
-    b.mass = d.mass;
-    b.inertia = 0.5 * d.mass * d.radius * d.radius;
-    b.inv_mass = 1.0 / b.mass;
-    b.inv_inertia = 1.0 / b.inertia;
-    return b;
 }
 
 }  // namespace
@@ -77,7 +55,7 @@ struct World::Impl {
             if (const auto i = shapes->non_finite()) failure = NonFiniteState{*i, 0.0};
             return;
         }
-        for (const BodyDef& d : def.bodies) bodies.push_back(make_disc(d));
+        for (const BodyDef& d : def.bodies) bodies.push_back(detail::make_body(d));
         for (const detail::Feature& f : features) {
             Body b;
             b.restitution = def.walls[f.wall].restitution;
@@ -289,10 +267,7 @@ std::span<const BodyState> World::Impl::publish() const {
     if (shapes) return shapes->states();
     if (published_steps != steps) {
         published_steps = steps;
-        for (std::size_t i = 0; i < disc_count; ++i) {
-            const Body& b = bodies[i];
-            states[i] = BodyState{{b.x.x(), b.x.y()}, {b.v.x(), b.v.y()}, b.angle, b.omega};
-        }
+        for (std::size_t i = 0; i < disc_count; ++i) states[i] = detail::state_of(bodies[i]);
     }
     return states;
 }
@@ -320,12 +295,7 @@ WorldStats World::stats() const {
     const Impl& w = *impl_;
     if (w.shapes) return w.shapes->stats(w.gravity);
     WorldStats s;
-    for (std::size_t i = 0; i < w.disc_count; ++i) {
-        const Body& b = w.bodies[i];
-        if (b.motion == Motion::fixed) continue;
-        s.kinetic_energy += 0.5 * b.mass * b.v.squaredNorm() + 0.5 * b.inertia * b.omega * b.omega;
-        s.potential_energy -= b.mass * w.gravity.dot(b.x);
-    }
+    detail::add_energy(std::span(w.bodies).first(w.disc_count), w.gravity, s);
     for (const Contact& c : w.contacts) {
         const Body& a = w.bodies[c.a];
         const Body& b = w.bodies[c.b];

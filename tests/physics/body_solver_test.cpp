@@ -15,33 +15,52 @@ namespace {
 constexpr double rate = 480;
 const V2 gravity(0, -9.81);
 
-RigidBody ground(double angle = 0) {
-    RigidBody g;
-    g.shape = *make_box(40, 2);
-    g.x = V2(0, -1);               // top face at y = 0 when flat
+// Bodies and their shapes, side by side as the solver takes them.
+struct Bodies {
+    std::vector<Body> bodies;
+    std::vector<Polygon> shapes;
+
+    void add(const Body& b, const Polygon& shape) {
+        bodies.push_back(b);
+        bodies.back().radius = bounding_radius(shape);
+        shapes.push_back(shape);
+    }
+    void step(BodySolver& solver) { solver.step(bodies, shapes, gravity, 1 / rate); }
+    const Body& operator[](std::size_t i) const { return bodies[i]; }
+};
+
+// A fixed ground of w x 2 m whose top face is at y = 0 when flat.
+void add_ground(Bodies& b, double angle = 0, double w = 40) {
+    Body g;
+    g.x = V2(0, -1);
     g.angle = angle;
     g.friction = 0.5;
-    return g;
+    b.add(g, *make_box(w, 2));
 }
 
-RigidBody crate(double w, double h, V2 at, double e = 0, double mu = 0.5) {
-    RigidBody b;
-    b.shape = *make_box(w, h);
-    b.x = at;
-    const MassProperties m = mass_properties(b.shape, 1.0);
-    b.inv_mass = 1 / m.mass;
-    b.inv_inertia = 1 / m.inertia;
-    b.restitution = e;
-    b.friction = mu;
-    return b;
+void add_crate(Bodies& b, double w, double h, const V2& at, double e = 0, double mu = 0.5) {
+    const Polygon shape = *make_box(w, h);
+    Body c;
+    c.motion = Motion::dynamic;
+    c.x = at;
+    const MassProperties m = mass_properties(shape, 1.0);
+    c.mass = m.mass;
+    c.inertia = m.inertia;
+    c.inv_mass = 1 / m.mass;
+    c.inv_inertia = 1 / m.inertia;
+    c.restitution = e;
+    c.friction = mu;
+    b.add(c, shape);
 }
 
 TEST(BodySolverTest, ABoxAtRestStaysWithinATenthOfAMillimetreFor10s) {
-    std::vector<RigidBody> bodies{ground(), crate(1, 0.5, V2(0.3, 0.25))};
+    Bodies bodies;
+    add_ground(bodies);
+    add_crate(bodies, 1, 0.5, V2(0.3, 0.25));
     BodySolver solver;
     double farthest = 0;
     for (int k = 0; k < 10 * rate; ++k) {
-        solver.step(bodies, gravity, 1 / rate);
+        bodies.step(solver);
         farthest = std::max(farthest, (bodies[1].x - V2(0.3, 0.25)).norm());
     }
     EXPECT_LT(farthest, 1e-4);
@@ -50,12 +69,14 @@ TEST(BodySolverTest, ABoxAtRestStaysWithinATenthOfAMillimetreFor10s) {
 
 TEST(BodySolverTest, AFlatLandingReboundsToESquaredHWithoutSpin) {
     const double h = 1.0, e = 0.5;
-    std::vector<RigidBody> bodies{ground(), crate(1, 0.5, V2(0.3, 0.25 + h), e)};
+    Bodies bodies;
+    add_ground(bodies);
+    add_crate(bodies, 1, 0.5, V2(0.3, 0.25 + h), e);
     BodySolver solver;
     bool landed = false;
     double top = 0;   // the highest the bottom gets after the first landing
     for (int k = 0; k < 2 * rate; ++k) {
-        solver.step(bodies, gravity, 1 / rate);
+        bodies.step(solver);
         const double bottom = bodies[1].x.y() - 0.25;
         if (!landed && bodies[1].v.y() > 0) landed = true;
         if (landed) top = std::max(top, bottom);
@@ -71,16 +92,16 @@ TEST(BodySolverTest, AFlatLandingReboundsToESquaredHWithoutSpin) {
 TEST(BodySolverTest, ABoxOnASlopeSlidesOrSticksAsCoulombSays) {
     const double theta = 20 * std::numbers::pi / 180;
     for (const double mu : {0.2, 0.5}) {
-        RigidBody slope = ground(theta);
-        slope.x = V2(0, 0);
-        slope.friction = mu;
+        Bodies bodies;
+        add_ground(bodies, theta);
+        bodies.bodies[0].x = V2(0, 0);
+        bodies.bodies[0].friction = mu;
         // Resting on the slope's top face, 1 m up it from the centre.
         const V2 along(std::cos(theta), std::sin(theta)), up(-std::sin(theta), std::cos(theta));
-        RigidBody box = crate(0.5, 0.5, along * 1.0 + up * (1.0 + 0.25), 0, mu);
-        box.angle = theta;
-        std::vector<RigidBody> bodies{slope, box};
+        add_crate(bodies, 0.5, 0.5, along * 1.0 + up * (1.0 + 0.25), 0, mu);
+        bodies.bodies[1].angle = theta;
         BodySolver solver;
-        for (int k = 0; k < rate; ++k) solver.step(bodies, gravity, 1 / rate);   // 1 s
+        for (int k = 0; k < rate; ++k) bodies.step(solver);   // 1 s
         const double speed = bodies[1].v.dot(along);
         const double expected = mu < std::tan(theta)
                                     ? -9.81 * (std::sin(theta) - mu * std::cos(theta)) * 1.0
@@ -92,12 +113,13 @@ TEST(BodySolverTest, ABoxOnASlopeSlidesOrSticksAsCoulombSays) {
 
 // The bar: a 20-box stack within 5 mm of its ideal height and 2 mm sideways.
 TEST(BodySolverTest, AStackOfTwentyBoxesStands) {
-    std::vector<RigidBody> bodies{ground()};
-    for (int i = 0; i < 20; ++i) bodies.push_back(crate(1, 1, V2(0, 0.5 + i)));
+    Bodies bodies;
+    add_ground(bodies);
+    for (int i = 0; i < 20; ++i) add_crate(bodies, 1, 1, V2(0, 0.5 + i));
     BodySolver solver;
-    for (int k = 0; k < 5 * rate; ++k) solver.step(bodies, gravity, 1 / rate);
+    for (int k = 0; k < 5 * rate; ++k) bodies.step(solver);
     for (int i = 0; i < 20; ++i) {
-        const RigidBody& b = bodies[1 + static_cast<std::size_t>(i)];
+        const Body& b = bodies[1 + static_cast<std::size_t>(i)];
         EXPECT_NEAR(b.x.y(), 0.5 + i, 5e-3) << "box " << i;
         EXPECT_NEAR(b.x.x(), 0.0, 2e-3) << "box " << i;
     }
@@ -105,18 +127,18 @@ TEST(BodySolverTest, AStackOfTwentyBoxesStands) {
 
 // The 20-row pyramid (210 boxes): within 5 mm of its ideal heights and 2 mm sideways.
 TEST(BodySolverTest, ATwentyRowPyramidHolds) {
-    std::vector<RigidBody> bodies{ground()};
-    bodies[0].shape = *make_box(80, 2);
+    Bodies bodies;
+    add_ground(bodies, 0, 80);
     std::vector<V2> ideal;
     for (int row = 0; row < 20; ++row) {
         const int n = 20 - row;
         for (int i = 0; i < n; ++i) {
             ideal.emplace_back(i - (n - 1) / 2.0, 0.5 + row);
-            bodies.push_back(crate(1, 1, ideal.back(), 0, 0.6));
+            add_crate(bodies, 1, 1, ideal.back(), 0, 0.6);
         }
     }
     BodySolver solver;
-    for (int k = 0; k < 2 * rate; ++k) solver.step(bodies, gravity, 1 / rate);
+    for (int k = 0; k < 2 * rate; ++k) bodies.step(solver);
     double sag = 0, drift = 0;
     for (std::size_t i = 0; i < ideal.size(); ++i) {
         sag = std::max(sag, std::abs(bodies[i + 1].x.y() - ideal[i].y()));
