@@ -21,6 +21,7 @@
 #include "island.hpp"
 #include "manifold.hpp"
 #include "shape.hpp"
+#include "stepper.hpp"
 #include "toi.hpp"
 
 namespace discreel::physics::detail {
@@ -82,13 +83,6 @@ struct BodySolverDef {
     bool sleep = true;
     double sleep_speed = 0.01;     // m/s
     double sleep_after = 0.5;      // s
-};
-
-// A pair of bodies that touched (exchanged a normal impulse) during the step.
-struct PairTouch {
-    std::uint32_t a = 0, b = 0;    // body indices, a < b
-    double impulse = 0;            // N s, the total normal impulse of its points
-    bool began = false;            // it did not touch the step before
 };
 
 class BodySolver {

@@ -67,6 +67,20 @@ bool BroadPhase::update(const std::vector<Body>& bodies, std::size_t disc_count,
     return true;
 }
 
+void BroadPhase::forget(std::size_t first, std::size_t last, std::vector<Contact>& contacts) {
+    built_ = false;
+    const bool listed = listed_.size() == contacts.size();
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+        const Contact& c = contacts[i];
+        if ((c.a >= first && c.a < last) || (c.b >= first && c.b < last)) continue;
+        if (listed) listed_[kept] = listed_[i];
+        contacts[kept++] = c;
+    }
+    contacts.resize(kept);
+    if (listed) listed_.resize(kept);
+}
+
 bool BroadPhase::still_valid(const std::vector<Body>& bodies, std::size_t disc_count, double dt,
                              double gravity) const {
     for (std::size_t i = 0; i < disc_count; ++i) {

@@ -31,6 +31,9 @@ public:
                 std::vector<Contact>& contacts, std::optional<bool> known_valid);
 
     bool built() const { return built_; }
+    // Bodies [first, last) were replaced: their pairs leave `contacts` (the others keep their
+    // history), and the next update() builds the list afresh.
+    void forget(std::size_t first, std::size_t last, std::vector<Contact>& contacts);
     // Of the last rebuild, what no result shows: whether it hashed the grid's cells (the discs
     // spread too far apart to number them row by row), and disc i's margin (metres).
     bool hashed() const { return hashed_; }

@@ -95,7 +95,7 @@ private:
 // Each respawned set is judged with the bodies alive beside it, not with the sets it replaces
 // or that replace it: a body is never in contact with its own successor. The first time the
 // moving bodies leave the envelope is reported, at the entry of the generator that respawned.
-void check_respawns(Loader& loader) {
+void check_respawns(Loader& loader, bool manifold) {
     const Scene& scene = loader.scene;
     if (scene.respawns.empty()) return;
     std::vector<const Body*> current;
@@ -125,7 +125,7 @@ void check_respawns(Loader& loader) {
             return;
         }
         const double radii_per_step = physics::envelope.radii_per_step(
-            ratio, physics::uses_manifold_solver(false, true));
+            ratio, manifold);
         const double limit = radii_per_step * alive.smallest_radius() * scene.physics.rate;
         const auto [speed, slot] = alive.fastest();
         if (speed > limit) {
@@ -150,10 +150,12 @@ void check_envelope(Loader& loader) {
     const Body& light = scene.bodies[extremes->lightest];
     const Body& heavy = scene.bodies[extremes->heaviest];
     const double ratio = heavy.mass / light.mass;
+    const auto shaped = [](const Body& body) { return body.shape.has_value(); };
     const bool manifold = physics::uses_manifold_solver(
-        std::any_of(scene.bodies.begin(), scene.bodies.end(),
-                    [](const Body& disc) { return disc.shape.has_value(); }),
-        !scene.respawns.empty());
+        std::any_of(scene.bodies.begin(), scene.bodies.end(), shaped) ||
+        std::any_of(scene.respawns.begin(), scene.respawns.end(), [&](const Respawn& r) {
+            return std::any_of(r.bodies.begin(), r.bodies.end(), shaped);
+        }));
     if (ratio > physics::envelope.crowd_mass_ratio) {
         // A crowd this far apart in mass sinks in at any speed: the speeds are not judged.
         const BodySource& source = loader.sources[extremes->heaviest];
@@ -210,7 +212,7 @@ void check_envelope(Loader& loader) {
         }
         check(fastest, source.path_where, source.path_path);
     }
-    check_respawns(loader);
+    check_respawns(loader, manifold);
 }
 
 }  // namespace discreel::scene::detail

@@ -18,6 +18,7 @@ namespace discreel::physics {
 namespace {
 
 using testing::body;
+using testing::disc;
 using testing::box;
 using testing::Material;
 using testing::run_for;
@@ -319,6 +320,44 @@ TEST(Bodies, ARespawnReplacesTheBodiesAtItsTime) {
     EXPECT_EQ(world.respawns_applied(), 1u);
     EXPECT_NEAR(world.bodies()[1].position.x, 5, 1e-12);
     EXPECT_NEAR(world.bodies()[1].position.y, 3 - 9.81 / 480 / 480, 1e-9);
+}
+
+// Discs respawned as discs stay with the disc solver: the new disc flies its exact parabola from
+// where it appears, lands and rests; the disc its predecessor stood on is not pushed by it any
+// more, and the new disc's landing is a contact that begins.
+TEST(Bodies, ARespawnOfDiscsKeepsTheDiscSolver) {
+    WorldDef def = on_floor();
+    const Material dead{.restitution = 0, .friction = 0.5};
+    def.bodies.push_back(disc({0, 0.5}, {0, 0}, 0.5, 1, dead));
+    def.bodies.push_back(disc({0, 1.5}, {0, 0}, 0.5, 1, dead));
+    RespawnDef r;
+    r.at = 0.5;
+    r.first = 1;
+    r.bodies = {disc({5, 3}, {0, 0}, 0.25, 2, dead)};
+    def.respawns = {r};
+    World world(def);
+    EXPECT_FALSE(world.manifold_solver());
+    run_for(world, 0.5);
+    (void)world.take_events();
+    EXPECT_EQ(world.respawns_applied(), 0u);
+    world.step();
+    EXPECT_EQ(world.respawns_applied(), 1u);
+    const double dt = 1.0 / world.rate();
+    EXPECT_EQ(world.bodies()[1].position.x, 5);
+    EXPECT_NEAR(world.bodies()[1].position.y, 3 - 0.5 * 9.81 * dt * dt, 1e-12);
+    std::vector<ContactEvent> events;
+    for (int k = 0; k < 2 * world.rate(); ++k) {
+        world.step();
+        for (const ContactEvent& e : world.take_events()) events.push_back(e);
+    }
+    EXPECT_NEAR(world.bodies()[1].position.y, 0.25, 1e-3);
+    EXPECT_NEAR(world.bodies()[0].position.y, 0.5, 1e-3);
+    EXPECT_NEAR(world.bodies()[0].position.x, 0, 1e-9);
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].a, 1u);
+    EXPECT_EQ(events[0].other_kind, ContactEvent::Other::wall);
+    // Falling 2.75 m to land: sqrt(2 g h) = 7.3 m/s after about 0.75 s.
+    EXPECT_NEAR(events[0].t, 0.5 + std::sqrt(2 * 2.75 / 9.81), 0.01);
 }
 
 TEST(Bodies, ThrowsMoveBodiesLikeDiscs) {

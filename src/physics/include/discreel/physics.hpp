@@ -19,7 +19,7 @@ namespace discreel::physics {
 
 // A body: a disc of `radius`, or, with `shape`, any convex shape, all in one numbering. A
 // world whose bodies are all plain discs is stepped by the disc solver; one with any shape by
-// the manifold solver (docs/physics.md).
+// the manifold solver (docs/physics.md, uses_manifold_solver).
 struct BodyDef {
     Vec2 position;                 // metres; the centroid for a shape
     Vec2 velocity;                 // m/s
@@ -91,12 +91,10 @@ struct Envelope {
 
 inline constexpr Envelope envelope{};
 
-// Which solver steps a world: the manifold solver once any body has a shape or a generator
-// respawns (its sets may bring shapes at any time), the disc solver otherwise. Scenes ask it to
+// Which solver steps a world: the manifold solver once any body has a shape, among the
+// definition's bodies or those its respawns bring; the disc solver otherwise. Scenes ask it to
 // know which of the envelope's speed limits applies.
-inline bool uses_manifold_solver(bool any_shaped_body, bool any_respawn) {
-    return any_shaped_body || any_respawn;
-}
+inline bool uses_manifold_solver(bool any_shaped_body) { return any_shaped_body; }
 
 // The moment of inertia about the centroid of a body of this definition's shape and mass,
 // kg m^2 (m r^2 / 2 for a disc).
