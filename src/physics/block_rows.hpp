@@ -7,7 +7,7 @@
 // CPU. The block's four cases are all computed and the first that holds is selected, as the
 // scalar solve tries them in order, without a branch.
 //
-// As in the disc solver's rows (substep.hpp), the iterations run in single precision on
+// As in the disc solver's rows (contact_solver.hpp), the iterations run in single precision on
 // corrections only: each row is built in doubles with its bodies' velocities at build() folded
 // into its bounds, and floats carry each body's change of velocity, added to its double
 // velocity by flush(). A body no row moves keeps its velocity bit for bit; the rounding left is

@@ -37,7 +37,7 @@
 #include <cmath>
 #include <limits>
 
-#include "substep.hpp"
+#include "contact_solver.hpp"
 
 namespace discreel::physics::detail {
 

@@ -9,10 +9,12 @@
 
 #include "broad_phase.hpp"
 #include "contact.hpp"
+#include "contact_solver.hpp"
 #include "discreel/physics.hpp"
 #include "geometry.hpp"
+#include "impacts.hpp"
+#include "projection.hpp"
 #include "stepper.hpp"
-#include "substep.hpp"
 
 namespace discreel::physics::detail {
 

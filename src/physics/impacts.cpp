@@ -11,7 +11,7 @@
 #include <cmath>
 #include <optional>
 
-#include "substep.hpp"
+#include "impacts.hpp"
 
 namespace discreel::physics::detail {
 namespace {

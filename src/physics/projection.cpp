@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "discreel/physics.hpp"
-#include "substep.hpp"
+#include "projection.hpp"
 
 namespace discreel::physics::detail {
 namespace {

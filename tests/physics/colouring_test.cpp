@@ -14,7 +14,7 @@
 #include "discreel/physics.hpp"
 #include "geometry.hpp"
 #include "scenes.hpp"
-#include "substep.hpp"
+#include "contact_solver.hpp"
 
 namespace discreel::physics::detail {
 namespace {
