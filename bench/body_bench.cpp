@@ -1,11 +1,13 @@
 // body_bench: the manifold solver's cost and accuracy on the scenes Box2D v3 is measured on
 // (../shared/FIELD_NOTES.md): a 20-box stack with 1 mm gaps, the 20-row pyramid (210 boxes) and
 // 1 000 random convex polygons dropped from up to 24 m into a 12 m box (placed 0.52 m apart, so
-// none overlap at the start, as `validate` requires). For each, at the physics rates asked for:
-// milliseconds of thread CPU time per simulated second; for the stack and the pyramid the
-// largest sag below and drift beside each box's place (its start, gaps closed) and the fastest
-// box, at the end; for the polygons the deepest overlap in % of the smaller body's inscribed
-// radius and the largest rise of energy between two 60 fps frames, in % of the start. Appends
+// none overlap at the start, as `validate` requires); and physics_bench's 1 000-disc pile as
+// circle shapes ("circles": what discs would cost through this solver). For each, at the
+// physics rates asked for: milliseconds of thread CPU time per simulated second; for the stack
+// and the pyramid the largest sag below and drift beside each box's place (its start, gaps
+// closed) and the fastest box, at the end; for the piles the deepest overlap in % of the
+// smaller body's inscribed radius and the largest rise of energy between two 60 fps frames, in
+// % of the start. Appends
 // to bench/results/body_bench.csv (bench_results.hpp). Each scene runs awake (`sleep` off, as
 // Box2D's figures in FIELD_NOTES were measured) and as scenes run by default, islands at rest
 // asleep (rows named `<scene>/sleep`). See docs/physics.md; box2d_bench times Box2D v3 on the
@@ -27,6 +29,7 @@
 #include <vector>
 
 #include "bench_results.hpp"
+#include "pile_scene.hpp"
 #include "splitmix.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/shapes.hpp"
@@ -119,6 +122,17 @@ WorldDef polygons(int rate) {
     return def;
 }
 
+// physics_bench's 1 000-disc pile with each disc a circle shape: through the manifold solver,
+// with its own iterations. Beside physics_bench's figure, what putting discs through the
+// manifold solver would cost today.
+WorldDef circles(int rate) {
+    bench::PileSettings settings;
+    settings.rate = rate;
+    settings.iterations = 0;
+    settings.circles = true;
+    return bench::pile(1000, settings);
+}
+
 struct Result {
     double ms_per_second = 0;
     // Stack and pyramid: against each box's place (its start, less the gaps below it).
@@ -130,6 +144,7 @@ struct Result {
 // The radius of the largest circle about the centroid inside the shape, metres.
 double inscribed_radius(const Shape& shape) {
     const std::size_t n = shape.vertices.size();
+    if (n < 3) return shape.radius;   // a circle or a capsule
     double inner = HUGE_VAL;
     for (std::size_t i = 0; i < n; ++i) {
         const Vec2 a = shape.vertices[i], b = shape.vertices[(i + 1) % n];
@@ -219,14 +234,15 @@ int main(int argc, char** argv) {
         bool sleep;
     };
     std::vector<Run> runs;
-    for (const std::string scene : {"stack", "pyramid", "polygons"}) {
+    for (const std::string scene : {"stack", "pyramid", "polygons", "circles"}) {
         runs.push_back({scene, false});
         runs.push_back({scene, true});
     }
     for (const int rate : rates) {
         for (const Run& run_of : runs) {
-            WorldDef def = run_of.scene == "stack" ? stack(rate)
+            WorldDef def = run_of.scene == "stack"     ? stack(rate)
                            : run_of.scene == "pyramid" ? pyramid(rate)
+                           : run_of.scene == "circles" ? circles(rate)
                                                        : polygons(rate);
             def.sleep = run_of.sleep;
             std::string name = run_of.sleep ? run_of.scene + "/sleep" : run_of.scene;
@@ -234,7 +250,8 @@ int main(int argc, char** argv) {
             if (run_of.scene == "polygons" && std::getenv("DISCREEL_SEED") != nullptr) {
                 name += std::string("/seed=") + std::getenv("DISCREEL_SEED");
             }
-            const Result r = run(def, seconds, run_of.scene == "polygons");
+            const Result r =
+                run(def, seconds, run_of.scene == "polygons" || run_of.scene == "circles");
             std::printf("%-15s %6zu %5d %10.1f %8.2f %8.2f %10.3f %10.2f %10.3f\n", name.c_str(),
                         def.bodies.size(), rate, r.ms_per_second, r.sag_mm, r.drift_mm,
                         r.fastest_mm_s, r.overlap_pct, r.energy_rise_pct);

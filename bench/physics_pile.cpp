@@ -1,6 +1,5 @@
-// The pile scene: N discs of radius 0.5 and density 1 on a grid with small seeded velocities,
-// in a box of side 1.4 ceil(sqrt N) m, g = -9.8, friction 0.6, restitution 0.5, at 480 Hz
-// unless set otherwise (below).
+// The pile scene (pile_scene.hpp) through the disc solver, at 480 Hz unless set otherwise
+// (below).
 // Prints CPU time per simulated second (over the whole run, and second by second: the pile
 // costs little while it falls and most once it has landed), one thread, and the deepest overlap
 // at the end and after any step of the last simulated second.
@@ -21,50 +20,12 @@
 #include <vector>
 
 #include "bench_results.hpp"
-#include "splitmix.hpp"
+#include "pile_scene.hpp"
 #include "discreel/physics.hpp"
 
 namespace {
 
 using namespace discreel;
-
-using bench::uniform;
-
-struct Settings {
-    int rate = 480;
-    int substeps = 0;         // 0: the world's default
-    int iterations = 3;   // the disc solver's own (WorldDef::iterations 0)
-    std::uint64_t seed = 12345;
-};
-
-physics::WorldDef pile(int n, const Settings& settings) {
-    const double r = 0.5, spacing = 1.4;
-    const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
-    physics::WorldDef def;
-    def.gravity = {0, -9.8};
-    def.rate = settings.rate;
-    def.substeps = settings.substeps;
-    def.iterations = settings.iterations;
-    physics::WallDef box;
-    box.shape = physics::WallDef::Shape::box;
-    box.a = {0, 0};
-    box.b = {spacing * columns, spacing * columns};
-    box.restitution = 0.5;
-    box.friction = 0.6;
-    def.walls.push_back(box);
-    std::uint64_t seed = settings.seed;
-    for (int k = 0; k < n; ++k) {
-        physics::BodyDef d;
-        d.position = {spacing * (0.5 + k % columns), spacing * (0.5 + k / columns)};
-        d.velocity = {uniform(seed, -0.5, 0.5), uniform(seed, -0.5, 0.5)};
-        d.radius = r;
-        d.mass = 3.141592653589793 * r * r;
-        d.restitution = 0.5;
-        d.friction = 0.6;
-        def.bodies.push_back(d);
-    }
-    return def;
-}
 
 }  // namespace
 
@@ -87,7 +48,7 @@ int main(int argc, char** argv) {
         }
         return value;
     };
-    Settings settings;
+    bench::PileSettings settings;
     settings.rate = static_cast<int>(setting("DISCREEL_RATE", settings.rate, 1));
     settings.substeps = static_cast<int>(setting("DISCREEL_SUBSTEPS", settings.substeps, 0));
     settings.iterations = static_cast<int>(setting("DISCREEL_ITERATIONS", settings.iterations, 1));
@@ -107,7 +68,7 @@ int main(int argc, char** argv) {
         {"simulated_s", "discs", "rate_hz", "substeps", "iterations", "seed", "cpu_ms_per_sim_s",
          "overlap_end_pct_r", "overlap_worst_last_s_pct_r", "contacts", "cpu_ms_each_sim_s"});
     for (const int n : sizes) {
-        physics::World world(pile(n, settings));
+        physics::World world(bench::pile(n, settings));
         const int rate = settings.rate;
         const auto steps = static_cast<std::int64_t>(std::llround(seconds * rate));
         // The overlap at one instant can be a lucky one (it moves by a factor of two within a
