@@ -20,8 +20,8 @@
 #include "fat_pairs.hpp"
 #include "island.hpp"
 #include "manifold.hpp"
+#include "pair_touch.hpp"
 #include "shape.hpp"
-#include "stepper.hpp"
 #include "toi.hpp"
 
 namespace discreel::physics::detail {

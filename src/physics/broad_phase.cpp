@@ -78,7 +78,12 @@ void BroadPhase::forget(std::size_t first, std::size_t last, std::vector<Contact
         contacts[kept++] = c;
     }
     contacts.resize(kept);
-    if (listed) listed_.resize(kept);
+    // A list this broad phase did not build keeps no history (rebuild's merge).
+    if (listed) {
+        listed_.resize(kept);
+    } else {
+        listed_.clear();
+    }
 }
 
 bool BroadPhase::still_valid(const std::vector<Body>& bodies, std::size_t disc_count, double dt,

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cmath>
 #include <span>
 
 namespace discreel::physics::detail {
@@ -172,6 +171,7 @@ void DiscStepper::forget(std::vector<Body>& /*bodies*/, std::size_t first, std::
     // The replacements may differ in radius and mass (the stages' caches follow the versions)
     // and stand anywhere: the broad phase lists their pairs afresh, with no warm start.
     broad_phase_.forget(first, last, contacts_);
+    impact_resolver_.bodies_replaced();
     ++contacts_version_;
     ++bodies_version_;
 }

@@ -45,7 +45,8 @@ private:
     std::vector<Feature> features_;
     std::vector<Contact> contacts_;
     std::uint64_t contacts_version_ = 0;  // counts the broad phase's rebuilds
-    std::uint64_t bodies_version_ = 0;    // counts the steps whose throws changed a body
+    // Counts the steps whose throws changed a body, and the respawns.
+    std::uint64_t bodies_version_ = 0;
     std::vector<std::uint32_t> active_;
     std::vector<double> reach_;  // metres per body, scratch of substep()
     std::vector<V2> start_;      // disc centres at the start of the substep, scratch
@@ -53,8 +54,8 @@ private:
     ImpactResolver impact_resolver_;
     ContactSolver contact_solver_;
     PositionProjector projector_;
-    // BroadPhase::keeps() held for every moving disc after the last step (and no disc was
-    // replaced since).
+    // BroadPhase::keeps() held for every moving disc after the last step (a respawn makes the
+    // broad phase build afresh whatever this says).
     bool list_kept_ = false;
     std::size_t contacts_last_step_ = 0;
 };

@@ -109,7 +109,8 @@ void ImpactResolver::begin(const Substep& s) {
     slow_ = std::max(min_approach_speed, gravity_step_);
     screened_.clear();
     // Per body, because the threshold grows with the radius: a pair's is its smaller disc's.
-    // Radii, gravity and the substep's length never change within a world.
+    // Gravity and the substep's length never change within a world, and radii only when a
+    // respawn replaces discs (bodies_replaced).
     if (reach_.size() != s.bodies.size()) {
         reach_.assign(s.bodies.size(), 0.0);
         reach_listing_.assign(s.bodies.size(), never);

@@ -33,6 +33,8 @@ public:
     }
     // Impacts, except of the contacts in the direct islands.
     void resolve(Substep& s, const DiscIslands& islands);
+    // Discs were replaced, perhaps by ones of other radii: the settle speeds are found again.
+    void bodies_replaced() { settle_.clear(); }
 
 private:
     static constexpr std::uint64_t never = ~std::uint64_t{0};  // a stamp none has

@@ -5,21 +5,14 @@
 // (docs/physics.md). Two solvers answer: the disc solver (disc_stepper.hpp) for worlds of plain
 // discs, the manifold solver (shape_stepper.hpp) once any body has a shape.
 #include <cstddef>
-#include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "body.hpp"
 #include "discreel/physics.hpp"
+#include "pair_touch.hpp"
 
 namespace discreel::physics::detail {
-
-// A pair of bodies that touched (exchanged a normal impulse) during a step.
-struct PairTouch {
-    std::uint32_t a = 0, b = 0;    // body indices, a < b
-    double impulse = 0;            // N s, the total normal impulse of its points
-    bool began = false;            // it did not touch the step before
-};
 
 class Stepper {
 public:

@@ -1,4 +1,4 @@
-// White-box: the resting stage's colouring (colour_greedily, substep.hpp). The solver runs the
+// White-box: the resting stage's colouring (colour_greedily, contact_solver.hpp). The solver runs the
 // rows of one colour side by side in vector lanes, which gives the same result as one after the
 // other only if no two rows of a colour share a moving body: no two contacts of a colour may
 // share a disc (wall features never move, so any number may).
