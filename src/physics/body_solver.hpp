@@ -237,7 +237,7 @@ private:
     PairContact* pair_of(const IslandContact& ic) { return &fresh_[ic.pair]; }
 
     BodySolverDef def_;
-    std::span<const Polygon> shapes_;       // the step's: each body's shape
+    std::span<const Polygon> shapes_;       // each body's shape: set by step(), read within it
     // Per body: its shape's inner radius (toi.hpp), metres (< 0: not computed yet), and how
     // long it has moved slower than def_.sleep_speed, seconds. fit() sizes them.
     std::vector<double> inner_, still_for_;

@@ -75,7 +75,7 @@ void DiscStepper::substep(std::vector<Body>& bodies, double h, bool last) {
     }
     for (std::size_t i = discs; i < body_count; ++i) begin_substep(i);
     Substep s{bodies, disc_count_, features_, contacts_, contacts_version_, bodies_version_,
-                      active_, reach_, gravity_, h};
+              active_, reach_, gravity_, h};
     impact_resolver_.begin(s);
     contact_solver_.begin(s);
     active_.clear();
@@ -121,7 +121,6 @@ void DiscStepper::substep(std::vector<Body>& bodies, double h, bool last) {
     // The last substep's runaways are left to end_step's pass over the discs.
     if (!last) PositionProjector::contain_runaways(s, start_, reach_);
 }
-
 
 void DiscStepper::collect_touches(std::vector<PairTouch>& began) {
     contacts_last_step_ = 0;

@@ -8,7 +8,9 @@ namespace {
 
 V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
 
-Polygon shape_of(const BodyDef& d) { return d.shape ? to_polygon(*d.shape) : make_circle(d.radius); }
+Polygon shape_of(const BodyDef& d) {
+    return d.shape ? to_polygon(*d.shape) : make_circle(d.radius);
+}
 
 Body make_fixed(const Polygon& shape, const V2& at, double angle, const WallDef& w) {
     Body b;

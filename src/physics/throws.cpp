@@ -1,6 +1,5 @@
 #include "throws.hpp"
 
-
 namespace discreel::physics::detail {
 namespace {
 
