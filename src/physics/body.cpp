@@ -1,14 +1,14 @@
 #include "body.hpp"
 
-#include "shape.hpp"
+#include "discreel/shapes.hpp"
 
 namespace discreel::physics::detail {
 
 Body make_body(const BodyDef& def) {
     Body b;
-    b.x = V2(def.position.x, def.position.y);
+    b.x = to_v2(def.position);
     b.angle = def.angle;
-    b.radius = def.shape ? bounding_radius(to_polygon(*def.shape)) : def.radius;
+    b.radius = def.shape ? physics::bounding_radius(*def.shape) : def.radius;
     b.restitution = def.restitution;
     b.friction = def.friction;
     if (def.is_static) {
@@ -16,7 +16,7 @@ Body make_body(const BodyDef& def) {
         return b;
     }
     b.motion = Motion::dynamic;
-    b.v = V2(def.velocity.x, def.velocity.y);
+    b.v = to_v2(def.velocity);
     b.omega = def.angular_velocity;
     b.mass = def.mass;
     b.inertia = inertia_of(def);

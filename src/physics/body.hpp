@@ -26,6 +26,8 @@ inline V2 closest_on_segment(const V2& x, const V2& a, const V2& b) {
     return a + s * ab;
 }
 
+inline V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
+
 enum class Motion : std::uint8_t {
     dynamic,  // moved by gravity and contacts
     fixed,    // pegs and walls: never moves, infinitely heavy

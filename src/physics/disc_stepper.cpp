@@ -12,8 +12,6 @@ constexpr int projection_iterations = 2;
 // The disc solver's velocity iterations when a scene sets none (docs/physics.md).
 constexpr int disc_iterations = 3;
 
-V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
-
 // x where mask is all ones, +0 where it is zero.
 double masked(double x, std::uint64_t mask) {
     return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) & mask);

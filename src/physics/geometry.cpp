@@ -7,8 +7,6 @@
 namespace discreel::physics::detail {
 namespace {
 
-V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
-
 // Smallest s in [0, s_max] with c0 + c1 s + c2 s^2 = 0, given c0 > 0 (separated now).
 std::optional<double> first_root(double c0, double c1, double c2, double s_max) {
     if (c2 == 0.0) {

@@ -6,8 +6,6 @@
 namespace discreel::physics::detail {
 namespace {
 
-V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
-
 Polygon shape_of(const BodyDef& d) {
     return d.shape ? to_polygon(*d.shape) : make_circle(d.radius);
 }

@@ -3,8 +3,6 @@
 namespace discreel::physics::detail {
 namespace {
 
-V2 to_v2(const Vec2& p) { return V2(p.x, p.y); }
-
 V2 path_at(const std::vector<Waypoint>& path, double t) {
     if (t <= path.front().t) return to_v2(path.front().position);
     for (std::size_t k = 1; k < path.size(); ++k) {

@@ -163,7 +163,7 @@ WorldStats World::stats() const {
     const Impl& w = *impl_;
     WorldStats s;
     detail::add_energy(std::span(w.bodies).first(w.body_count),
-                       detail::V2(w.gravity.x, w.gravity.y), s);
+                       detail::to_v2(w.gravity), s);
     w.stepper->add_stats(w.bodies, w.body_count, s);
     return s;
 }
