@@ -7,11 +7,10 @@
 // and the pyramid the largest sag below and drift beside each box's place (its start, gaps
 // closed) and the fastest box, at the end; for the piles the deepest overlap in % of the
 // smaller body's inscribed radius and the largest rise of energy between two 60 fps frames, in
-// % of the start. Appends
-// to bench/results/body_bench.csv (bench_results.hpp). Each scene runs awake (`sleep` off, as
-// Box2D's figures in FIELD_NOTES were measured) and as scenes run by default, islands at rest
-// asleep (rows named `<scene>/sleep`). See docs/physics.md; box2d_bench times Box2D v3 on the
-// same scenes.
+// % of the start. Appends to bench/results/body_bench.csv (bench_results.hpp). Each scene runs
+// awake (`sleep` off, as Box2D's figures in FIELD_NOTES were measured) and as scenes run by
+// default, islands at rest asleep (rows named `<scene>/sleep`). See docs/physics.md;
+// box2d_bench times Box2D v3 on the same scenes.
 //
 //   body_bench [seconds [rate...]]   default: 5 s at 480 Hz, the default physics.rate (a lower
 //                                    rate takes substeps of at most 1/480 s: the same work)
@@ -123,8 +122,8 @@ WorldDef polygons(int rate) {
 }
 
 // physics_bench's 1 000-disc pile with each disc a circle shape: through the manifold solver,
-// with its own iterations. Beside physics_bench's figure, what putting discs through the
-// manifold solver would cost today.
+// with its own iterations. Beside physics_bench's figure, what discs cost through the manifold
+// solver.
 WorldDef circles(int rate) {
     bench::PileSettings settings;
     settings.rate = rate;
