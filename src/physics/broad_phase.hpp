@@ -1,6 +1,6 @@
 #pragma once
-// Finds the pairs that can touch during the next step. Discs are binned by centre into a
-// hashed uniform grid whose cells hold fattened discs (radius + margin); the pair list is
+// The disc solver's broad phase: the pairs that can touch during the next step. Discs grown by
+// their margins are paired by the grid search (grid_pairs.hpp); the pair list is
 // reused across steps until some disc has used up its margin, so a resting pile rebuilds
 // rarely. Cost is linear in the number of discs; pairs come out sorted by (a, b).
 #include <cstddef>
@@ -10,14 +10,10 @@
 
 #include "body.hpp"
 #include "contact.hpp"
+#include "grid_pairs.hpp"
 #include "geometry.hpp"
 
 namespace discreel::physics::detail {
-
-// Sorts pair keys (a << 32 | b, both below body_count) in ascending order. scratch and count
-// are scratch space, kept by the caller so that a rebuild does not reallocate them.
-void sort_pair_keys(std::vector<std::uint64_t>& keys, std::size_t body_count,
-                    std::vector<std::uint64_t>& scratch, std::vector<std::uint32_t>& count);
 
 class BroadPhase {
 public:
@@ -36,7 +32,7 @@ public:
     void forget(std::size_t first, std::size_t last, std::vector<Contact>& contacts);
     // Of the last rebuild, what no result shows: whether it hashed the grid's cells (the discs
     // spread too far apart to number them row by row), and disc i's margin (metres).
-    bool hashed() const { return hashed_; }
+    bool hashed() const { return grid_.hashed(); }
     double margin(std::size_t i) const { return margin_[i]; }
     // Whether moving disc i (body b) stays within its margin over a step of length dt: the
     // list stays valid while this holds for every moving disc. Only once built().
@@ -68,27 +64,15 @@ private:
                  std::vector<Contact>& contacts);
 
     bool built_ = false;
-    bool hashed_ = false;
     std::vector<V2> anchor_;        // centres at the last rebuild
     std::vector<double> margin_;    // metres each disc may move before a rebuild
-
-    // A disc in the grid, with what the pair search needs of it.
-    struct GridItem {
-        V2 x = V2::Zero();             // m, centre
-        double fat = 0.0;              // m, radius + margin
-        std::int64_t cell_x = 0, cell_y = 0;
-        std::uint32_t body = 0;
-        bool moves = false;
-    };
 
     // Scratch kept to avoid reallocating every rebuild.
     std::vector<std::uint64_t> pairs_;
     std::vector<std::uint64_t> sorted_;
     std::vector<std::uint32_t> digit_count_;
-    std::vector<std::uint32_t> bucket_start_;
-    std::vector<std::uint32_t> fill_;
-    std::vector<GridItem> items_;      // grouped by bucket
-    std::vector<std::int64_t> cell_x_, cell_y_;
+    GridPairs grid_;
+    std::vector<GridCircle> circles_;   // per disc: grown by its margin
     std::vector<Contact> merged_;
     std::vector<std::uint64_t> listed_;  // the pairs of the list last built, as pair keys
 };

@@ -3,14 +3,15 @@
 // kept from step to step. Each body's box, grown by what a step needs (its travel and the
 // speculative distance), is fattened further by a margin when the list is built; the list
 // holds while every body's needed box stays inside its fat box and no body starts or stops
-// being movable, so a resting pile rebuilds rarely. A rebuild sorts the fat boxes by their
-// low end along the axis the moving bodies spread over more and sweeps
-// (for_each_overlapping_pair); pairs come out sorted by (a, b), and a pair of bodies no
-// contact can move (walls, pegs, held bodies) is left out.
+// being movable, so a resting pile rebuilds rarely. A rebuild finds the pairs with the grid
+// search the disc solver's broad phase uses (grid_pairs.hpp); pairs come out sorted by (a, b),
+// and a pair of bodies no contact can move (walls, pegs, held bodies) is left out.
 #include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
+
+#include "grid_pairs.hpp"
 
 namespace discreel::physics::detail {
 
@@ -37,7 +38,11 @@ private:
 
     std::vector<Box> fat_;
     std::vector<unsigned char> movable_;   // at the last rebuild
-    std::vector<std::uint32_t> order_;     // scratch
+    GridPairs grid_;
+    // Scratch: a circle around each fat box, the pairs of circles that overlap, the sort's.
+    std::vector<GridCircle> circles_;
+    std::vector<std::uint64_t> found_, sorted_;
+    std::vector<std::uint32_t> digit_count_;
     std::size_t rebuilds_ = 0;
 };
 
