@@ -30,6 +30,7 @@
 #include "bench_results.hpp"
 #include "pile_scene.hpp"
 #include "splitmix.hpp"
+#include "stage_profile.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/shapes.hpp"
 
@@ -138,6 +139,7 @@ struct Result {
     double sag_mm = std::nan(""), drift_mm = std::nan(""), fastest_mm_s = std::nan("");
     // Polygons: % of the smaller body's inscribed radius, % of the starting energy.
     double overlap_pct = std::nan(""), energy_rise_pct = std::nan("");
+    StepProfile stages;   // where the time went (stage_profile.hpp)
 };
 
 // The radius of the largest circle about the centroid inside the shape, metres.
@@ -172,7 +174,8 @@ double deepest_overlap_pct(const WorldDef& def, std::span<const BodyState> now,
     return 100 * deepest;
 }
 
-Result run(const WorldDef& def, double seconds, bool pile) {
+Result run(WorldDef def, double seconds, bool pile) {
+    def.profile = true;
     World world(def);
     const auto steps = static_cast<int>(std::lround(seconds * def.rate));
     Result r;
@@ -190,6 +193,7 @@ Result run(const WorldDef& def, double seconds, bool pile) {
             r.drift_mm = std::max(r.drift_mm, 1000 * std::abs(s.position.x - def.bodies[i].position.x));
             r.fastest_mm_s = std::max(r.fastest_mm_s, 1000 * std::hypot(s.velocity.x, s.velocity.y));
         }
+        r.stages = world.profile();
         return r;
     }
     // The pile: timed apart from its measures, taken every 60 fps frame.
@@ -209,6 +213,7 @@ Result run(const WorldDef& def, double seconds, bool pile) {
         r.overlap_pct = std::max(r.overlap_pct, deepest_overlap_pct(def, world.bodies(), inner));
     }
     r.ms_per_second = 1000 * timed / seconds;
+    r.stages = world.profile();
     return r;
 }
 
@@ -237,6 +242,13 @@ int main(int argc, char** argv) {
         runs.push_back({scene, false});
         runs.push_back({scene, true});
     }
+    struct Profiled {
+        std::string scene;
+        std::size_t bodies;
+        int rate;
+        StepProfile stages;
+    };
+    std::vector<Profiled> profiled;
     for (const int rate : rates) {
         for (const Run& run_of : runs) {
             WorldDef def = run_of.scene == "stack"     ? stack(rate)
@@ -258,7 +270,13 @@ int main(int argc, char** argv) {
                             bench::csv_number(seconds, 1), bench::csv_number(r.ms_per_second, 1),
                             field(r.sag_mm, 3), field(r.drift_mm, 3), field(r.fastest_mm_s, 3),
                             field(r.overlap_pct, 2), field(r.energy_rise_pct, 3)});
+            profiled.push_back({name, def.bodies.size(), rate, r.stages});
         }
+    }
+    bench::StageTable stages;
+    stages.print_header();
+    for (const Profiled& p : profiled) {
+        stages.add("body_bench", p.scene, p.bodies, p.rate, seconds, p.stages);
     }
     if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());
     return 0;

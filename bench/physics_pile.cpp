@@ -21,6 +21,7 @@
 
 #include "bench_results.hpp"
 #include "pile_scene.hpp"
+#include "stage_profile.hpp"
 #include "discreel/physics.hpp"
 
 namespace {
@@ -67,8 +68,15 @@ int main(int argc, char** argv) {
         "physics_bench",
         {"simulated_s", "discs", "rate_hz", "substeps", "iterations", "seed", "cpu_ms_per_sim_s",
          "overlap_end_pct_r", "overlap_worst_last_s_pct_r", "contacts", "cpu_ms_each_sim_s"});
+    struct Profiled {
+        int discs;
+        physics::StepProfile stages;
+    };
+    std::vector<Profiled> profiled;
     for (const int n : sizes) {
-        physics::World world(bench::pile(n, settings));
+        physics::WorldDef def = bench::pile(n, settings);
+        def.profile = true;
+        physics::World world(def);
         const int rate = settings.rate;
         const auto steps = static_cast<std::int64_t>(std::llround(seconds * rate));
         // The overlap at one instant can be a lucky one (it moves by a factor of two within a
@@ -116,6 +124,13 @@ int main(int argc, char** argv) {
                         bench::csv_number(100.0 * s.max_overlap_ratio, 3),
                         bench::csv_number(100.0 * worst_late, 3), std::to_string(s.contact_count),
                         each});
+        profiled.push_back({n, world.profile()});
+    }
+    bench::StageTable stages;
+    stages.print_header();
+    for (const Profiled& p : profiled) {
+        stages.add("physics_bench", "pile/" + std::to_string(p.discs),
+                   static_cast<std::size_t>(p.discs), settings.rate, seconds, p.stages);
     }
     if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());
     return 0;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "discreel/physics.hpp"
+#include "stage_timer.hpp"
 
 namespace discreel::physics::detail {
 
@@ -126,19 +127,40 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
     // Restitution acts on approaches faster than gravity gives in about two steps: slower
     // ones are a body settling, which would otherwise hop by e g dt every step.
     const double settle = 2 * gravity.norm() * dt;
-    find_pairs(bodies, dt, 0.5 * gravity.norm() * dt * dt);
-    wake_reached(bodies, gravity, dt);
-    mark_fast(bodies, dt);
-    make_contacts(bodies, dt);
-    // The islands solved directly first (their bodies have no other contacts), then warm
-    // start and the velocity iterations of the rest, body states carried between contacts.
-    find_islands(bodies);
-    solve_velocities(bodies);
-    integrate_positions(bodies, dt);
-    bounce(bodies, settle);
-    push_out(bodies);
-    mark_sunk(bodies);
-    time_impacts(bodies, dt, settle);
+    {
+        const StageTimer timer(profile_, &StepProfile::pairs);
+        find_pairs(bodies, dt, 0.5 * gravity.norm() * dt * dt);
+        wake_reached(bodies, gravity, dt);
+    }
+    {
+        const StageTimer timer(profile_, &StepProfile::contacts);
+        mark_fast(bodies, dt);
+        make_contacts(bodies, dt);
+        find_islands(bodies);
+    }
+    {
+        // The islands solved directly first (their bodies have no other contacts), then warm
+        // start and the velocity iterations of the rest, body states carried between contacts.
+        const StageTimer timer(profile_, &StepProfile::velocities);
+        solve_velocities(bodies);
+    }
+    {
+        const StageTimer timer(profile_, &StepProfile::positions);
+        integrate_positions(bodies, dt);
+    }
+    {
+        const StageTimer timer(profile_, &StepProfile::velocities);
+        bounce(bodies, settle);
+    }
+    {
+        const StageTimer timer(profile_, &StepProfile::positions);
+        push_out(bodies);
+    }
+    {
+        const StageTimer timer(profile_, &StepProfile::impacts);
+        mark_sunk(bodies);
+        time_impacts(bodies, dt, settle);
+    }
     record_touches();
     std::swap(contacts_, fresh_);
     fall_asleep(bodies, dt);

@@ -109,6 +109,8 @@ public:
     void forget(std::vector<Body>& bodies, std::size_t first, std::size_t last);
     // Pairs touching now: those that touched in the last step and those asleep touching.
     std::size_t touching() const;
+    // Where the stages of each step add their times (stage_timer.hpp); null: not timed.
+    void set_profile(StepProfile* profile) { profile_ = profile; }
 
 private:
     struct Anchor {
@@ -237,6 +239,7 @@ private:
     PairContact* pair_of(const IslandContact& ic) { return &fresh_[ic.pair]; }
 
     BodySolverDef def_;
+    StepProfile* profile_ = nullptr;
     std::span<const Polygon> shapes_;       // each body's shape: set by step(), read within it
     // Per body: its shape's inner radius (toi.hpp), metres (< 0: not computed yet), and how
     // long it has moved slower than def_.sleep_speed, seconds. fit() sizes them.

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <optional>
 #include <span>
+
+#include "stage_timer.hpp"
 
 namespace discreel::physics::detail {
 namespace {
@@ -38,9 +41,12 @@ void DiscStepper::step(std::vector<Body>& bodies, double /*t0*/, double /*t1*/, 
                        std::vector<PairTouch>& began) {
     const double dt = 1.0 / rate_;
     if (thrown) ++bodies_version_;
-    if (broad_phase_.update(bodies, disc_count_, features_, dt, gravity_.norm(), contacts_,
-                            thrown ? std::nullopt : std::optional<bool>(list_kept_))) {
-        ++contacts_version_;
+    {
+        const StageTimer timer(profile_, &StepProfile::pairs);
+        if (broad_phase_.update(bodies, disc_count_, features_, dt, gravity_.norm(), contacts_,
+                                thrown ? std::nullopt : std::optional<bool>(list_kept_))) {
+            ++contacts_version_;
+        }
     }
     const double h = dt / substeps_;
     for (int k = 0; k < substeps_; ++k) substep(bodies, h, k == substeps_ - 1);
@@ -48,6 +54,7 @@ void DiscStepper::step(std::vector<Body>& bodies, double /*t0*/, double /*t1*/, 
 }
 
 void DiscStepper::substep(std::vector<Body>& bodies, double h, bool last) {
+    std::optional<StageTimer> listing(std::in_place, profile_, &StepProfile::contacts);
     const double fall = 0.5 * gravity_.norm() * h * h;
     // How far each body can travel in this substep, computed once rather than per contact.
     reach_.resize(bodies.size());
@@ -113,8 +120,17 @@ void DiscStepper::substep(std::vector<Body>& bodies, double h, bool last) {
         active_.insert(active_.end(), listed.begin(), listed.end());
     }
     contact_solver_.plan_islands(s);
-    impact_resolver_.resolve(s, contact_solver_.islands());
-    contact_solver_.solve(s, iterations_);
+    listing.reset();
+    {
+        const StageTimer timer(profile_, &StepProfile::impacts);
+        impact_resolver_.resolve(s, contact_solver_.islands());
+    }
+    {
+        // The resting stage moves the positions too, by the mean of the substep's velocities.
+        const StageTimer timer(profile_, &StepProfile::velocities);
+        contact_solver_.solve(s, iterations_);
+    }
+    const StageTimer timer(profile_, &StepProfile::positions);
     projector_.project(s, projection_iterations);
     // The last substep's runaways are left to end_step's pass over the discs.
     if (!last) PositionProjector::contain_runaways(s, start_, reach_);

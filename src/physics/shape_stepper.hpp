@@ -28,6 +28,7 @@ public:
     std::size_t wall_of(std::size_t k) const override { return wall_of_[k]; }
     void add_stats(const std::vector<Body>& bodies, std::size_t body_count,
                    WorldStats& stats) const override;
+    void set_profile(StepProfile* profile) override { solver_.set_profile(profile); }
 
 private:
     V2 gravity_;

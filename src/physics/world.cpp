@@ -10,6 +10,7 @@
 #include "disc_stepper.hpp"
 #include "discreel/physics.hpp"
 #include "shape_stepper.hpp"
+#include "stage_timer.hpp"
 #include "stepper.hpp"
 #include "throws.hpp"
 
@@ -44,13 +45,15 @@ struct World::Impl {
           body_count(def.bodies.size()),
           manifold(uses_manifold_solver(any_shape(def))),
           throws(def.throws),
-          respawns(def.respawns) {
+          respawns(def.respawns),
+          profiled(def.profile) {
         for (const BodyDef& d : def.bodies) bodies.push_back(detail::make_body(d));
         if (manifold) {
             stepper = std::make_unique<detail::ShapeStepper>(def, substeps, bodies);
         } else {
             stepper = std::make_unique<detail::DiscStepper>(def, substeps, bodies);
         }
+        if (def.profile) stepper->set_profile(&profile);
         throws.start(bodies);
         states.resize(body_count);
         if (const auto i = stepper->end_step(bodies, 0.0)) failure = NonFiniteState{*i, 0.0};
@@ -78,11 +81,16 @@ struct World::Impl {
     mutable std::int64_t published_steps = -1;  // the step count `states` is for
     std::int64_t steps = 0;
     std::optional<NonFiniteState> failure;
+    bool profiled;
+    // The stages' times (the stepper adds them), and the whole steps' (rest = the difference).
+    StepProfile profile;
+    double step_seconds = 0.0;
 };
 
 void World::Impl::step() {
     // A NaN would reach the broad phase's grid, where converting it to a cell is undefined.
     if (failure) return;
+    const detail::StageTimer timer(profiled ? &profile : nullptr, &StepProfile::rest);
     const double t0 = static_cast<double>(steps) / rate;
     const double t1 = static_cast<double>(steps + 1) / rate;
     respawn(t0);
@@ -166,6 +174,13 @@ WorldStats World::stats() const {
                        detail::to_v2(w.gravity), s);
     w.stepper->add_stats(w.bodies, w.body_count, s);
     return s;
+}
+
+StepProfile World::profile() const {
+    // `rest` holds the whole steps' time until here: the stages' own are taken out of it.
+    StepProfile p = impl_->profile;
+    p.rest -= p.pairs + p.contacts + p.impacts + p.velocities + p.positions;
+    return p;
 }
 
 double World::energy() const {

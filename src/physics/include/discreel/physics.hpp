@@ -120,6 +120,9 @@ struct WorldDef {
     // Islands of bodies at rest fall asleep (stop, and cost nothing) until something reaches
     // them (docs/physics.md, "Sleeping"). Scenes with a shape only, for now.
     bool sleep = true;
+    // Time the stages of every step (World::profile): for benches and for finding where a
+    // scene's time goes. It changes nothing the steps compute.
+    bool profile = false;
     std::vector<BodyDef> bodies;
     std::vector<WallDef> walls;
     std::vector<ThrowDef> throws;
@@ -154,6 +157,19 @@ struct WorldStats {
     // Times of impact of a pair of bodies computed during the last step (bodies of any shape):
     // bounded per step, however fast the bodies (docs/physics.md, "Continuous collision").
     std::size_t sweeps = 0;
+};
+
+// Where a world's steps spent their time, by stage: seconds of the steady clock summed over
+// every step since the world was made, when WorldDef::profile asks for it (zeros otherwise).
+// Both solvers run these stages in this order (docs/physics-speed.md says what each holds).
+struct StepProfile {
+    double pairs = 0.0;        // s: the broad phase, the pairs that may touch
+    double contacts = 0.0;     // s: each near pair's contact (manifold or gap), islands planned
+    double impacts = 0.0;      // s: times of impact, and the collisions at them
+    double velocities = 0.0;   // s: the velocity solve (rows, islands), and the bounces
+    double positions = 0.0;    // s: positions moved, overlap pushed out
+    double rest = 0.0;         // s: the rest of the step: throws, respawns, events, sleep
+    double total() const { return pairs + contacts + impacts + velocities + positions + rest; }
 };
 
 // The first body whose state stopped being finite: the scene asked for more than double
@@ -196,6 +212,7 @@ public:
 
     WorldStats stats() const;
     double energy() const;         // kinetic + potential, J (see WorldStats)
+    StepProfile profile() const;   // zeros unless WorldDef::profile
 
 private:
     struct Impl;
