@@ -50,6 +50,18 @@ private:
         std::uint32_t index = 0;
         bool moves = false;
     };
+    struct CellBuckets;   // which bucket of the table holds a cell (grid_pairs.cpp)
+
+    // The stages of find(): the circles of cells `cell` wide (those up to `limit` in radius)
+    // copied into items_ by bucket; each one met with those after it in its own and the
+    // neighbouring cells, cells numbered row by row or hashed; each oversized circle met with
+    // every other.
+    CellBuckets bin(std::span<const GridCircle> circles, double limit, double cell);
+    static void meet(const Item& item, const Item& other, std::vector<std::uint64_t>& pairs);
+    void meet_in_rows(std::uint64_t row, std::vector<std::uint64_t>& pairs) const;
+    void meet_hashed(const CellBuckets& bucket, std::vector<std::uint64_t>& pairs) const;
+    void meet_oversized(std::span<const GridCircle> circles, double limit,
+                        std::vector<std::uint64_t>& pairs) const;
 
     bool hashed_ = false;
     // Scratch kept to avoid reallocating every search.
