@@ -14,7 +14,7 @@ namespace {
 // separations, `gap` short of their allowed value (negative: too deep), to it or beyond, each
 // zero where its point separates by itself: the velocity block's complementarity problem
 // (block_solver.cpp) with the gaps in place of the velocities.
-std::array<double, 2> block_push(const Body& a, const Body& b, const V2& n,
+std::array<double, 2> block_push(const BlockBody& a, const BlockBody& b, const V2& n,
                                  const std::array<V2, 2>& ra, const std::array<V2, 2>& rb,
                                  const std::array<double, 2>& gap) {
     const double ra1 = cross(ra[0], n), rb1 = cross(rb[0], n);
@@ -55,7 +55,34 @@ void BodySolver::integrate_positions(std::vector<Body>& bodies, double dt) {
 
 }
 
+void BodySolver::set_push_mass(std::uint32_t i, double lightest,
+                               const std::vector<Body>& bodies) {
+    const Body& body = bodies[i];
+    BlockBody& m = push_mass_[i];
+    m.inv_mass = body.inv_mass;
+    m.inv_inertia = body.inv_inertia;
+    // Raised by one factor, so that the body keeps its own ratio of mass to inertia.
+    if (body.inv_mass > 0 && body.inv_mass * def_.push_mass_ratio < lightest) {
+        const double raise = lightest / (def_.push_mass_ratio * body.inv_mass);
+        m.inv_mass *= raise;
+        m.inv_inertia *= raise;
+    }
+}
+
+void BodySolver::set_push_masses(std::span<const IslandContact> group,
+                                 const std::vector<Body>& bodies) {
+    double lightest = 0;   // its inverse mass
+    for (const IslandContact& ic : group) {
+        lightest = std::max({lightest, bodies[ic.a].inv_mass, bodies[ic.b].inv_mass});
+    }
+    for (const IslandContact& ic : group) {
+        set_push_mass(ic.a, lightest, bodies);
+        set_push_mass(ic.b, lightest, bodies);
+    }
+}
+
 void BodySolver::push_out(std::vector<Body>& bodies) {
+    push_mass_.resize(bodies.size());
     // Every push counts (the islands' below too): see the sweeps.
     pushes_ = 0;
     pushed_at_.assign(bodies.size(), 0);
@@ -125,10 +152,12 @@ void BodySolver::push_apart(std::vector<Body>& bodies, const PairContact& pc, co
                             const V2& rb, double amount) {
     Body& a = bodies[pc.a];
     Body& b = bodies[pc.b];
+    const BlockBody& ma = push_mass_[pc.a];
+    const BlockBody& mb = push_mass_[pc.b];
     const V2 impulse = amount * pc.contact.normal;
-    const V2 da = a.inv_mass * impulse, db = b.inv_mass * impulse;
-    const double ta = a.inv_inertia * cross(ra, impulse);
-    const double tb = b.inv_inertia * cross(rb, impulse);
+    const V2 da = ma.inv_mass * impulse, db = mb.inv_mass * impulse;
+    const double ta = ma.inv_inertia * cross(ra, impulse);
+    const double tb = mb.inv_inertia * cross(rb, impulse);
     a.x -= da;
     a.angle -= ta;
     b.x += db;
@@ -157,7 +186,9 @@ void BodySolver::push_out_together(std::vector<Body>& bodies,
             overlaps = overlaps || separation_.back() < 0;
         }
     }
-    if (!overlaps || !direct_solver_.positions(island, state_, separation_, push_)) return;
+    if (!overlaps) return;
+    set_push_masses(island, bodies);
+    if (!direct_solver_.positions(island, push_mass_, separation_, push_)) return;
     // An island's body moves at most its inner radius a sweep: a light body crushed between
     // a wall and a heavy body whose faces meet at a slant can only get out along the slant,
     // and its LCP would push it metres along it at once (and the next step launch it). A
@@ -178,8 +209,8 @@ void BodySolver::push_out_together(std::vector<Body>& bodies,
         for (int q = 0; q < pc.contact.count; ++q, ++at) {
             const BlockPoint& p = pc.contact.points[q];
             const V2 impulse = push_[at] * pc.contact.normal;
-            const Body& a = bodies[pc.a];
-            const Body& b = bodies[pc.b];
+            const BlockBody& a = push_mass_[pc.a];
+            const BlockBody& b = push_mass_[pc.b];
             shift(pc.a, -a.inv_mass * impulse, -a.inv_inertia * cross(p.ra, impulse));
             shift(pc.b, b.inv_mass * impulse, b.inv_inertia * cross(p.rb, impulse));
         }
@@ -203,8 +234,8 @@ void BodySolver::push_out_together(std::vector<Body>& bodies,
 }
 
 void BodySolver::push_out_contact(std::vector<Body>& bodies, const PairContact& pc) {
-    const Body& a = bodies[pc.a];
-    const Body& b = bodies[pc.b];
+    const BlockBody& a = push_mass_[pc.a];
+    const BlockBody& b = push_mass_[pc.b];
     const V2& n = pc.contact.normal;
     if (pc.contact.count == 2) {
         // Both points at once, as the velocities are solved: pushed one at a time, the first
@@ -216,6 +247,8 @@ void BodySolver::push_out_contact(std::vector<Body>& bodies, const PairContact& 
             separation[k] = separation_now(pc, static_cast<int>(k), ra[k], rb[k]);
         }
         if (separation[0] >= -def_.slop && separation[1] >= -def_.slop) return;
+        set_push_mass(pc.a, 0, bodies);
+        set_push_mass(pc.b, 0, bodies);
         const auto short_of = [&](double s) {
             return std::max(s + def_.push_to, -def_.max_correction);
         };
@@ -230,6 +263,8 @@ void BodySolver::push_out_contact(std::vector<Body>& bodies, const PairContact& 
         V2 ra, rb;
         const double separation = separation_now(pc, k, ra, rb);
         if (separation >= -def_.slop) continue;
+        set_push_mass(pc.a, 0, bodies);
+        set_push_mass(pc.b, 0, bodies);
         const double push = std::min(-(separation + def_.push_to), def_.max_correction);
         const double rna = cross(ra, n), rnb = cross(rb, n);
         const double k_n =

@@ -50,6 +50,13 @@ struct BodySolverDef {
     // pushed again by the sliver its neighbours' pushes give back.
     double push_to = 2.5e-4;
     double max_correction = 0.02;  // metres pushed out per point and sweep at most
+    // The push-out moves the bodies of an island or block of masses far apart (pushed
+    // together) as if none were more than this many times heavier than its lightest: a heavy
+    // body driving a light one into a third is pushed back too, where true masses would move
+    // only the light one, from one neighbour into the next (the disc solver's projection caps
+    // its ratio too). Contacts iterated alike keep their own masses: capped there, the pile of
+    // polygons overlapped deeper (docs/tried.md). Positions only: no velocity changes.
+    double push_mass_ratio = 10;
     // An island (bodies that contacts between moving bodies connect) whose moving bodies'
     // masses differ by this factor or more is solved directly (island.hpp) when it has at most
     // `direct_points` contact points; the others iterate (docs/physics.md, "Limits").
@@ -169,6 +176,11 @@ private:
                     const V2& rb, double amount);
     void push_out_together(std::vector<Body>& bodies, std::span<const IslandContact> island);
     void push_out_contact(std::vector<Body>& bodies, const PairContact& pc);
+    // The inverse masses a push moves bodies by (push_mass_): body i's own, raised to within
+    // def_.push_mass_ratio of `lightest` (the inverse mass of the lightest body it is pushed
+    // with; 0: its own); and those of every body of an island or block, pushed together.
+    void set_push_mass(std::uint32_t i, double lightest, const std::vector<Body>& bodies);
+    void set_push_masses(std::span<const IslandContact> group, const std::vector<Body>& bodies);
     // Pairs that started apart and sank in deeper than the slop: their bodies are fast.
     void mark_sunk(const std::vector<Body>& bodies);        // body_positions.cpp
     void record_touches();
@@ -342,6 +354,10 @@ private:
     // per contact the count when its separations were last looked at.
     std::uint32_t pushes_ = 0;
     std::vector<std::uint32_t> pushed_at_, seen_at_;
+    // Scratch of push_out: per body, the inverse masses its latest push moved it by (its own,
+    // or, pushed with an island or block, raised to within push_mass_ratio of its lightest
+    // body); velocities unused.
+    std::vector<BlockBody> push_mass_;
 };
 
 }  // namespace discreel::physics::detail
