@@ -16,6 +16,8 @@
 //                                    rate takes substeps of at most 1/480 s: the same work)
 //   DISCREEL_SEED=s                  another layout of the polygons (default 12345): the pile is
 //                                    chaotic, its deepest overlap differs by seed
+//   DISCREEL_STAGES=1                also where each scene's time went, by stage
+//                                    (stage_profile.hpp)
 #include <time.h>
 
 #include <algorithm>
@@ -175,7 +177,7 @@ double deepest_overlap_pct(const WorldDef& def, std::span<const BodyState> now,
 }
 
 Result run(WorldDef def, double seconds, bool pile) {
-    def.profile = true;
+    def.profile = bench::stages_wanted();
     World world(def);
     const auto steps = static_cast<int>(std::lround(seconds * def.rate));
     Result r;
@@ -273,10 +275,12 @@ int main(int argc, char** argv) {
             profiled.push_back({name, def.bodies.size(), rate, r.stages});
         }
     }
-    bench::StageTable stages;
-    stages.print_header();
-    for (const Profiled& p : profiled) {
-        stages.add("body_bench", p.scene, p.bodies, p.rate, seconds, p.stages);
+    if (bench::stages_wanted()) {
+        bench::StageTable stages;
+        stages.print_header();
+        for (const Profiled& p : profiled) {
+            stages.add("body_bench", p.scene, p.bodies, p.rate, seconds, p.stages);
+        }
     }
     if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());
     return 0;

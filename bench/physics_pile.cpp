@@ -8,6 +8,7 @@
 //     DISCREEL_SUBSTEPS=k    substeps per step (default: the world's, the fewest with h <= 1/480 s)
 //     DISCREEL_ITERATIONS=i  resting-contact iterations per substep (default: the world's, 3)
 //     DISCREEL_SEED=s        seed of the initial velocities (default 12345)
+//     DISCREEL_STAGES=1      also where each pile's time went, by stage (stage_profile.hpp)
 // The same settings are physics.rate, physics.substeps and physics.iterations in a scene file.
 // Each N's figures are also appended to bench/results/physics_bench.csv (bench_results.hpp).
 #include <algorithm>
@@ -75,7 +76,7 @@ int main(int argc, char** argv) {
     std::vector<Profiled> profiled;
     for (const int n : sizes) {
         physics::WorldDef def = bench::pile(n, settings);
-        def.profile = true;
+        def.profile = bench::stages_wanted();
         physics::World world(def);
         const int rate = settings.rate;
         const auto steps = static_cast<std::int64_t>(std::llround(seconds * rate));
@@ -126,11 +127,13 @@ int main(int argc, char** argv) {
                         each});
         profiled.push_back({n, world.profile()});
     }
-    bench::StageTable stages;
-    stages.print_header();
-    for (const Profiled& p : profiled) {
-        stages.add("physics_bench", "pile/" + std::to_string(p.discs),
-                   static_cast<std::size_t>(p.discs), settings.rate, seconds, p.stages);
+    if (bench::stages_wanted()) {
+        bench::StageTable stages;
+        stages.print_header();
+        for (const Profiled& p : profiled) {
+            stages.add("physics_bench", "pile/" + std::to_string(p.discs),
+                       static_cast<std::size_t>(p.discs), settings.rate, seconds, p.stages);
+        }
     }
     if (!results.path().empty()) std::printf("appended to %s\n", results.path().c_str());
     return 0;

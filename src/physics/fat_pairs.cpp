@@ -18,6 +18,12 @@ bool FatPairs::holds(std::span<const Box> needed, std::span<const unsigned char>
 bool FatPairs::update(std::span<const Box> needed, std::span<const double> margin,
                       std::span<const unsigned char> movable, std::vector<std::uint64_t>& pairs) {
     if (holds(needed, movable)) return false;
+    // A body whose state stopped being finite in one of the step's substeps (World stops the
+    // world at the step's end) would reach the grid's cells, whose conversion of a NaN is
+    // undefined: the list is kept as it was.
+    for (const Box& b : needed) {
+        if (!std::isfinite(b[0] + b[1] + b[2] + b[3])) return false;
+    }
     ++rebuilds_;
     const std::size_t n = needed.size();
     fat_.resize(n);

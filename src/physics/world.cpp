@@ -82,9 +82,9 @@ struct World::Impl {
     std::int64_t steps = 0;
     std::optional<NonFiniteState> failure;
     bool profiled;
-    // The stages' times (the stepper adds them), and the whole steps' (rest = the difference).
+    // The stages' times (the stepper adds them) and, in `rest` until profile() takes them out,
+    // the whole steps'.
     StepProfile profile;
-    double step_seconds = 0.0;
 };
 
 void World::Impl::step() {

@@ -161,7 +161,8 @@ struct WorldStats {
 
 // Where a world's steps spent their time, by stage: seconds of the steady clock summed over
 // every step since the world was made, when WorldDef::profile asks for it (zeros otherwise).
-// Both solvers run these stages in this order (docs/physics-speed.md says what each holds).
+// Both solvers' steps are divided into these stages (docs/physics-speed.md says what each
+// holds; the manifold solver's bounces count as velocities, though they follow its positions).
 struct StepProfile {
     double pairs = 0.0;        // s: the broad phase, the pairs that may touch
     double contacts = 0.0;     // s: each near pair's contact (manifold or gap), islands planned
