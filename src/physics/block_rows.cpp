@@ -248,16 +248,11 @@ void BlockRows::fill(const RowRef& r, std::span<const BlockBody> bodies, Block& 
     block.normal_y[l] = f(c.normal.y());
     block.friction[l] = f(c.friction);
     block.two[l] = two ? 1 : 0;
-    // The velocities at build(), folded into the bounds in doubles: each point's bias (its
-    // target less its normal velocity) and slip (its tangential velocity).
-    const V2 tangent(c.normal.y(), -c.normal.x());
+    fill_bounds(r, bodies, block, l);
     const BlockPoint none{};
     for (unsigned k = 0; k < 2; ++k) {
         const bool used = k < static_cast<unsigned>(c.count);
         const BlockPoint& p = used ? c.points[k] : none;
-        const V2 rel = used ? relative_velocity(p, a, b) : V2(V2::Zero());
-        block.bias[k][l] = f(p.target - rel.dot(c.normal));
-        block.slip[k][l] = f(rel.dot(tangent));
         block.ra_x[k][l] = f(p.ra.x());
         block.ra_y[k][l] = f(p.ra.y());
         block.rb_x[k][l] = f(p.rb.x());
@@ -283,10 +278,29 @@ void BlockRows::fill(const RowRef& r, std::span<const BlockBody> bodies, Block& 
     block.inv_det[l] = regular ? f(1 / det) : 0;
 }
 
+void BlockRows::fill_bounds(const RowRef& r, std::span<const BlockBody> bodies, Block& block,
+                            unsigned l) {
+    // The velocities at build(), folded into the bounds in doubles: each point's bias (its
+    // target less its normal velocity) and slip (its tangential velocity). A single point's
+    // second has neither.
+    const BlockContact& c = *r.contact;
+    const V2 tangent(c.normal.y(), -c.normal.x());
+    for (unsigned k = 0; k < 2; ++k) {
+        const bool used = k < static_cast<unsigned>(c.count);
+        const V2 rel = used ? relative_velocity(c.points[k], bodies[r.a], bodies[r.b])
+                            : V2(V2::Zero());
+        const double target = used ? c.points[k].target : 0.0;
+        block.bias[k][l] = static_cast<float>(target - rel.dot(c.normal));
+        block.slip[k][l] = static_cast<float>(rel.dot(tangent));
+    }
+}
+
 void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
     // The colours and lanes hold while the rows are those of the last layout, the same pairs
     // in the same order with the same bodies movable: a resting pile lays out rarely.
-    if (!same_layout(rows, bodies)) lay_out(rows, bodies);
+    const bool laid_out = same_layout(rows, bodies);
+    if (!laid_out) lay_out(rows, bodies);
+    const double unit_before = mass_unit_;
     // The mass unit: a power of two at the heaviest moving body's mass (scaling by it is exact).
     double lightest_inverse = HUGE_VAL;
     start_.resize(bodies.size());
@@ -299,8 +313,15 @@ void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> b
     }
     mass_unit_ =
         std::isfinite(lightest_inverse) ? std::ldexp(1.0, std::ilogb(1 / lightest_inverse)) : 1;
+    const bool kept = laid_out && mass_unit_ == unit_before;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        fill(rows[i], bodies, blocks_[lane_of_[i] / width], lane_of_[i] % width);
+        Block& block = blocks_[lane_of_[i] / width];
+        const unsigned lane = lane_of_[i] % width;
+        if (kept && rows[i].unchanged) {
+            fill_bounds(rows[i], bodies, block, lane);
+        } else {
+            fill(rows[i], bodies, block, lane);
+        }
     }
     // The bodies' double velocities hold none of the rows' impulses yet: the warm start is
     // the first change of the corrections.

@@ -27,6 +27,10 @@ namespace discreel::physics::detail {
 struct RowRef {
     std::uint32_t a = 0, b = 0;    // body indices
     BlockContact* contact = nullptr;   // impulses accumulated; build() prepares it
+    // Its contact's normal, offsets, friction and impulses are as the last build() left them
+    // (and finish() wrote them): while the layout and the mass unit hold, only the bounds
+    // that fold in the velocities are built again.
+    bool unchanged = false;
 };
 
 class BlockRows {
@@ -84,6 +88,9 @@ private:
     bool same_layout(std::span<const RowRef> rows, std::span<const BlockBody> bodies) const;
     void lay_out(std::span<const RowRef> rows, std::span<const BlockBody> bodies);
     void fill(const RowRef& r, std::span<const BlockBody> bodies, Block& block, unsigned l) const;
+    // The bounds only: each point's bias and slip from the bodies' velocities now.
+    static void fill_bounds(const RowRef& r, std::span<const BlockBody> bodies, Block& block,
+                            unsigned l);
     // Row i's accumulated impulses (normal, normal, tangent, tangent), N s.
     std::array<double, 4> impulses_of(std::size_t i) const;
 

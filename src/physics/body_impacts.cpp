@@ -185,7 +185,7 @@ std::size_t BodySolver::begin_sweeps(const std::vector<Body>& bodies, double dt)
     for (std::size_t i = 0; i < n; ++i) {
         const Body& b = bodies[i];
         Sweep& s = sweeps_[i];
-        s.x0 = transforms_[i].p;
+        s.x0 = start_x_[i];
         s.angle0 = start_angle_[i];
         s.v = (b.x - s.x0) / dt;
         s.omega = (b.angle - s.angle0) / dt;

@@ -178,7 +178,8 @@ void BodySolver::push_out_together(std::vector<Body>& bodies,
     separation_.clear();
     bool overlaps = false;
     for (const IslandContact& ic : island) {
-        const PairContact& pc = *pair_of(ic);
+        PairContact& pc = *pair_of(ic);
+        pc.as_solved = false;   // its offsets are moved below
         for (int q = 0; q < pc.contact.count; ++q) {
             BlockPoint& p = ic.contact->points[q];
             // The slop, as below: pushing a body out raises it, and energy with it.

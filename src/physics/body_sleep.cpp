@@ -146,6 +146,7 @@ void BodySolver::fall_asleep(std::vector<Body>& bodies, double dt) {
 
 void BodySolver::forget(std::vector<Body>& bodies, std::size_t first, std::size_t last) {
     fat_pairs_.invalidate();
+    contacts_kept_ = false;
     // The bodies that replace them have shapes of their own, and have not rested yet.
     fit(bodies.size());
     for (std::size_t i = first; i < last; ++i) {

@@ -121,13 +121,16 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
         touches_.clear();
         impact_touches_.clear();
         predictions_made_ = 0;
+        kept_ = false;
         return;
     }
     begin_step(bodies, gravity, dt);
     // Restitution acts on approaches faster than gravity gives in about two steps: slower
     // ones are a body settling, which would otherwise hop by e g dt every step.
     const double settle = 2 * gravity.norm() * dt;
-    {
+    const bool kept = keeps_contacts(bodies, dt);
+    kept_ = kept;
+    if (!kept) {
         const StageTimer timer(profile_, &StepProfile::pairs);
         find_pairs(bodies, dt, 0.5 * gravity.norm() * dt * dt);
         wake_reached(bodies, gravity, dt);
@@ -135,7 +138,11 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
     {
         const StageTimer timer(profile_, &StepProfile::contacts);
         mark_fast(bodies, dt);
-        make_contacts(bodies, dt);
+        if (kept) {
+            move_contacts(bodies, dt);
+        } else {
+            make_contacts(bodies, dt);
+        }
         find_islands(bodies);
     }
     {
@@ -163,15 +170,18 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
     }
     record_touches();
     std::swap(contacts_, fresh_);
+    count_motion(bodies, kept);
     fall_asleep(bodies, dt);
 }
 
 void BodySolver::begin_step(std::vector<Body>& bodies, const V2& gravity, double dt) {
     start_angle_.resize(bodies.size());
+    start_x_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         Body& b = bodies[i];
         if (inner_[i] < 0) inner_[i] = inner_radius(shapes_[i]);
         if (b.inv_mass > 0 && !b.asleep) b.v += gravity * dt;
+        start_x_[i] = b.x;
         start_angle_[i] = b.angle;
     }
 }
@@ -205,6 +215,7 @@ void BodySolver::make_contacts(const std::vector<Body>& bodies, double dt) {
         ++made;
         pc.a = i;
         pc.b = j;
+        pc.as_solved = false;
         // The same pair last step (both lists in pair order): its manifold and its impulses.
         while (previous != contacts_.end() &&
                (previous->a < i || (previous->a == i && previous->b < j))) {

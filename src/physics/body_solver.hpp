@@ -84,6 +84,12 @@ struct BodySolverDef {
     // following its points (a resting pile collides rarely).
     double recycle_travel = 0.002;
     double recycle_turn = 0.002;
+    // The step's contacts are the last step's, moved with their bodies (no pair search, no
+    // manifold made or matched), while no body has moved or turned by half the recycling
+    // bounds above (for the world's smallest inner radius) or by a quarter of the speculative
+    // distance since the last step that made them, nor will in this one at its speed now (a
+    // resting pile makes its contacts rarely; anything moving makes them every step).
+    bool keep_contacts = true;
     // An island whose every body has moved slower than `sleep_speed` (m/s, at its centroid
     // and at its bounding radius from its spin) for `sleep_after` seconds falls asleep: its
     // bodies stop and cost nothing until an awake body comes within reach of one of them.
@@ -111,6 +117,8 @@ public:
     Overlap max_overlap(const std::vector<Body>& bodies, std::span<const Polygon> shapes) const;
     // Times of impact computed during the last step (at most the budget of BodySolverDef).
     std::size_t sweeps() const { return predictions_made_; }
+    // Whether the last step kept the contacts of the step before (BodySolverDef::keep_contacts).
+    bool kept_contacts() const { return kept_; }
     // Forgets contacts of bodies [first, last): they were replaced. The islands they slept in
     // wake (they may have rested on them).
     void forget(std::vector<Body>& bodies, std::size_t first, std::size_t last);
@@ -145,6 +153,10 @@ private:
         double restitution = 0;
         std::array<double, 2> approach{};   // normal velocity before the solve, m/s
         bool touched = false;
+        // Its normal, offsets and impulses are as the rows' last finish left them: a kept
+        // contact whose bounce and push-out did not touch it (BlockRows builds only its
+        // bounds again).
+        bool as_solved = false;
     };
     // The stages of a step, in order (body_solver.cpp unless said).
     void begin_step(std::vector<Body>& bodies, const V2& gravity, double dt);
@@ -155,6 +167,12 @@ private:
     // radius in a step (it cannot move: never).
     bool moves_fast(const std::vector<Body>& bodies, std::size_t i, double dt) const;
     void make_contacts(const std::vector<Body>& bodies, double dt);
+    // (body_keep.cpp) Whether this step may keep the last step's contacts
+    // (BodySolverDef::keep_contacts); the last step's contacts moved with their bodies into
+    // fresh_; the bodies' motion since the contacts were made, counted at the step's end.
+    bool keeps_contacts(const std::vector<Body>& bodies, double dt) const;
+    void move_contacts(const std::vector<Body>& bodies, double dt);
+    void count_motion(const std::vector<Body>& bodies, bool kept);
     void solve_velocities(std::vector<Body>& bodies);       // body_velocities.cpp
     void integrate_positions(std::vector<Body>& bodies, double dt);   // body_positions.cpp
     void bounce(std::vector<Body>& bodies, double settle);  // body_velocities.cpp
@@ -261,6 +279,12 @@ private:
         still_for_.resize(bodies, 0.0);
     }
     std::vector<PairContact> contacts_;     // the last step's, in (a, b) order
+    // Whether contacts_ may be kept by the next step (forget() and sleep end it); per body,
+    // how far it moved (metres, its bounding radius's arc included) and turned (radians)
+    // since they were made.
+    bool contacts_kept_ = false;
+    bool kept_ = false;                     // the last step kept them
+    std::vector<double> travelled_, turned_since_;
     std::vector<PairContact> fresh_;        // scratch
     FatPairs fat_pairs_;
     std::vector<std::uint64_t> fat_list_;   // the pairs whose fat boxes overlap: a << 32 | b
@@ -279,6 +303,7 @@ private:
     std::vector<std::array<double, 4>> boxes_;   // scratch: lo x, lo y, hi x, hi y
     std::vector<double> margin_;            // scratch: metres a body can close in the step
     std::vector<Transform> transforms_;     // scratch: each body's at the step's start
+    std::vector<V2> start_x_;               // scratch: each body's centroid at the step's start
     std::vector<double> start_angle_;       // scratch: each body's angle at the step's start
     std::vector<BlockBody> state_;          // scratch
     // Scratch of the energy checks of islands of masses far apart (body_velocities.cpp):

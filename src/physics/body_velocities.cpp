@@ -57,7 +57,8 @@ void BodySolver::solve_velocities(std::vector<Body>& bodies) {
     rows_.clear();
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         if (direct_[i] || blocked_[i]) continue;
-        rows_.push_back(RowRef{fresh_[i].a, fresh_[i].b, &fresh_[i].contact});
+        const PairContact& pc = fresh_[i];
+        rows_.push_back(RowRef{pc.a, pc.b, &fresh_[i].contact, pc.as_solved});
     }
     block_rows_.build(rows_, state_);
     for (int it = 0; it < def_.iterations; ++it) {
@@ -175,6 +176,7 @@ void BodySolver::bounce(std::vector<Body>& bodies, double settle) {
             bounce = bounce || (hit && pc.restitution > 0);
         }
         if (!bounce && !direct_[i]) continue;
+        pc.as_solved = false;
         for (int k = 0; k < c.count; ++k) {
             BlockPoint& p = c.points[k];
             const V2 ra = turned_by(p.ra, spin_[pc.a]);

@@ -132,6 +132,38 @@ inline std::uint64_t run_heavy_light_scene() {
     return state_hash(world);
 }
 
+// What run_resting_scene() gives, pinned like busy_scene_hash.
+inline constexpr std::uint64_t resting_scene_hash = 3250905465784202333ull;
+
+// An 8-row pyramid of boxes with a capsule and a rounded hexagon beside it, all landing from
+// a millimetre up and resting for two seconds, awake (sleep off): the manifold solver's steps
+// that keep their contacts from the step before (BodySolverDef::keep_contacts) as well as
+// those that make them.
+inline WorldDef resting_scene() {
+    WorldDef def;
+    def.sleep = false;
+    const Material material{.restitution = 0.2, .friction = 0.6};
+    def.walls.push_back(box({-10, 0}, {10, 20}, material));
+    for (int row = 0; row < 8; ++row) {
+        const int n = 8 - row;
+        for (int i = 0; i < n; ++i) {
+            def.bodies.push_back(body(*box_shape(1, 1), {i - (n - 1) / 2.0, 0.501 + row}, 1.0,
+                                      material));
+        }
+    }
+    const std::vector<Vec2> hexagon{{0.25, 0}, {0.125, 0.2}, {-0.125, 0.2},
+                                    {-0.25, 0}, {-0.125, -0.2}, {0.125, -0.2}};
+    def.bodies.push_back(body(*capsule_shape(0.8, 0.1), {-6, 0.101}, 1.0, material));
+    def.bodies.push_back(body(polygon_shape(hexagon, 0.02)->shape, {6, 0.221}, 1.0, material));
+    return def;
+}
+
+inline std::uint64_t run_resting_scene() {
+    World world(resting_scene());
+    run_for(world, 2.0);
+    return state_hash(world);
+}
+
 // The busy scene's state after two seconds, hashed.
 inline std::uint64_t run_busy_scene() {
     World world(busy_scene());

@@ -1,7 +1,8 @@
 // Determinism.*GivesTheSameBitsEveryRun without GoogleTest, for builds that have none
 // (DISCREEL_PHYSICS_ONLY: the `arch` tests build it for aarch64 and without the AVX2 clones).
-// Runs the busy scene (the disc solver), the mixed scene (the manifold solver) and the
-// heavy-light scene (the disc solver's direct islands) twice each and prints their hashes;
+// Runs the busy scene (the disc solver), the mixed scene (the manifold solver), the
+// heavy-light scene (the disc solver's direct islands) and the resting scene (the manifold
+// solver's kept contacts) twice each and prints their hashes;
 // exits 0 only if every run gives the pinned one.
 #include <cinttypes>
 #include <cstdint>
@@ -43,7 +44,8 @@ int main() {
     const bool mixed = check("mixed scene", run_mixed_scene, mixed_scene_hash);
     const bool heavy_light =
         check("heavy-light scene", run_heavy_light_scene, heavy_light_scene_hash);
-    if (!busy || !mixed || !heavy_light) return 1;
+    const bool resting = check("resting scene", run_resting_scene, resting_scene_hash);
+    if (!busy || !mixed || !heavy_light || !resting) return 1;
     std::printf("OK\n");
     return 0;
 }

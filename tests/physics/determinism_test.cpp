@@ -21,6 +21,12 @@ TEST(Determinism, MixedSceneGivesTheSameBitsEveryRun) {
     EXPECT_EQ(first, testing::mixed_scene_hash) << first;
 }
 
+TEST(Determinism, RestingSceneGivesTheSameBitsEveryRun) {
+    const std::uint64_t first = testing::run_resting_scene();
+    EXPECT_EQ(testing::run_resting_scene(), first);
+    EXPECT_EQ(first, testing::resting_scene_hash) << first;
+}
+
 TEST(Determinism, HeavyLightSceneGivesTheSameBitsEveryRun) {
     const std::uint64_t first = testing::run_heavy_light_scene();
     EXPECT_EQ(testing::run_heavy_light_scene(), first);
