@@ -17,8 +17,8 @@ namespace discreel::physics::detail {
 
 bool BodySolver::keeps_contacts(const std::vector<Body>& bodies, double dt) const {
     // Sleeping islands park and unpark contacts, which the pair search looks after.
-    if (!def_.keep_contacts || !contacts_kept_ || asleep_count_ != 0 ||
-        travelled_.size() != bodies.size()) {
+    if (!def_.keep_contacts || !contacts_kept_ || asleep_count_ != 0 || !parked_.empty() ||
+        bodies.empty() || travelled_.size() != bodies.size()) {
         return false;
     }
     // Each body may move half what a pair may before its manifold is made again, for the
@@ -56,7 +56,6 @@ void BodySolver::move_contacts(const std::vector<Body>& bodies, double dt) {
             p.target = separation > 0 ? -separation / dt : 0;
             pc.approach[q] = normal_velocity(c, p, va, vb);
         }
-        pc.as_solved = true;
     }
 }
 

@@ -54,7 +54,11 @@ void BodySolver::count_parked() {
 }
 
 void BodySolver::wake_reached(std::vector<Body>& bodies, const V2& gravity, double dt) {
-    if (asleep_count_ == 0) return;
+    if (asleep_count_ == 0) {
+        // Every island woke (a throw moved one of each): their contacts rejoin.
+        unpark(bodies);
+        return;
+    }
     // Again while islands wake, as a woken island may reach others; begin_step left the woken
     // bodies out, so they start the step as the awake ones did.
     for (;;) {
@@ -133,6 +137,7 @@ void BodySolver::fall_asleep(std::vector<Body>& bodies, double dt) {
         fell = true;
     }
     if (!fell) return;
+    contacts_kept_ = false;
     const std::size_t before = parked_.size();
     std::erase_if(contacts_, [&](PairContact& pc) {
         if (stirs(bodies[pc.a]) || stirs(bodies[pc.b])) return false;

@@ -119,6 +119,9 @@ public:
     std::size_t sweeps() const { return predictions_made_; }
     // Whether the last step kept the contacts of the step before (BodySolverDef::keep_contacts).
     bool kept_contacts() const { return kept_; }
+    // A throw changed some body's velocity or mass (a grab, a release) before this step: it
+    // makes its contacts again, as after forget().
+    void thrown() { contacts_kept_ = false; }
     // Forgets contacts of bodies [first, last): they were replaced. The islands they slept in
     // wake (they may have rested on them).
     void forget(std::vector<Body>& bodies, std::size_t first, std::size_t last);
@@ -153,9 +156,9 @@ private:
         double restitution = 0;
         std::array<double, 2> approach{};   // normal velocity before the solve, m/s
         bool touched = false;
-        // Its normal, offsets and impulses are as the rows' last finish left them: a kept
-        // contact whose bounce and push-out did not touch it (BlockRows builds only its
-        // bounds again).
+        // Its normal, offsets and impulses are as the rows' last finish left them (set there;
+        // a new manifold, a bounce and an island's push-out clear it): kept by the next step,
+        // BlockRows builds only its bounds again.
         bool as_solved = false;
     };
     // The stages of a step, in order (body_solver.cpp unless said).
@@ -279,7 +282,8 @@ private:
         still_for_.resize(bodies, 0.0);
     }
     std::vector<PairContact> contacts_;     // the last step's, in (a, b) order
-    // Whether contacts_ may be kept by the next step (forget() and sleep end it); per body,
+    // Whether contacts_ may be kept by the next step (forget(), thrown(), a fast body and an
+    // island falling asleep end it); per body,
     // how far it moved (metres, its bounding radius's arc included) and turned (radians)
     // since they were made.
     bool contacts_kept_ = false;

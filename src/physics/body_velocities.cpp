@@ -74,6 +74,9 @@ void BodySolver::solve_velocities(std::vector<Body>& bodies) {
         block_rows_.reload(state_);
     }
     block_rows_.finish(rows_, state_);
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+        fresh_[i].as_solved = direct_[i] == 0 && blocked_[i] == 0;
+    }
     if (far_islands_) solve_gainers_again(bodies);
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 }

@@ -59,11 +59,14 @@ ShapeStepper::ShapeStepper(const WorldDef& def, int substeps, std::vector<Body>&
 
 void ShapeStepper::replaced(std::size_t i, const BodyDef& def) { shapes_[i] = shape_of(def); }
 
-void ShapeStepper::step(std::vector<Body>& bodies, double t0, double t1, bool /*thrown*/,
+void ShapeStepper::step(std::vector<Body>& bodies, double t0, double t1, bool thrown,
                         std::vector<PairTouch>& began) {
-    // A throw's changes need no notice: each substep looks at every body's motion afresh. The
-    // substeps divide t1 - t0, which differs from 1 / rate by rounding (the disc solver's
-    // divide 1 / rate): either is deterministic, and each solver's pinned hashes hold.
+    // A throw's changes need only end the keeping of contacts (a release gives a held body
+    // back its mass: pairs with walls it did not have); otherwise each substep looks at every
+    // body's motion afresh. The substeps divide t1 - t0, which differs from 1 / rate by
+    // rounding (the disc solver's divide 1 / rate): either is deterministic, and each
+    // solver's pinned hashes hold.
+    if (thrown) solver_.thrown();
     const double h = (t1 - t0) / substeps_;
     for (int k = 0; k < substeps_; ++k) {
         solver_.step(bodies, shapes_, gravity_, h);

@@ -218,5 +218,26 @@ TEST(BodySolverTest, AThrowIntoAKeptPileMakesItsContactsAgain) {
     }
 }
 
+// Asleep, the pile's contacts are parked; a nudge wakes it all, and its first step makes its
+// contacts again (the parked ones rejoin): none of the boxes sinks or falls.
+TEST(BodySolverTest, ASleepingPileWokenByANudgeMakesItsContactsAgain) {
+    Bodies bodies = resting_pyramid();
+    BodySolver solver;
+    for (int k = 0; k < 3 * rate; ++k) bodies.step(solver);
+    for (std::size_t i = 1; i < bodies.bodies.size(); ++i) ASSERT_TRUE(bodies[i].asleep) << i;
+    std::vector<V2> before;
+    for (const Body& b : bodies.bodies) before.push_back(b.x);
+    const std::size_t top = bodies.bodies.size() - 1;
+    bodies.bodies[top].v = V2(0.05, 0);
+    bodies.step(solver);
+    EXPECT_FALSE(solver.kept_contacts());
+    for (int k = 0; k < rate / 2; ++k) bodies.step(solver);
+    // Woken, the boxes settle again by micrometres (3.8e-6 m measured); a first step without
+    // contacts let every one of them fall 0.13 mm.
+    for (std::size_t i = 1; i < top; ++i) {
+        EXPECT_LT((bodies[i].x - before[i]).norm(), 2e-5) << "box " << i;
+    }
+}
+
 }  // namespace
 }  // namespace discreel::physics::detail

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "discreel/physics.hpp"
+#include "discreel/shapes.hpp"
 #include "scenes.hpp"
 
 namespace discreel::physics {
@@ -97,6 +98,30 @@ TEST(Throws, ADiscReleasedOnTheFloorRestsThere) {
     const BodyState& released = world.bodies()[0];
     EXPECT_NEAR(released.position.x, 1.0, 1e-3);
     EXPECT_LT(std::hypot(released.velocity.x, released.velocity.y), 1e-3);
+}
+
+// A box held still on the floor for a second, then let go at rest: held, it had no contact
+// with the floor (two bodies a contact cannot move make none), and the steps kept their
+// contacts, nothing moving; the release makes them again, so it rests where it was let go.
+TEST(Throws, ABoxHeldStillOnTheFloorAndLetGoRestsThere) {
+    WorldDef def;
+    const testing::Material material{.restitution = 0.2, .friction = 0.5};
+    def.walls.push_back(testing::box({-5, 0}, {5, 5}, material));
+    def.bodies.push_back(testing::body(*box_shape(1, 1), {0, 0.5}, 1.0, material));
+    ThrowDef grab;
+    grab.body = 0;
+    grab.path = {{0.0, {0, 0.5}}, {1.0, {0, 0.5}}};
+    grab.release = Vec2{0, 0};
+    def.throws.push_back(grab);
+    World world(def);
+    testing::run_for(world, 1.0);
+    double lowest = world.bodies()[0].position.y;
+    for (int k = 0; k < 480; ++k) {
+        world.step();
+        lowest = std::min(lowest, world.bodies()[0].position.y);
+    }
+    EXPECT_GT(lowest, 0.5 - 1e-5);
+    EXPECT_NEAR(world.bodies()[0].position.y, 0.5, 1e-5);
 }
 
 // The case: a disc at (1, 1) grabbed with a path starting at t = 0.5 at (3, 3). The hand
