@@ -283,9 +283,8 @@ private:
     }
     std::vector<PairContact> contacts_;     // the last step's, in (a, b) order
     // Whether contacts_ may be kept by the next step (forget(), thrown(), a fast body and an
-    // island falling asleep end it); per body,
-    // how far it moved (metres, its bounding radius's arc included) and turned (radians)
-    // since they were made.
+    // island falling asleep end it); per body, how far it moved (metres, its bounding
+    // radius's arc included) and turned (radians) since they were made.
     bool contacts_kept_ = false;
     bool kept_ = false;                     // the last step kept them
     std::vector<double> travelled_, turned_since_;

@@ -162,18 +162,32 @@ Bodies resting_pyramid() {
     return bodies;
 }
 
-TEST(BodySolverTest, ARestingPyramidKeepsItsContactsAndRestsWhereMadeOnesPutIt) {
-    BodySolverDef keeping;
-    keeping.sleep = false;
-    BodySolverDef making = keeping;
-    making.keep_contacts = false;
+// The resting pyramid twice, awake: stepped by a solver that keeps its contacts and by one
+// that makes them every step.
+struct KeptAndMade {
+    static BodySolverDef awake(bool keep) {
+        BodySolverDef def;
+        def.sleep = false;
+        def.keep_contacts = keep;
+        return def;
+    }
     Bodies kept = resting_pyramid(), made = resting_pyramid();
-    BodySolver keeper(keeping), maker(making);
-    int steps_kept = 0;
-    for (int k = 0; k < 2 * rate; ++k) {
+    BodySolver keeper{awake(true)}, maker{awake(false)};
+    void step() {
         kept.step(keeper);
         made.step(maker);
-        EXPECT_FALSE(maker.kept_contacts());
+    }
+};
+
+TEST(BodySolverTest, ARestingPyramidKeepsItsContactsAndRestsWhereMadeOnesPutIt) {
+    KeptAndMade pyramids;
+    const Bodies& kept = pyramids.kept;
+    const Bodies& made = pyramids.made;
+    const BodySolver& keeper = pyramids.keeper;
+    int steps_kept = 0;
+    for (int k = 0; k < 2 * rate; ++k) {
+        pyramids.step();
+        EXPECT_FALSE(pyramids.maker.kept_contacts());
         if (k >= rate && keeper.kept_contacts()) ++steps_kept;
     }
     // In the second second nearly every step keeps them (the pile's creep makes them now
@@ -190,28 +204,19 @@ TEST(BodySolverTest, ARestingPyramidKeepsItsContactsAndRestsWhereMadeOnesPutIt) 
 // A throw ends the keeping at once: the contacts are made again in its step, and the thrown
 // box slides off the top as when they are made every step.
 TEST(BodySolverTest, AThrowIntoAKeptPileMakesItsContactsAgain) {
-    BodySolverDef keeping;
-    keeping.sleep = false;
-    BodySolverDef making = keeping;
-    making.keep_contacts = false;
-    Bodies kept = resting_pyramid(), made = resting_pyramid();
-    BodySolver keeper(keeping), maker(making);
-    for (int k = 0; k < rate; ++k) {
-        kept.step(keeper);
-        made.step(maker);
-    }
+    KeptAndMade pyramids;
+    Bodies& kept = pyramids.kept;
+    Bodies& made = pyramids.made;
+    const BodySolver& keeper = pyramids.keeper;
+    for (int k = 0; k < rate; ++k) pyramids.step();
     ASSERT_TRUE(keeper.kept_contacts());
     // The top box, thrown sideways.
     const std::size_t top = kept.bodies.size() - 1;
     kept.bodies[top].v = V2(3, 0);
     made.bodies[top].v = V2(3, 0);
-    kept.step(keeper);
-    made.step(maker);
+    pyramids.step();
     EXPECT_FALSE(keeper.kept_contacts());
-    for (int k = 0; k < rate / 4; ++k) {
-        kept.step(keeper);
-        made.step(maker);
-    }
+    for (int k = 0; k < rate / 4; ++k) pyramids.step();
     EXPECT_GT(made[top].x.x(), 0.3);
     for (std::size_t i = 1; i < kept.bodies.size(); ++i) {
         EXPECT_LT((kept[i].x - made[i].x).norm(), 1e-4) << "box " << i;
