@@ -1,7 +1,7 @@
 // Sleeping islands (body_solver.hpp). A settled pile costs a step of full work per physics step
 // for nothing: every body at rest, every contact solved to the same impulses. An island (bodies
-// joined by contacts with points, walls not joining) whose bodies have all moved slower than
-// `sleep_speed` for `sleep_after` seconds is put to sleep: its bodies stop exactly, drop out of
+// joined by contacts with points, walls not joining) that touches a wall or a fixed body and
+// whose bodies have all moved slower than `sleep_speed` for `sleep_after` seconds is put to sleep: its bodies stop exactly, drop out of
 // the solve and keep their contacts parked, as they were, for the warm start and the events when
 // they wake. An island wakes whole when an awake body comes within the reach of a contact of one
 // of its bodies (the pair's manifold in the step would have a point), when a throw moves one of
@@ -116,19 +116,29 @@ void BodySolver::fall_asleep(std::vector<Body>& bodies, double dt) {
         parent_[i] = static_cast<std::uint32_t>(i);
         lightest_[i] = still_for_[i];
     }
+    // Only an island that rests on something fixed (a wall, a static body) sleeps: one that
+    // floats free, however slowly, keeps its momentum (stopped, a box gliding at 5 mm/s in
+    // zero gravity halted before the box it was about to strike).
     const auto joins = [&](std::uint32_t i) { return bodies[i].motion != Motion::fixed; };
+    grounded_.assign(n, 0);
     for (const PairContact& pc : contacts_) {
-        if (!joins(pc.a) || !joins(pc.b)) continue;
+        if (!joins(pc.a) || !joins(pc.b)) {
+            grounded_[pc.a] = grounded_[pc.b] = 1;
+            continue;
+        }
         if (const auto merged = unite(pc.a, pc.b)) {
             lightest_[merged->first] = std::min(lightest_[merged->first], lightest_[merged->second]);
         }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        grounded_[root(static_cast<std::uint32_t>(i))] |= grounded_[i];
     }
     bool fell = false;
     for (std::size_t i = 0; i < n; ++i) {
         Body& b = bodies[i];
         if (b.asleep || b.motion != Motion::dynamic) continue;
         const std::uint32_t r = root(static_cast<std::uint32_t>(i));
-        if (lightest_[r] < def_.sleep_after) continue;
+        if (lightest_[r] < def_.sleep_after || grounded_[r] == 0) continue;
         b.asleep = true;
         b.island = r;
         b.v = V2::Zero();

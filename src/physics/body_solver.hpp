@@ -90,9 +90,10 @@ struct BodySolverDef {
     // distance since the last step that made them, nor will in this one at its speed now (a
     // resting pile makes its contacts rarely; anything moving makes them every step).
     bool keep_contacts = true;
-    // An island whose every body has moved slower than `sleep_speed` (m/s, at its centroid
-    // and at its bounding radius from its spin) for `sleep_after` seconds falls asleep: its
-    // bodies stop and cost nothing until an awake body comes within reach of one of them.
+    // An island that touches a wall or a fixed body and whose every body has moved slower
+    // than `sleep_speed` (m/s, at its centroid and at its bounding radius from its spin) for
+    // `sleep_after` seconds falls asleep: its bodies stop and cost nothing until an awake body
+    // comes within reach of one of them. An island floating free keeps its momentum.
     bool sleep = true;
     double sleep_speed = 0.01;     // m/s
     double sleep_after = 0.5;      // s
@@ -331,6 +332,7 @@ private:
     // direct one.
     std::vector<std::uint32_t> parent_;
     std::vector<double> lightest_, heaviest_;
+    std::vector<std::uint8_t> grounded_;   // fall_asleep's: the island rests on a fixed body
     bool far_islands_ = false;              // some island's masses are direct_mass_ratio apart
     std::vector<int> points_;
     std::vector<unsigned char> direct_;

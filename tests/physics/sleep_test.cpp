@@ -1,7 +1,7 @@
 // Sleeping islands of shaped bodies: a settled stack stops exactly and stays put; what reaches
 // it (a falling ball, a flick, a respawn underneath) wakes it and moves as it would have had it
 // never slept; a grabbed body pushes one ahead; waking raises no contact events of its own;
-// `sleep = false` keeps bodies awake.
+// `sleep = false` keeps bodies awake; bodies floating free never sleep.
 #include <cmath>
 #include <vector>
 
@@ -161,6 +161,32 @@ TEST(Sleep, ARespawnUnderASleepingBoxWakesIt) {
     EXPECT_TRUE(at_rest(world.bodies()[1]));
     run_for(world, 1.0);
     EXPECT_NEAR(world.bodies()[1].position.y, 0.5, 1e-3);
+}
+
+// Only what rests on something fixed sleeps. In zero gravity an elastic box glides at 5 mm/s
+// (half the sleep speed) for 0.5 s into a box at rest, which leaves with its velocity: stopped
+// for gliding slowly, the first box would halt with the momentum of both lost. A free pair
+// touching, slower still, keeps drifting too.
+TEST(Sleep, BodiesFloatingFreeKeepTheirMomentum) {
+    for (const double speed : {0.005, 0.0005}) {
+        SCOPED_TRACE(speed);
+        WorldDef def;
+        def.gravity = {0, 0};
+        def.bodies = {body(*box_shape(0.5, 0.5), {0, 0}), body(*box_shape(0.5, 0.5), {0.5 + 0.5 * speed, 0})};
+        def.bodies[0].velocity = {speed, 0};
+        World world(def);
+        run_for(world, 2.0);
+        EXPECT_NEAR(world.bodies()[0].velocity.x, 0, 1e-9 * speed);
+        EXPECT_NEAR(world.bodies()[1].velocity.x, speed, 1e-9 * speed);
+    }
+    WorldDef def;
+    def.gravity = {0, 0};
+    def.bodies = {body(*box_shape(1, 1), {0, 0}), body(*box_shape(1, 1), {1, 0})};
+    def.bodies[0].velocity = def.bodies[1].velocity = {0, 0.001};
+    World world(def);
+    run_for(world, 2.0);
+    EXPECT_EQ(world.bodies()[0].velocity.y, 0.001);
+    EXPECT_EQ(world.bodies()[1].velocity.y, 0.001);
 }
 
 }  // namespace
