@@ -147,7 +147,6 @@ void BodySolver::predict_impact(const std::vector<Body>& bodies, std::uint32_t i
 }
 
 void BodySolver::time_impacts(std::vector<Body>& bodies, double dt, double settle) {
-    impact_touches_.clear();
     predictions_made_ = 0;
     settle_ = settle;
     const std::size_t fast_count = begin_sweeps(bodies, dt);

@@ -44,7 +44,8 @@ void BodySolver::find_islands(const std::vector<Body>& bodies) {
         lightest = std::max(lightest, b.inv_mass);
         heaviest = std::min(heaviest, b.inv_mass);
     }
-    if (lightest < def_.direct_mass_ratio * heaviest) {
+    even_world_ = lightest < def_.direct_mass_ratio * heaviest;
+    if (even_world_) {
         islands_.clear();
         island_start_.assign(1, 0);
         blocks_.clear();

@@ -145,6 +145,11 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
         }
         find_islands(bodies);
     }
+    impact_touches_.clear();
+    {
+        const StageTimer timer(profile_, &StepProfile::impacts);
+        strike_touching(bodies, gravity, dt);
+    }
     {
         // The islands solved directly first (their bodies have no other contacts), then warm
         // start and the velocity iterations of the rest, body states carried between contacts.

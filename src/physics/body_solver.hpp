@@ -3,7 +3,8 @@
 // A sweep over bounding boxes finds the pairs; each near pair gets its contact manifold
 // (manifold.hpp, speculative by as far as the pair can close within the step, which is what
 // keeps a fast body from passing through a thin wall), warm-started from the last step by
-// feature id, solved with the two-point block solve (block_solver.hpp); then positions are
+// feature id, touching pairs that close fast struck two bodies at a time (body_strikes.cpp),
+// solved with the two-point block solve (block_solver.hpp); then positions are
 // integrated, bounces added, and whatever overlap remains is pushed out point by point from
 // each manifold's anchors. The solver sees contact rows, never shapes: `collide` is the only
 // place shapes meet.
@@ -72,6 +73,11 @@ struct BodySolverDef {
     // Impacts per such body and step at most; beyond, bodies keep the motion they have and
     // the next step's contacts push out what overlaps.
     int impacts_per_fast_body = 64;
+    // Touching pairs closing at the step's start faster than a settle speed (the disc
+    // solver's rule) are struck two bodies at a time before the rows, each blow passed on to
+    // the struck bodies' other touching pairs (body_strikes.cpp); at most this many strikes
+    // per body and step.
+    int strikes_per_body = 64;
     // Sweeps (times of impact of one pair) per step at most: `predictions_per_body` for each
     // body, plus `predictions_base`. A body whose new sweep is left unchecked once they are
     // spent stays where its last impact put it for the rest of the step, so the work of a step
@@ -177,6 +183,15 @@ private:
     bool keeps_contacts(const std::vector<Body>& bodies, double dt) const;
     void move_contacts(const std::vector<Body>& bodies, double dt);
     void count_motion(const std::vector<Body>& bodies, bool kept);
+    // (body_strikes.cpp) Touching pairs closing faster than their strike speed, resolved
+    // two bodies at a time before the rows, the blows passed on through touching pairs.
+    void strike_touching(std::vector<Body>& bodies, const V2& gravity, double dt);
+    double strike_speed(const PairContact& pc, double g, double dt) const;   // m/s
+    bool strikes_now(const PairContact& pc, const std::vector<Body>& bodies, double g,
+                     double dt) const;
+    void strike(std::vector<Body>& bodies, const PairContact& pc);
+    // A body's velocities at the step's start, before begin_step's gravity.
+    BlockBody start_velocity(const Body& b) const;
     void solve_velocities(std::vector<Body>& bodies);       // body_velocities.cpp
     void integrate_positions(std::vector<Body>& bodies, double dt);   // body_positions.cpp
     void bounce(std::vector<Body>& bodies, double settle);  // body_velocities.cpp
@@ -342,6 +357,9 @@ private:
     // The contacts of larger islands of masses block_mass_ratio apart, grouped by block
     // (blocked_: per contact of fresh_).
     std::vector<unsigned char> blocked_;
+    // Every moving body within direct_mass_ratio of every other (find_islands): no island
+    // can have masses far apart, and touching pairs are struck (body_strikes.cpp).
+    bool even_world_ = true;
     std::vector<IslandContact> blocks_;
     std::vector<std::size_t> block_start_;
     std::vector<std::uint32_t> group_key_;    // per contact: its island root or block's body
@@ -363,7 +381,13 @@ private:
     std::vector<unsigned char> fast_;
     std::vector<unsigned char> nudged_;      // fast only because an impact struck it, slowly
     std::vector<PredictedImpact> impacts_;
-    std::vector<PairTouch> impact_touches_;
+    std::vector<PairTouch> impact_touches_;  // this step's strikes' and impacts'
+    // Scratch of strike_touching: the contacts to look at (indices into fresh_) and whether
+    // queued, each body's contacts (contacts_of_, delimited by contact_start_), its strikes
+    // in the step and whether struck.
+    std::vector<std::uint32_t> queue_, contact_start_, contacts_of_, strikes_of_;
+    std::vector<unsigned char> queued_, struck_;
+    V2 fall_ = V2::Zero();                   // m/s: gravity times the step, this step's
     std::vector<std::uint32_t> still_, moving_, changed_;   // scratch: see time_impacts
     std::vector<double> moving_lo_;
     double widest_ = 0;                      // metres: the widest moving swept box in x
