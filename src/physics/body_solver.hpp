@@ -73,8 +73,8 @@ struct BodySolverDef {
     // Impacts per such body and step at most; beyond, bodies keep the motion they have and
     // the next step's contacts push out what overlaps.
     int impacts_per_fast_body = 64;
-    // Touching pairs closing at the step's start faster than a settle speed (the disc
-    // solver's rule) are struck two bodies at a time before the rows, each blow passed on to
+    // Touching pairs of two moving bodies closing at the step's start faster than a settle
+    // speed (the disc solver's rule) are struck two bodies at a time before the rows, each blow passed on to
     // the struck bodies' other touching pairs (body_strikes.cpp); at most this many strikes
     // per body and step.
     int strikes_per_body = 64;
