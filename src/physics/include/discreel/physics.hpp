@@ -166,7 +166,7 @@ struct WorldStats {
 struct StepProfile {
     double pairs = 0.0;        // s: the broad phase, the pairs that may touch
     double contacts = 0.0;     // s: each near pair's contact (manifold or gap), islands planned
-    double impacts = 0.0;      // s: times of impact, and the collisions at them
+    double impacts = 0.0;      // s: times of impact, strikes, and the collisions at them
     double velocities = 0.0;   // s: the velocity solve (rows, islands), and the bounces
     double positions = 0.0;    // s: positions moved, overlap pushed out
     double rest = 0.0;         // s: the rest of the step: throws, respawns, events, sleep
