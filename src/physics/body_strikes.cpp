@@ -75,7 +75,8 @@ void BodySolver::strike(std::vector<Body>& bodies, const PairContact& pc) {
     if (touch != impact_touches_.end()) {
         touch->impulse += impulse;
     } else {
-        impact_touches_.push_back({pc.a, pc.b, impulse, true});
+        // A pair that touched in the step before goes on touching: no new contact event.
+        impact_touches_.push_back({pc.a, pc.b, impulse, !pc.touched});
     }
 }
 

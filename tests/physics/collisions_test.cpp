@@ -129,6 +129,27 @@ TEST(Collisions, NewtonsCradleOfBoxesSendsTheLastBoxOff) {
     }
 }
 
+// Each strike down the row is one contact beginning: striker and first box, then each pair of
+// neighbours once, in order along the row.
+TEST(Collisions, ACradleOfBoxesBeginsEachContactOnce) {
+    WorldDef def;
+    def.gravity = {0, 0};
+    const Shape box = *box_shape(1, 1);
+    def.bodies.push_back(testing::body(box, {-3, 0.5}));
+    def.bodies.back().velocity = {1.5, 0};
+    for (int k = 0; k < 5; ++k) def.bodies.push_back(testing::body(box, {1.0 * k, 0.5}));
+    World world(def);
+    testing::run_for(world, 2.0);
+    const std::vector<ContactEvent> events = world.take_events();
+    ASSERT_EQ(events.size(), 5u);
+    for (std::size_t k = 0; k < events.size(); ++k) {
+        EXPECT_EQ(events[k].a, k);
+        EXPECT_EQ(events[k].other_kind, ContactEvent::Other::body);
+        EXPECT_EQ(events[k].other, k + 1);
+        EXPECT_GT(events[k].impulse, 0.0);
+    }
+}
+
 // Two touching discs on a frictionless floor, the first pushed into the second. The pair is
 // timed if its bounce would show (e v at least sqrt(2 * 0.05 |g| r): 0.70 m/s for r = 0.5 under
 // 9.8 m/s^2) or if it closes 2 % of r within the substep (0.48 m/s for r = 0.05 at 480 Hz);
