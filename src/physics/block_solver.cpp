@@ -121,4 +121,14 @@ void solve_block(BlockContact& c, BlockBody& a, BlockBody& b) {
     p2.normal_impulse = x[1];
 }
 
+void collide_poisson(BlockContact& c, BlockBody& a, BlockBody& b, double restitution) {
+    prepare_block(c, a, b);
+    for (int it = 0; it < 4; ++it) solve_block(c, a, b);
+    for (int k = 0; k < c.count; ++k) {
+        BlockPoint& p = c.points[k];
+        apply_impulse(a, b, p, restitution * p.normal_impulse * c.normal);
+        p.normal_impulse *= 1 + restitution;
+    }
+}
+
 }  // namespace discreel::physics::detail

@@ -62,4 +62,10 @@ void prepare_block(BlockContact& c, const BlockBody& a, const BlockBody& b);
 // One iteration: friction per point, then the normal block, updating both bodies.
 void solve_block(BlockContact& c, BlockBody& a, BlockBody& b);
 
+// A collision by Poisson's rule: the points are stopped together (one pair: the normal block
+// is exact, a few passes settle friction against it), then each gets `restitution` times the
+// normal impulse that stopped it, which never adds energy (Newton's rule at two points can).
+// Each point's normal impulse ends as the whole of its collision's, N s.
+void collide_poisson(BlockContact& c, BlockBody& a, BlockBody& b, double restitution);
+
 }  // namespace discreel::physics::detail

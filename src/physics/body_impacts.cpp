@@ -284,30 +284,12 @@ void BodySolver::take_impact(std::vector<Body>& bodies, const PredictedImpact& e
         predict_impact(bodies, e.a, e.b, e.t, dt, true);
         return;
     }
-    if (closing) {
-        // Poisson's rule, as a direct island bounces (body_solver.cpp): the points are
-        // stopped together (one pair: the normal block is exact, a few passes settle
-        // friction against it), then each gets e times the normal impulse that stopped it,
-        // which never adds energy; Newton's rule at two points can.
-        prepare_block(c, va, vb);
-        for (int it = 0; it < 4; ++it) solve_block(c, va, vb);
-        const double e_mix = mix_restitution(a.restitution, b.restitution);
-        for (int k = 0; k < c.count; ++k) {
-            BlockPoint& p = c.points[k];
-            apply_impulse(va, vb, p, e_mix * p.normal_impulse * c.normal);
-            p.normal_impulse *= 1 + e_mix;
-        }
-    }
+    // Poisson's rule, as a direct island bounces (body_solver.cpp).
+    if (closing) collide_poisson(c, va, vb, mix_restitution(a.restitution, b.restitution));
 
     double impulse = 0;
     for (int k = 0; k < c.count; ++k) impulse += c.points[k].normal_impulse;
-    const auto touch = std::find_if(impact_touches_.begin(), impact_touches_.end(),
-                                    [&](const PairTouch& t) { return t.a == e.a && t.b == e.b; });
-    if (touch != impact_touches_.end()) {
-        touch->impulse += impulse;
-    } else if (impulse > 0) {
-        impact_touches_.push_back({e.a, e.b, impulse, true});
-    }
+    add_impact_touch(e.a, e.b, impulse, true);
 
     // Each body that the impact moved starts a new sweep from where it was then.
     const std::uint32_t pair[2] = {e.a, e.b};
@@ -344,6 +326,16 @@ void BodySolver::take_impact(std::vector<Body>& bodies, const PredictedImpact& e
             if (j == i || (side == 1 && j == pair[0] && bodies[j].inv_mass > 0)) return;
             predict_impact(bodies, std::min(i, j), std::max(i, j), e.t, dt);
         });
+    }
+}
+
+void BodySolver::add_impact_touch(std::uint32_t a, std::uint32_t b, double impulse, bool began) {
+    const auto touch = std::find_if(impact_touches_.begin(), impact_touches_.end(),
+                                    [&](const PairTouch& t) { return t.a == a && t.b == b; });
+    if (touch != impact_touches_.end()) {
+        touch->impulse += impulse;
+    } else if (impulse > 0) {
+        impact_touches_.push_back({a, b, impulse, began});
     }
 }
 

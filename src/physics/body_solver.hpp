@@ -74,9 +74,9 @@ struct BodySolverDef {
     // the next step's contacts push out what overlaps.
     int impacts_per_fast_body = 64;
     // Touching pairs of two moving bodies closing at the step's start faster than a settle
-    // speed (the disc solver's rule) are struck two bodies at a time before the rows, each blow passed on to
-    // the struck bodies' other touching pairs (body_strikes.cpp); at most this many strikes
-    // per body and step.
+    // speed (the disc solver's rule) are struck two bodies at a time before the rows, each
+    // blow passed on to the struck bodies' other touching pairs (body_strikes.cpp); at most
+    // this many strikes per body and step.
     int strikes_per_body = 64;
     // Sweeps (times of impact of one pair) per step at most: `predictions_per_body` for each
     // body, plus `predictions_base`. A body whose new sweep is left unchecked once they are
@@ -190,6 +190,8 @@ private:
     bool strikes_now(const PairContact& pc, const std::vector<Body>& bodies, double g,
                      double dt) const;
     void strike(std::vector<Body>& bodies, const PairContact& pc);
+    // How near a pair's points must be to touch, metres.
+    double touch_distance(const PairContact& pc) const;
     // A body's velocities at the step's start, before begin_step's gravity.
     BlockBody start_velocity(const Body& b) const;
     void solve_velocities(std::vector<Body>& bodies);       // body_velocities.cpp
@@ -255,6 +257,9 @@ private:
     void for_each_reachable(std::uint32_t i, F&& f) const;   // f(j) for each j i's box overlaps
     struct PredictedImpact;
     void take_impact(std::vector<Body>& bodies, const PredictedImpact& e, double dt);
+    // Adds an impact's or a strike's impulse (N s) to its pair's touch in impact_touches_, or
+    // lists the pair with it (`began`: a new contact) when it has none and the impulse is > 0.
+    void add_impact_touch(std::uint32_t a, std::uint32_t b, double impulse, bool began);
     void stop_unfinished(std::vector<Body>& bodies);
     // Predicts the first impact of bodies i < j from `t_begin` into impacts_ (`after_only`:
     // only one after t_begin).

@@ -20,6 +20,11 @@ double BodySolver::strike_speed(const PairContact& pc, double g, double dt) cons
     return std::max(g * dt, std::min(std::sqrt(0.1 * g * r) / pc.restitution, 0.02 * r / dt));
 }
 
+double BodySolver::touch_distance(const PairContact& pc) const {
+    // The disc solver's measure of touching: within 0.5 % of the smaller inner radius.
+    return 0.005 * std::min(inner_[pc.a], inner_[pc.b]);
+}
+
 BlockBody BodySolver::start_velocity(const Body& b) const {
     BlockBody s = velocity_of(b);
     if (b.inv_mass > 0 && !b.asleep) s.v -= fall_;
@@ -29,8 +34,7 @@ BlockBody BodySolver::start_velocity(const Body& b) const {
 bool BodySolver::strikes_now(const PairContact& pc, const std::vector<Body>& bodies, double g,
                              double dt) const {
     if (pc.restitution <= 0) return false;
-    // Touching: within 0.5 % of the smaller inner radius (the disc solver's measure).
-    const double touch = 0.005 * std::min(inner_[pc.a], inner_[pc.b]);
+    const double touch = touch_distance(pc);
     const BlockBody va = start_velocity(bodies[pc.a]), vb = start_velocity(bodies[pc.b]);
     const double settle = strike_speed(pc, g, dt);
     for (int k = 0; k < pc.contact.count; ++k) {
@@ -41,11 +45,11 @@ bool BodySolver::strikes_now(const PairContact& pc, const std::vector<Body>& bod
 }
 
 void BodySolver::strike(std::vector<Body>& bodies, const PairContact& pc) {
-    // Poisson's rule, as an impact (body_impacts.cpp): the touching points stopped together,
-    // then each given e times the impulse that stopped it. The impulses are the collision's,
-    // not a lasting load: the contact's warm start is left as it was. A point still apart is
-    // not struck (stopped, it would take an impulse the bodies never exchanged).
-    const double touching = 0.005 * std::min(inner_[pc.a], inner_[pc.b]);
+    // Poisson's rule at the touching points, as an impact (body_impacts.cpp). The impulses
+    // are the collision's, not a lasting load: the contact's warm start is left as it was. A
+    // point still apart is not struck (stopped, it would take an impulse the bodies never
+    // exchanged).
+    const double touching = touch_distance(pc);
     BlockContact c = pc.contact;
     c.count = 0;
     for (int k = 0; k < pc.contact.count; ++k) {
@@ -57,27 +61,15 @@ void BodySolver::strike(std::vector<Body>& bodies, const PairContact& pc) {
         p.target = 0;
     }
     BlockBody va = start_velocity(bodies[pc.a]), vb = start_velocity(bodies[pc.b]);
-    prepare_block(c, va, vb);
-    for (int it = 0; it < 4; ++it) solve_block(c, va, vb);
+    collide_poisson(c, va, vb, pc.restitution);
     double impulse = 0;
-    for (int k = 0; k < c.count; ++k) {
-        const BlockPoint& p = c.points[k];
-        apply_impulse(va, vb, p, pc.restitution * p.normal_impulse * c.normal);
-        impulse += (1 + pc.restitution) * p.normal_impulse;
-    }
+    for (int k = 0; k < c.count; ++k) impulse += c.points[k].normal_impulse;
     for (const auto& [i, s] : {std::pair{pc.a, &va}, std::pair{pc.b, &vb}}) {
         bodies[i].v = s->v + fall_;   // both can move, and are awake
         bodies[i].omega = s->omega;
     }
-    if (impulse <= 0) return;
-    const auto touch = std::find_if(impact_touches_.begin(), impact_touches_.end(),
-                                    [&](const PairTouch& t) { return t.a == pc.a && t.b == pc.b; });
-    if (touch != impact_touches_.end()) {
-        touch->impulse += impulse;
-    } else {
-        // A pair that touched in the step before goes on touching: no new contact event.
-        impact_touches_.push_back({pc.a, pc.b, impulse, !pc.touched});
-    }
+    // A pair that touched in the step before goes on touching: no new contact event.
+    add_impact_touch(pc.a, pc.b, impulse, !pc.touched);
 }
 
 void BodySolver::strike_touching(std::vector<Body>& bodies, const V2& gravity, double dt) {
@@ -130,11 +122,11 @@ void BodySolver::strike_touching(std::vector<Body>& bodies, const V2& gravity, d
     struck_.assign(n, 0);
     // In pair order, then in the order the blows reach them; at most strikes_per_body per
     // body and step, so a crowd's chain of blows is bounded (the rows take what is left).
+    const auto limit = static_cast<std::uint32_t>(std::max(0, def_.strikes_per_body));
     for (std::size_t q = 0; q < queue_.size(); ++q) {
         const std::uint32_t i = queue_[q];
         queued_[i] = 0;
         const PairContact& pc = fresh_[i];
-        const auto limit = static_cast<std::uint32_t>(std::max(0, def_.strikes_per_body));
         if (strikes_of_[pc.a] >= limit || strikes_of_[pc.b] >= limit ||
             !strikes_now(pc, bodies, g, dt)) {
             continue;

@@ -1,5 +1,6 @@
 // Impacts against the analytic answers of the impulse law: discs, and boxes where named.
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -84,7 +85,7 @@ TEST(Collisions, FastDiscHitsAStillDisc) {
 }
 
 // Five touching discs, the first hit by a sixth: the whole momentum must travel down the row.
-void expect_cradle(WorldDef def, double speed) {
+void expect_cradle(const WorldDef& def, double speed) {
     World world(def);
     testing::run_for(world, 2.0);
     const auto& d = world.bodies();
@@ -108,37 +109,37 @@ TEST(Collisions, NewtonsCradleOnAFloorUnderGravity) {
     expect_cradle(def, 1.5);
 }
 
-// The same rows of unit boxes (the manifold solver), touching face to face: each touching pair
-// closing faster than its settle speed is struck on its own, two bodies at a time, and the
-// blow travels down the row within a step. Solved together by the rows instead, every box
-// took a share (the last left at 0.28 of the speed) and the striker bounced back at 0.29.
+// Five unit boxes touching face to face, the first struck by a sixth at 1.5 m/s; on a floor
+// under gravity, or in zero gravity.
+WorldDef box_cradle(bool floor) {
+    WorldDef def;
+    if (floor) {
+        def.walls.push_back(testing::box({-10, 0}, {20, 10}));
+    } else {
+        def.gravity = {0, 0};
+    }
+    const Shape box = *box_shape(1, 1);
+    def.bodies.push_back(testing::body(box, {-3, 0.5}));
+    def.bodies.back().velocity = {1.5, 0};
+    for (int k = 0; k < 5; ++k) def.bodies.push_back(testing::body(box, {1.0 * k, 0.5}));
+    return def;
+}
+
+// The same rows of unit boxes (the manifold solver): each touching pair closing faster than
+// its settle speed is struck on its own, two bodies at a time, and the blow travels down the
+// row within a step. Solved together by the rows instead, every box took a share (the last
+// left at 0.28 of the speed) and the striker bounced back at 0.29.
 TEST(Collisions, NewtonsCradleOfBoxesSendsTheLastBoxOff) {
     for (const bool floor : {false, true}) {
         SCOPED_TRACE(floor ? "on a floor under gravity" : "in zero gravity");
-        WorldDef def;
-        if (floor) {
-            def.walls.push_back(testing::box({-10, 0}, {20, 10}));
-        } else {
-            def.gravity = {0, 0};
-        }
-        const Shape box = *box_shape(1, 1);
-        def.bodies.push_back(testing::body(box, {-3, 0.5}));
-        def.bodies.back().velocity = {1.5, 0};
-        for (int k = 0; k < 5; ++k) def.bodies.push_back(testing::body(box, {1.0 * k, 0.5}));
-        expect_cradle(def, 1.5);
+        expect_cradle(box_cradle(floor), 1.5);
     }
 }
 
 // Each strike down the row is one contact beginning: striker and first box, then each pair of
 // neighbours once, in order along the row.
 TEST(Collisions, ACradleOfBoxesBeginsEachContactOnce) {
-    WorldDef def;
-    def.gravity = {0, 0};
-    const Shape box = *box_shape(1, 1);
-    def.bodies.push_back(testing::body(box, {-3, 0.5}));
-    def.bodies.back().velocity = {1.5, 0};
-    for (int k = 0; k < 5; ++k) def.bodies.push_back(testing::body(box, {1.0 * k, 0.5}));
-    World world(def);
+    World world(box_cradle(false));
     testing::run_for(world, 2.0);
     const std::vector<ContactEvent> events = world.take_events();
     ASSERT_EQ(events.size(), 5u);
