@@ -74,9 +74,9 @@ void BodySolver::strike(std::vector<Body>& bodies, const PairContact& pc) {
 
 void BodySolver::strike_touching(std::vector<Body>& bodies, const V2& gravity, double dt) {
     // The pairs touch at the step's start: they meet with the velocities they had then, and
-    // this step's gravity (begin_step's) acts after the strike. Struck with it, a ball
-    // dropped 10 cm on a floor (when floors were struck) left it at e (v + g dt) where
-    // e v - g dt is due, and rose 8 % too high.
+    // this step's gravity (begin_step's) acts after the strike. Struck with it included, a
+    // body would leave at e (v + g dt) where e v - g dt is due: a ball dropped 10 cm onto
+    // another would rise 8 % too high.
     fall_ = gravity * dt;
     const double g = gravity.norm();
     // Only in a world whose moving bodies are all within direct_mass_ratio of each other:

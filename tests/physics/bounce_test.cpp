@@ -49,9 +49,8 @@ INSTANTIATE_TEST_SUITE_P(RestitutionsAndHeights, Rebound,
                                             ::testing::Values(0.01, 0.1, 1.0, 10.0)));
 
 // The same drops of a circle shape (the manifold solver), from 10 cm: it lands on the floor at
-// the end of a step, or ends one just short of it and lands in the next (bounced by its
-// contact, not struck: a floor is not, and struck at its velocity after that step's gravity
-// it rose 8 % too high).
+// the end of a step, or ends one just short of it and lands in the next, bounced by its
+// contact either way (a floor is not struck, body_strikes.cpp).
 TEST(Bounce, ACircleShapeReboundsToRestitutionSquaredTimesItsDrop) {
     for (const double e : {0.3, 0.5, 0.8, 1.0}) {
         SCOPED_TRACE(e);
