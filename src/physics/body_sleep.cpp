@@ -118,12 +118,13 @@ void BodySolver::fall_asleep(std::vector<Body>& bodies, double dt) {
     }
     // Only an island that rests on something fixed (a wall, a static body) sleeps: one that
     // floats free, however slowly, keeps its momentum (stopped, a box gliding at 5 mm/s in
-    // zero gravity halted before the box it was about to strike).
+    // zero gravity halted before the box it was about to strike). Resting means pressing: a
+    // contact that only sees the wall coming (no impulse this step) does not ground.
     const auto joins = [&](std::uint32_t i) { return bodies[i].motion != Motion::fixed; };
     grounded_.assign(n, 0);
     for (const PairContact& pc : contacts_) {
         if (!joins(pc.a) || !joins(pc.b)) {
-            grounded_[pc.a] = grounded_[pc.b] = 1;
+            if (pc.touched) grounded_[pc.a] = grounded_[pc.b] = 1;
             continue;
         }
         if (const auto merged = unite(pc.a, pc.b)) {

@@ -189,5 +189,19 @@ TEST(Sleep, BodiesFloatingFreeKeepTheirMomentum) {
     EXPECT_EQ(world.bodies()[1].velocity.y, 0.001);
 }
 
+// Near is not resting: a box gliding at 5 mm/s a centimetre above a wall in zero gravity is
+// within the reach of its contact (the rows see it coming) but presses on nothing, and glides on.
+TEST(Sleep, ABodyGlidingPastAWallKeepsItsMomentum) {
+    WorldDef def;
+    def.gravity = {0, 0};
+    def.walls.push_back(testing::box({-10, -1}, {10, 0}, crate));
+    def.bodies = {body(*box_shape(1, 1), {0, 0.51}, 1, crate)};
+    def.bodies[0].velocity = {0.005, 0};
+    World world(def);
+    run_for(world, 2.0);
+    EXPECT_EQ(world.bodies()[0].velocity.x, 0.005);
+    EXPECT_NEAR(world.bodies()[0].position.x, 0.01, 1e-12);
+}
+
 }  // namespace
 }  // namespace discreel::physics
