@@ -120,6 +120,7 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
         // Every body that can move is asleep and stays so: nothing touches, nothing is swept.
         touches_.clear();
         impact_touches_.clear();
+        struck_impulse_.clear();
         predictions_made_ = 0;
         kept_ = false;
         return;
@@ -282,8 +283,10 @@ void BodySolver::make_contacts(const std::vector<Body>& bodies, double dt) {
 
 void BodySolver::record_touches() {
     touches_.clear();
-    for (PairContact& pc : fresh_) {
-        double impulse = 0;
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+        PairContact& pc = fresh_[i];
+        // The rows' impulse and the strikes' (a pair only struck touched too).
+        double impulse = i < struck_impulse_.size() ? struck_impulse_[i] : 0;
         for (int k = 0; k < pc.contact.count; ++k) impulse += pc.contact.points[k].normal_impulse;
         const bool touching = impulse > 0;
         if (touching) {

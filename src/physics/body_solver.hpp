@@ -189,7 +189,7 @@ private:
     double strike_speed(const PairContact& pc, double g, double dt) const;   // m/s
     bool strikes_now(const PairContact& pc, const std::vector<Body>& bodies, double g,
                      double dt) const;
-    void strike(std::vector<Body>& bodies, const PairContact& pc);
+    double strike(std::vector<Body>& bodies, const PairContact& pc);   // its impulse, N s
     // How near a pair's points must be to touch, metres.
     double touch_distance(const PairContact& pc) const;
     // A body's velocities at the step's start, before begin_step's gravity.
@@ -257,7 +257,7 @@ private:
     void for_each_reachable(std::uint32_t i, F&& f) const;   // f(j) for each j i's box overlaps
     struct PredictedImpact;
     void take_impact(std::vector<Body>& bodies, const PredictedImpact& e, double dt);
-    // Adds an impact's or a strike's impulse (N s) to its pair's touch in impact_touches_, or
+    // Adds an impact's impulse (N s) to its pair's touch in impact_touches_, or
     // lists the pair with it (`began`: a new contact) when it has none and the impulse is > 0.
     void add_impact_touch(std::uint32_t a, std::uint32_t b, double impulse, bool began);
     void stop_unfinished(std::vector<Body>& bodies);
@@ -386,12 +386,13 @@ private:
     std::vector<unsigned char> fast_;
     std::vector<unsigned char> nudged_;      // fast only because an impact struck it, slowly
     std::vector<PredictedImpact> impacts_;
-    std::vector<PairTouch> impact_touches_;  // this step's strikes' and impacts'
+    std::vector<PairTouch> impact_touches_;  // this step's impacts'
     // Scratch of strike_touching: the contacts to look at (indices into fresh_) and whether
     // queued, each body's contacts (contacts_of_, delimited by contact_start_), its strikes
     // in the step and whether struck.
     std::vector<std::uint32_t> queue_, contact_start_, contacts_of_, strikes_of_;
     std::vector<unsigned char> queued_, struck_;
+    std::vector<double> struck_impulse_;     // N s per contact of fresh_: its strikes' this step
     V2 fall_ = V2::Zero();                   // m/s: gravity times the step, this step's
     std::vector<std::uint32_t> still_, moving_, changed_;   // scratch: see time_impacts
     std::vector<double> moving_lo_;

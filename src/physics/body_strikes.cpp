@@ -16,8 +16,12 @@ double BodySolver::strike_speed(const PairContact& pc, double g, double dt) cons
     // The disc solver's settle speed (docs/physics.md), for the smaller inner radius r: under
     // |g| dt a closing is gravity's own; a bounce under sqrt(0.1 |g| r) / e would rise under
     // 5 % of r, and a squeeze under 0.02 r / dt closes under 2 % of r in the step.
+    // Without gravity all three are 0: closings at rounding's level are still not blows (the
+    // disc solver's impacts have the same floor).
+    constexpr double rounding = 1e-9;   // m/s
     const double r = std::min(inner_[pc.a], inner_[pc.b]);
-    return std::max(g * dt, std::min(std::sqrt(0.1 * g * r) / pc.restitution, 0.02 * r / dt));
+    return std::max({rounding, g * dt,
+                     std::min(std::sqrt(0.1 * g * r) / pc.restitution, 0.02 * r / dt)});
 }
 
 double BodySolver::touch_distance(const PairContact& pc) const {
@@ -44,7 +48,7 @@ bool BodySolver::strikes_now(const PairContact& pc, const std::vector<Body>& bod
     return false;
 }
 
-void BodySolver::strike(std::vector<Body>& bodies, const PairContact& pc) {
+double BodySolver::strike(std::vector<Body>& bodies, const PairContact& pc) {
     // Poisson's rule at the touching points, as an impact (body_impacts.cpp). The impulses
     // are the collision's, not a lasting load: the contact's warm start is left as it was. A
     // point still apart is not struck (stopped, it would take an impulse the bodies never
@@ -68,8 +72,7 @@ void BodySolver::strike(std::vector<Body>& bodies, const PairContact& pc) {
         bodies[i].v = s->v + fall_;   // both can move, and are awake
         bodies[i].omega = s->omega;
     }
-    // A pair that touched in the step before goes on touching: no new contact event.
-    add_impact_touch(pc.a, pc.b, impulse, !pc.touched);
+    return impulse;
 }
 
 void BodySolver::strike_touching(std::vector<Body>& bodies, const V2& gravity, double dt) {
@@ -79,6 +82,7 @@ void BodySolver::strike_touching(std::vector<Body>& bodies, const V2& gravity, d
     // another would rise 8 % too high.
     fall_ = gravity * dt;
     const double g = gravity.norm();
+    struck_impulse_.assign(fresh_.size(), 0);
     // Only in a world whose moving bodies are all within direct_mass_ratio of each other:
     // where masses are far apart, islands are solved together, and pairs of alike bodies
     // struck one by one beside them drove light boxes deep into heavy ones (limits_bench
@@ -131,7 +135,7 @@ void BodySolver::strike_touching(std::vector<Body>& bodies, const V2& gravity, d
             !strikes_now(pc, bodies, g, dt)) {
             continue;
         }
-        strike(bodies, pc);
+        struck_impulse_[i] += strike(bodies, pc);
         for (const std::uint32_t body : {pc.a, pc.b}) {
             ++strikes_of_[body];
             struck_[body] = 1;
