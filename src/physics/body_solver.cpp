@@ -183,12 +183,15 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
 void BodySolver::begin_step(std::vector<Body>& bodies, const V2& gravity, double dt) {
     start_angle_.resize(bodies.size());
     start_x_.resize(bodies.size());
+    start_v_.resize(bodies.size());
+    fall_ = gravity * dt;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         Body& b = bodies[i];
         if (inner_[i] < 0) inner_[i] = inner_radius(shapes_[i]);
         if (b.inv_mass > 0 && !b.asleep) b.v += gravity * dt;
         start_x_[i] = b.x;
         start_angle_[i] = b.angle;
+        start_v_[i] = b.v;
     }
 }
 

@@ -329,6 +329,10 @@ private:
     std::vector<Transform> transforms_;     // scratch: each body's at the step's start
     std::vector<V2> start_x_;               // scratch: each body's centroid at the step's start
     std::vector<double> start_angle_;       // scratch: each body's angle at the step's start
+    // Scratch: each body's velocity with this step's gravity (begin_step's), before any
+    // contact, strike or impact changes it, m/s.
+    std::vector<V2> start_v_;
+    std::vector<unsigned char> in_contact_;   // scratch: the body has a contact this step
     std::vector<BlockBody> state_;          // scratch
     // Scratch of the energy checks of islands of masses far apart (body_velocities.cpp):
     // every body's velocities before the solve; per island root, the kinetic energy then and

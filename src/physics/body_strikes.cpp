@@ -80,7 +80,6 @@ void BodySolver::strike_touching(std::vector<Body>& bodies, const V2& gravity, d
     // this step's gravity (begin_step's) acts after the strike. Struck with it included, a
     // body would leave at e (v + g dt) where e v - g dt is due: a ball dropped 10 cm onto
     // another would rise 8 % too high.
-    fall_ = gravity * dt;
     const double g = gravity.norm();
     struck_impulse_.assign(fresh_.size(), 0);
     // Only in a world whose moving bodies are all within direct_mass_ratio of each other:
