@@ -41,20 +41,25 @@ void BodySolver::integrate_positions(std::vector<Body>& bodies, double dt) {
     moved.resize(bodies.size());
     std::vector<double>& turned = turned_;
     turned.resize(bodies.size());
-    // A body in free flight (no contact, not even one within reach, and no strike) moves by
-    // the mean of its velocities at the step's start and end, so that its flight is the exact
-    // parabola (the disc solver's rule; by the end velocity it would run half a step ahead,
-    // g t dt / 2: 1 cm after a second at 480 Hz). One with a contact moves by its end
-    // velocity, which its rows' targets are written for: moved by the mean, a body whose
-    // contact within reach did not push rose g dt^2 / 2 past where its row let it, into what
-    // was above it, and the push-out raised it back out, energy and all.
+    // A body that nothing pushed in the step (its velocity still the start's plus gravity)
+    // moves by the mean of its velocities at the step's start and end, so that its flight is
+    // the exact parabola (the disc solver's rule; by the end velocity it would run half a
+    // step ahead, g t dt / 2: 1 cm after a second at 480 Hz), unless a contact within its
+    // reach lies the way gravity's half step would move it back (against gravity): its row
+    // let it go only as far as the end velocity takes it, and moved by the mean it rose
+    // g dt^2 / 2 into what was above it, to be pushed back out, energy and all. One that was
+    // pushed moves by its end velocity, which its rows' targets are written for.
     const V2 half_fall = 0.5 * fall_;
-    in_contact_.assign(bodies.size(), 0);
-    for (const PairContact& pc : fresh_) in_contact_[pc.a] = in_contact_[pc.b] = 1;
+    held_back_.assign(bodies.size(), 0);
+    for (const PairContact& pc : fresh_) {
+        const double towards_b = -half_fall.dot(pc.contact.normal);   // A's rise, along n
+        if (towards_b > 0) held_back_[pc.a] = 1;
+        if (towards_b < 0) held_back_[pc.b] = 1;
+    }
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         Body& b = bodies[i];
         const bool free =
-            b.inv_mass > 0 && !b.asleep && in_contact_[i] == 0 && b.v == start_v_[i];
+            b.inv_mass > 0 && !b.asleep && held_back_[i] == 0 && b.v == start_v_[i];
         moved[i] = (free ? V2(b.v - half_fall) : b.v) * dt;
         turned[i] = b.omega * dt;
         b.x += moved[i];

@@ -163,7 +163,7 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
     }
     {
         const StageTimer timer(profile_, &StepProfile::velocities);
-        bounce(bodies, settle);
+        bounce(bodies, settle, dt);
     }
     {
         const StageTimer timer(profile_, &StepProfile::positions);

@@ -196,7 +196,12 @@ private:
     BlockBody start_velocity(const Body& b) const;
     void solve_velocities(std::vector<Body>& bodies);       // body_velocities.cpp
     void integrate_positions(std::vector<Body>& bodies, double dt);   // body_positions.cpp
-    void bounce(std::vector<Body>& bodies, double settle);  // body_velocities.cpp
+    void bounce(std::vector<Body>& bodies, double settle, double dt);  // body_velocities.cpp
+    // (body_velocities.cpp) A bounce of one moving body off a fixed one, timed within the
+    // step: sets the points' targets (velocities at the step's end) and gives the gap the
+    // body is to end the step with, metres; nothing where the pair is not such a bounce.
+    std::optional<double> time_bounce(PairContact& pc, const std::vector<Body>& bodies,
+                                      double dt) const;
     // A direct island's bounce by Poisson's rule, undone if it would add energy; the kinetic
     // energy of the island's bodies (members_) at these velocities, J.
     void bounce_together(std::span<const IslandContact> island);
@@ -332,7 +337,8 @@ private:
     // Scratch: each body's velocity with this step's gravity (begin_step's), before any
     // contact, strike or impact changes it, m/s.
     std::vector<V2> start_v_;
-    std::vector<unsigned char> in_contact_;   // scratch: the body has a contact this step
+    // Scratch: a contact of the body's lies against gravity from it (integrate_positions).
+    std::vector<unsigned char> held_back_;
     std::vector<BlockBody> state_;          // scratch
     // Scratch of the energy checks of islands of masses far apart (body_velocities.cpp):
     // every body's velocities before the solve; per island root, the kinetic energy then and

@@ -156,7 +156,7 @@ void BodySolver::solve_gainers_again(const std::vector<Body>& bodies) {
     }
 }
 
-void BodySolver::bounce(std::vector<Body>& bodies, double settle) {
+void BodySolver::bounce(std::vector<Body>& bodies, double settle, double dt) {
     // Restitution: points that arrived faster than settling and pushed this step leave at e
     // times their approach speed, both points of a manifold solved together (no spin from a
     // flat landing). Velocities only, frictionless, from the impulses already applied. The
@@ -189,17 +189,64 @@ void BodySolver::bounce(std::vector<Body>& bodies, double settle) {
             p.rb = point - bodies[pc.b].x;
         }
         if (direct_[i]) continue;   // below, with its island
+        const std::optional<double> gap = time_bounce(pc, bodies, dt);
         prepare_block(c, state_[pc.a], state_[pc.b]);
         const double friction = c.friction;
         c.friction = 0;
         solve_block(c, state_[pc.a], state_[pc.b]);
         c.friction = friction;
+        if (!gap) continue;
+        // The rows stopped the body where it met the wall; it has flown on since.
+        V2 ra, rb;
+        const double now = separation_now(pc, 0, ra, rb);
+        const bool b_moves = bodies[pc.b].motion != Motion::fixed;
+        const std::uint32_t m = b_moves ? pc.b : pc.a;
+        const V2 shift = (b_moves ? 1.0 : -1.0) * (*gap - now) * c.normal;
+        bodies[m].x += shift;
+        moved_[m] += shift;
     }
     // An island whose direct solve failed bounced with the others, above.
     for_each_group(islands_, island_start_, [&](std::span<const IslandContact> island) {
         if (direct_[island.front().pair]) bounce_together(island);
     });
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
+}
+
+std::optional<double> BodySolver::time_bounce(PairContact& pc, const std::vector<Body>& bodies,
+                                              double dt) const {
+    // Bounced at the step's end at e times the approach it had then, a ball leaves with the
+    // speed gravity gave it over the whole step, not up to the moment it met the floor, and
+    // from the floor, not from where the rest of the step took it: a drop of 1 cm rose 3 %
+    // above e^2 h. Timed, its bounce is the disc solver's: exact to the rounding of the gap.
+    const bool a_fixed = bodies[pc.a].motion == Motion::fixed;
+    const bool b_fixed = bodies[pc.b].motion == Motion::fixed;
+    if (a_fixed == b_fixed) return std::nullopt;
+    BlockContact& c = pc.contact;
+    const double e = pc.restitution;
+    const double sign = b_fixed ? -1.0 : 1.0;          // the gap grows as the body moves along n
+    const double a_n = sign * fall_.dot(c.normal) / dt;   // the gap's acceleration, m/s^2
+    std::array<double, 2> met{}, speed{};                 // s into the step, m/s closing
+    for (int k = 0; k < c.count; ++k) {
+        const auto q = static_cast<std::size_t>(k);
+        if (c.points[k].target <= 0) return std::nullopt;   // a point not bouncing
+        // The gap at the step's start, s0 + u0 t + a t^2 / 2, closes first at t.
+        const double s0 = pc.anchors[q].separation;
+        const double u0 = pc.approach[q] - a_n * dt;
+        const double d = u0 * u0 - 2 * a_n * s0;
+        double t = 0;
+        if (s0 > 0) t = d >= 0 && u0 < 0 ? 2 * s0 / (-u0 + std::sqrt(d)) : dt;
+        met[q] = std::min(t, dt);
+        speed[q] = u0 + a_n * met[q];
+    }
+    // Both points of a flat landing meet together; a tilted one turns the body, left to the
+    // bounce at the step's end.
+    if (c.count == 2 && std::abs(met[0] - met[1]) > 1e-6 * dt) return std::nullopt;
+    if (speed[0] >= 0) return std::nullopt;
+    const double rest = dt - met[0];
+    for (int k = 0; k < c.count; ++k) {
+        c.points[k].target = -e * speed[static_cast<std::size_t>(k)] + a_n * rest;
+    }
+    return -e * speed[0] * rest + 0.5 * a_n * rest * rest;
 }
 
 // The kinetic energy of the island's moving bodies (members_) at these velocities, J, in

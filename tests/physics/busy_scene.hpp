@@ -65,7 +65,7 @@ inline std::uint64_t state_hash(const World& world) {
 }
 
 // What run_mixed_scene() gives, pinned like busy_scene_hash.
-inline constexpr std::uint64_t mixed_scene_hash = 8938441742680285898ull;
+inline constexpr std::uint64_t mixed_scene_hash = 11010944784548700982ull;
 
 // Boxes, rounded hexagons, capsules and discs falling into a box past a slanted segment, with
 // a flick and a grab: the manifold solver's determinism.
@@ -133,7 +133,7 @@ inline std::uint64_t run_heavy_light_scene() {
 }
 
 // What run_resting_scene() gives, pinned like busy_scene_hash.
-inline constexpr std::uint64_t resting_scene_hash = 3250905465784202333ull;
+inline constexpr std::uint64_t resting_scene_hash = 17103795671827966224ull;
 
 // An 8-row pyramid of boxes with a capsule and a rounded hexagon beside it, all landing from
 // a millimetre up and resting for two seconds, awake (sleep off): the manifold solver's steps
