@@ -197,6 +197,7 @@ private:
     void solve_velocities(std::vector<Body>& bodies);       // body_velocities.cpp
     void integrate_positions(std::vector<Body>& bodies, double dt);   // body_positions.cpp
     void bounce(std::vector<Body>& bodies, double settle, double dt);  // body_velocities.cpp
+    void limit_bounce_energy(const std::vector<Body>& bodies);          // body_velocities.cpp
     // (body_velocities.cpp) A bounce of one moving body off a fixed one, timed within the
     // step: sets the points' targets (velocities at the step's end) and gives the gap the
     // body is to end the step with, metres; nothing where the pair is not such a bounce.
@@ -345,7 +346,15 @@ private:
     // after the iterations, and whether to solve it again (1; 2: a held body pushes it); a
     // direct island's bodies, their velocities and its points' impulses before its bounce,
     // and the impulses that stopped it.
-    std::vector<BlockBody> arrived_;
+    std::vector<BlockBody> arrived_;          // scratch: velocities before the rows
+    // Scratch of bounce: the pairs it bounced (indices into fresh_), each body's count of
+    // them, the velocities the rows left and the points' impulses before the bounce (two
+    // per pair), the bounces' clusters of moving bodies (union-find), their pairs (-1:
+    // with a held body), energies and scales.
+    std::vector<std::uint32_t> bounced_, hits_of_, cluster_;
+    std::vector<int> cluster_pairs_;
+    std::vector<BlockBody> rows_state_;
+    std::vector<double> bounce_impulses_, energy_, scale_;
     std::vector<double> arrived_energy_, solved_energy_;
     std::vector<unsigned char> again_;
     // Per contact of fresh_: its points' warm-start impulses (normal, tangent), N s.
