@@ -264,7 +264,7 @@ void BodySolver::limit_bounce_energy(const std::vector<Body>& bodies) {
     bool any = false;
     for (std::size_t i = 0; i < n; ++i) {
         if (!moving(static_cast<std::uint32_t>(i)) || hits_of_[i] == 0) continue;
-        const std::uint32_t r = find(static_cast<std::uint32_t>(i));
+        const std::size_t r = find(static_cast<std::uint32_t>(i));
         if (cluster_pairs_[r] < 2) continue;
         any = true;
         const BlockBody& before = rows_state_[i];
