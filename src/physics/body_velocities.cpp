@@ -183,10 +183,13 @@ void BodySolver::bounce(std::vector<Body>& bodies, double settle, double dt) {
         }
         if (!bounce && !direct_[i]) continue;
         pc.as_solved = false;
+        // A rounded shape's point turns with its core only (separation_now).
+        const V2 round_a = shapes_[pc.a].radius * c.normal;
+        const V2 round_b = -shapes_[pc.b].radius * c.normal;
         for (int k = 0; k < c.count; ++k) {
             BlockPoint& p = c.points[k];
-            const V2 ra = turned_by(p.ra, spin_[pc.a]);
-            const V2 rb = turned_by(p.rb, spin_[pc.b]);
+            const V2 ra = turned_by(p.ra - round_a, spin_[pc.a]) + round_a;
+            const V2 rb = turned_by(p.rb - round_b, spin_[pc.b]) + round_b;
             const V2 point = 0.5 * ((bodies[pc.a].x + ra) + (bodies[pc.b].x + rb));
             p.ra = point - bodies[pc.a].x;
             p.rb = point - bodies[pc.b].x;
