@@ -248,7 +248,40 @@ void BodySolver::for_each_reachable(std::uint32_t i, F&& f) const {
     }
 }
 
-void BodySolver::take_impact(std::vector<Body>& bodies, const PredictedImpact& e, double dt) {
+BodySolver::PredictedImpact BodySolver::touching_time(const PredictedImpact& e, double dt) const {
+    // Met where the advancement stopped, two bodies leave that gap (up to 0.25 mm) between
+    // them for good: two discs head-on ended 0.25 mm further apart than the distance they had
+    // flown since they touched. From there they close at their sweeps' speed along the
+    // closest points' normal, which a gap this small leaves unchanged to the rounding.
+    // Only circles and what is fixed: their surfaces close at that speed however they turn.
+    // Polygons keep the gap: carried into touch, a turning corner came in sooner, and a box
+    // gas tangled (its median deepest overlap 5 -> 65 % of a half-width; 21 % with only the
+    // boxes that did not spin carried).
+    const Sweep& sa = sweeps_[e.a];
+    const Sweep& sb = sweeps_[e.b];
+    const auto steady = [&](std::uint32_t i) {
+        return shapes_[i].count == 1 || (sweeps_[i].omega == 0 && sweeps_[i].v == V2::Zero());
+    };
+    if (e.gap <= 0 || !steady(e.a) || !steady(e.b)) return e;
+    const std::optional<Distance> d = distance(shapes_[e.a], sa.at(e.t), shapes_[e.b], sb.at(e.t));
+    if (!d || d->distance <= 0) return e;
+    BlockContact c;
+    c.normal = d->normal;
+    BlockPoint p;
+    p.ra = d->point - sa.x_at(e.t);
+    p.rb = d->point - sb.x_at(e.t);
+    const double closing = -normal_velocity(c, p, BlockBody{sa.v, sa.omega, 0, 0},
+                                            BlockBody{sb.v, sb.omega, 0, 0});
+    if (closing <= 0) return e;
+    PredictedImpact at = e;
+    at.t = std::min(e.t + d->distance / closing, dt);
+    at.gap = 0;
+    return at;
+}
+
+void BodySolver::take_impact(std::vector<Body>& bodies, const PredictedImpact& predicted,
+                             double dt) {
+    const PredictedImpact e = touching_time(predicted, dt);
     Body& a = bodies[e.a];
     Body& b = bodies[e.b];
     const Transform xa = sweeps_[e.a].at(e.t), xb = sweeps_[e.b].at(e.t);

@@ -262,7 +262,10 @@ private:
     template <class F>
     void for_each_reachable(std::uint32_t i, F&& f) const;   // f(j) for each j i's box overlaps
     struct PredictedImpact;
-    void take_impact(std::vector<Body>& bodies, const PredictedImpact& e, double dt);
+    void take_impact(std::vector<Body>& bodies, const PredictedImpact& predicted, double dt);
+    // The impact moved on to the time its surfaces touch: the advancement stops up to twice
+    // the target short of it.
+    PredictedImpact touching_time(const PredictedImpact& e, double dt) const;
     // Adds an impact's impulse (N s) to its pair's touch in impact_touches_, or
     // lists the pair with it (`began`: a new contact) when it has none and the impulse is > 0.
     void add_impact_touch(std::uint32_t a, std::uint32_t b, double impulse, bool began);
