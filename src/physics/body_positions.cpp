@@ -134,6 +134,19 @@ void BodySolver::push_out(std::vector<Body>& bodies) {
             push_out_contact(bodies, pc);
         }
     }
+    // Walls win, as in the disc solver: what the sweeps left in a wall or fixed body (a light
+    // body between a heavy one and the floor, pushed back in by it) is pushed out of it last,
+    // even into its neighbour, which the next step's rows and push-out see.
+    // A contact the sweeps looked at after the last push of either body is as they left it.
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+        const PairContact& pc = fresh_[i];
+        if (bodies[pc.a].motion != Motion::fixed && bodies[pc.b].motion != Motion::fixed) continue;
+        if (!direct_[i] && !blocked_[i] && pushed_at_[pc.a] <= seen_at_[i] &&
+            pushed_at_[pc.b] <= seen_at_[i]) {
+            continue;
+        }
+        push_out_contact(bodies, pc);
+    }
 }
 
 double BodySolver::separation_now(const PairContact& pc, int k, V2& ra, V2& rb) const {
