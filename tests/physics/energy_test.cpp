@@ -25,6 +25,16 @@ double expect_no_energy_gain(World& world, double seconds) {
     return previous;
 }
 
+// 400 elastic, frictionless 10 cm discs at 3 m/s in random directions, no gravity.
+WorldDef elastic_gas() {
+    return testing::pile({.count = 400,
+                          .radius = 0.1,
+                          .material = {.restitution = 1.0, .friction = 0.0},
+                          .gravity = {0, 0},
+                          .speed = 3.0,
+                          .seed = 3});
+}
+
 TEST(Energy, FallingPileNeverGainsEnergy) {
     WorldDef def = testing::pile({.count = 400,
                                   .material = {.restitution = 0.5, .friction = 0.6},
@@ -48,12 +58,7 @@ TEST(Energy, ElasticPileUnderGravityNeverGainsEnergy) {
 
 TEST(Energy, ElasticGasKeepsItsEnergy) {
     // e = 1, no friction, no gravity: kinetic energy is all there is, and impacts conserve it.
-    WorldDef def = testing::pile({.count = 400,
-                                  .radius = 0.1,
-                                  .material = {.restitution = 1.0, .friction = 0.0},
-                                  .gravity = {0, 0},
-                                  .speed = 3.0,
-                                  .seed = 3});
+    WorldDef def = elastic_gas();
     World world(def);
     const double start = world.energy();
     const double end = expect_no_energy_gain(world, 10.0);
@@ -67,12 +72,7 @@ TEST(Energy, ElasticGasKeepsItsEnergy) {
 // struck through their centres, so they never spin (struck off them, they had put 73 % of the
 // gas's energy into spin).
 TEST(Energy, ElasticGasOfCircleShapesNeverGainsEnergyNorSpins) {
-    WorldDef def = testing::pile({.count = 400,
-                                  .radius = 0.1,
-                                  .material = {.restitution = 1.0, .friction = 0.0},
-                                  .gravity = {0, 0},
-                                  .speed = 3.0,
-                                  .seed = 3});
+    WorldDef def = elastic_gas();
     for (BodyDef& d : def.bodies) d.shape = circle_shape(d.radius);
     World world(def);
     ASSERT_TRUE(world.manifold_solver());
