@@ -6,7 +6,8 @@
 // that start apart with masses alike are left out of the solve, and after it every pair with a
 // fast body (or one that ended deeper in than the solve should allow) is swept from where the
 // step started to where it ended. Its first touch, by conservative advancement (toi.hpp), is an
-// impact: both bodies are put where they were then, the pair's manifold there is stopped by the
+// impact: both bodies are put where they were then (circles, and a body standing still, carried
+// on from the advancement's gap to the touch), the pair's manifold there is stopped by the
 // two-point block solve and bounced by Poisson's rule, and both move on at their new velocities
 // for the rest of the step, so no time is lost (Box2D v3 stops a bullet at its time of impact
 // for the rest of the step). A pair touching where its sweep starts is an impact at once if it

@@ -45,22 +45,34 @@ void BodySolver::integrate_positions(std::vector<Body>& bodies, double dt) {
     // moves by the mean of its velocities at the step's start and end, so that its flight is
     // the exact parabola (the disc solver's rule; by the end velocity it would run half a
     // step ahead, g t dt / 2: 1 cm after a second at 480 Hz), unless a contact within its
-    // reach lies the way gravity's half step would move it back (against gravity): its row
-    // let it go only as far as the end velocity takes it, and moved by the mean it rose
-    // g dt^2 / 2 into what was above it, to be pushed back out, energy and all. One that was
-    // pushed moves by its end velocity, which its rows' targets are written for.
+    // reach lies the way gravity's half step would move it back (against gravity) and the
+    // other body does not move so too: its row let it go only as far as the end velocity
+    // takes it, and moved by the mean it rose g dt^2 / 2 into what was above it, to be pushed
+    // back out, energy and all. Two such bodies both move by the mean (a stack falling
+    // together stays together); one that was pushed moves by its end velocity, which its
+    // rows' targets are written for.
     const V2 half_fall = 0.5 * fall_;
-    held_back_.assign(bodies.size(), 0);
-    for (const PairContact& pc : fresh_) {
-        const double towards_b = -half_fall.dot(pc.contact.normal);   // A's rise, along n
-        if (towards_b > 0) held_back_[pc.a] = 1;
-        if (towards_b < 0) held_back_[pc.b] = 1;
+    free_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Body& b = bodies[i];
+        free_[i] = b.inv_mass > 0 && !b.asleep && b.v == start_v_[i];
+    }
+    // Holding one back may hold back the one it carries: until nothing changes (a column of
+    // n bodies takes at most n passes; each pass only ever clears).
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (const PairContact& pc : fresh_) {
+            const double towards_b = -half_fall.dot(pc.contact.normal);   // A's rise, along n
+            const std::uint32_t rising = towards_b > 0 ? pc.a : pc.b;
+            const std::uint32_t other = towards_b > 0 ? pc.b : pc.a;
+            if (towards_b == 0 || free_[rising] == 0 || free_[other] != 0) continue;
+            free_[rising] = 0;
+            changed = true;
+        }
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         Body& b = bodies[i];
-        const bool free =
-            b.inv_mass > 0 && !b.asleep && held_back_[i] == 0 && b.v == start_v_[i];
-        moved[i] = (free ? V2(b.v - half_fall) : b.v) * dt;
+        moved[i] = (free_[i] != 0 ? V2(b.v - half_fall) : b.v) * dt;
         turned[i] = b.omega * dt;
         b.x += moved[i];
         b.angle += turned[i];

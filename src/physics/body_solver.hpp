@@ -96,7 +96,8 @@ struct BodySolverDef {
     // distance since the last step that made them, nor will in this one at its speed now (a
     // resting pile makes its contacts rarely; anything moving makes them every step).
     bool keep_contacts = true;
-    // An island that touches a wall or a fixed body and whose every body has moved slower
+    // An island that presses on a wall or a fixed body (a contact that pushed in the step)
+    // and whose every body has moved slower
     // than `sleep_speed` (m/s, at its centroid and at its bounding radius from its spin) for
     // `sleep_after` seconds falls asleep: its bodies stop and cost nothing until an awake body
     // comes within reach of one of them. An island floating free keeps its momentum.
@@ -339,10 +340,11 @@ private:
     std::vector<V2> start_x_;               // scratch: each body's centroid at the step's start
     std::vector<double> start_angle_;       // scratch: each body's angle at the step's start
     // Scratch: each body's velocity with this step's gravity (begin_step's), before any
-    // contact, strike or impact changes it, m/s.
+    // contact, strike or impact changes it, m/s (a body woken in the step gets its gravity
+    // after this, and so moves by its end velocity in that step).
     std::vector<V2> start_v_;
-    // Scratch: a contact of the body's lies against gravity from it (integrate_positions).
-    std::vector<unsigned char> held_back_;
+    // Scratch: the body moves by its mean velocity in this step (integrate_positions).
+    std::vector<unsigned char> free_;
     std::vector<BlockBody> state_;          // scratch
     // Scratch of the energy checks of islands of masses far apart (body_velocities.cpp):
     // every body's velocities before the solve; per island root, the kinetic energy then and
@@ -352,10 +354,16 @@ private:
     std::vector<BlockBody> arrived_;          // scratch: velocities before the rows
     // Scratch of bounce: the pairs it bounced (indices into fresh_), each body's count of
     // them, the velocities the rows left and the points' impulses before the bounce (two
-    // per pair), the bounces' clusters of moving bodies (union-find), their pairs (-1:
-    // with a held body), energies and scales.
-    std::vector<std::uint32_t> bounced_, hits_of_, cluster_;
-    std::vector<int> cluster_pairs_;
+    // per pair), the bounces' clusters of moving bodies (union-find), their points, whether a
+    // held body pushes them, energies and scales.
+    std::vector<std::uint32_t> bounced_, hits_of_, cluster_, cluster_points_;
+    std::vector<unsigned char> cluster_held_;
+    // The timed bounces' shifts (time_bounce), made once the energy check has kept them.
+    struct TimedShift {
+        std::uint32_t body = 0;
+        V2 shift = V2::Zero();   // metres
+    };
+    std::vector<TimedShift> timed_shifts_;
     std::vector<BlockBody> rows_state_;
     std::vector<double> bounce_impulses_, energy_, scale_;
     std::vector<double> arrived_energy_, solved_energy_;

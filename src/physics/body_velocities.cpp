@@ -159,11 +159,16 @@ void BodySolver::solve_gainers_again(const std::vector<Body>& bodies) {
 void BodySolver::bounce(std::vector<Body>& bodies, double settle, double dt) {
     // Restitution: points that arrived faster than settling and pushed this step leave at e
     // times their approach speed, both points of a manifold solved together (no spin from a
-    // flat landing). Velocities only, frictionless, from the impulses already applied. The
-    // bodies have moved: each point is taken midway between where its two anchors are now,
-    // so that both bodies feel the impulse at one place and angular momentum is kept.
+    // flat landing), frictionless, from the impulses already applied. The bodies have moved:
+    // each point is taken midway between where its two anchors are now, so that both bodies
+    // feel the impulse at one place and angular momentum is kept; but a circle is struck
+    // through its centre (then, if it slid along the other body in the step, the two lines of
+    // the impulse are apart by the slide and angular momentum is kept only to that). A bounce
+    // off a fixed body is timed within the step and moves the body too (time_bounce); the
+    // bounces are held to the energy their bodies arrived with (limit_bounce_energy).
     bounced_.clear();
     bounce_impulses_.clear();
+    timed_shifts_.clear();
     rows_state_ = state_;
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         PairContact& pc = fresh_[i];
@@ -209,16 +214,20 @@ void BodySolver::bounce(std::vector<Body>& bodies, double settle, double dt) {
         solve_block(c, state_[pc.a], state_[pc.b]);
         c.friction = friction;
         if (!gap) continue;
-        // The rows stopped the body where it met the wall; it has flown on since.
+        // The rows stopped the body where it met the wall; it has flown on since (moved there
+        // below, unless the energy check scales its bounce down).
         const bool b_moves = bodies[pc.b].motion != Motion::fixed;
-        const std::uint32_t m = b_moves ? pc.b : pc.a;
         V2 ra, rb;
         const double now = separation_now(pc, 0, ra, rb);
-        const V2 shift = (b_moves ? 1.0 : -1.0) * (*gap - now) * c.normal;
-        bodies[m].x += shift;
-        moved_[m] += shift;
+        timed_shifts_.push_back(
+            {b_moves ? pc.b : pc.a, (b_moves ? 1.0 : -1.0) * (*gap - now) * c.normal});
     }
     limit_bounce_energy(bodies);
+    for (const TimedShift& t : timed_shifts_) {
+        if (scale_[cluster_[t.body]] != 1.0) continue;   // its bounce was scaled down
+        bodies[t.body].x += t.shift;
+        moved_[t.body] += t.shift;
+    }
     // An island whose direct solve failed bounced with the others, above.
     for_each_group(islands_, island_start_, [&](std::span<const IslandContact> island) {
         if (direct_[island.front().pair]) bounce_together(island);
@@ -246,20 +255,22 @@ void BodySolver::limit_bounce_energy(const std::vector<Body>& bodies) {
         const std::uint32_t ra = find(pc.a), rb = find(pc.b);
         if (ra != rb) cluster_[std::max(ra, rb)] = std::min(ra, rb);
     }
-    // Per cluster: its bounced pairs, and whether a held body (moving, of no inverse mass)
-    // does work on it, which is not energy the bounce made.
-    cluster_pairs_.assign(n, 0);
+    // Each body's entry its cluster's root from here on (bounce reads it for the shifts).
+    for (std::size_t i = 0; i < n; ++i) cluster_[i] = find(static_cast<std::uint32_t>(i));
+    // Per cluster: its bounced points (two at one manifold over-constrain a turning body as
+    // two pairs do), and whether a held body (moving, of no inverse mass) does work on it,
+    // which is not energy the bounce made.
+    cluster_points_.assign(n, 0);
+    cluster_held_.assign(n, 0);
     hits_of_.assign(n, 0);
     for (const std::uint32_t i : bounced_) {
-        ++hits_of_[fresh_[i].a];
-        ++hits_of_[fresh_[i].b];
-    }
-    for (const std::uint32_t i : bounced_) {
         const PairContact& pc = fresh_[i];
+        ++hits_of_[pc.a];
+        ++hits_of_[pc.b];
         const std::uint32_t r = find(moving(pc.a) ? pc.a : pc.b);
-        ++cluster_pairs_[r];
+        cluster_points_[r] += static_cast<std::uint32_t>(pc.contact.count);
         for (const std::uint32_t j : {pc.a, pc.b}) {
-            if (!moving(j) && bodies[j].motion != Motion::fixed) cluster_pairs_[r] = -1;
+            if (!moving(j) && bodies[j].motion != Motion::fixed) cluster_held_[r] = 1;
         }
     }
     // KE(s) = rows + s linear + s^2 square, for the bounce's changes scaled by s.
@@ -268,7 +279,7 @@ void BodySolver::limit_bounce_energy(const std::vector<Body>& bodies) {
     for (std::size_t i = 0; i < n; ++i) {
         if (!moving(static_cast<std::uint32_t>(i)) || hits_of_[i] == 0) continue;
         const std::size_t r = find(static_cast<std::uint32_t>(i));
-        if (cluster_pairs_[r] < 2) continue;
+        if (cluster_points_[r] < 2 || cluster_held_[r] != 0) continue;
         any = true;
         const BlockBody& before = rows_state_[i];
         const BlockBody& after = state_[i];
@@ -281,18 +292,21 @@ void BodySolver::limit_bounce_energy(const std::vector<Body>& bodies) {
         energy_[4 * r + 2] += m * before.v.dot(dv) + inertia * before.omega * dw;
         energy_[4 * r + 3] += 0.5 * (m * dv.squaredNorm() + inertia * dw * dw);
     }
-    if (!any) return;
     scale_.assign(n, 1.0);
+    if (!any) return;
     for (std::size_t r = 0; r < n; ++r) {
-        const double arrived = energy_[4 * r], rows = energy_[4 * r + 1];
+        const double rows = energy_[4 * r + 1];
         const double linear = energy_[4 * r + 2], square = energy_[4 * r + 3];
-        if (square <= 0 || rows + linear + square <= (1 + 1e-9) * arrived) continue;
-        // The larger root of square s^2 + linear s + (rows - arrived) = 0; none above 0
-        // where the rows themselves left more than arrived.
-        const double d = linear * linear - 4 * square * (rows - arrived);
-        scale_[r] = rows < arrived && d > 0
-                        ? std::clamp((-linear + std::sqrt(d)) / (2 * square), 0.0, 1.0)
-                        : 0.0;
+        // No more than the bodies arrived with, or than the rows left them if that is more
+        // (a warm start's share): the bounce itself makes none.
+        const double allowed = std::max(energy_[4 * r], rows);
+        if (square <= 0 || rows + linear + square <= (1 + 1e-9) * allowed) continue;
+        // The root of square s^2 + linear s + (rows - allowed) = 0 in [0, 1], in the form
+        // that does not cancel when linear is large.
+        const double d = linear * linear + 4 * square * (allowed - rows);
+        const double root = linear + std::sqrt(d);
+        scale_[r] = allowed > rows && root > 0 ? std::clamp(2 * (allowed - rows) / root, 0.0, 1.0)
+                                               : std::clamp(-linear / square, 0.0, 1.0);
     }
     for (std::size_t i = 0; i < n; ++i) {
         if (!moving(static_cast<std::uint32_t>(i)) || hits_of_[i] == 0) continue;
@@ -335,15 +349,23 @@ std::optional<double> BodySolver::time_bounce(PairContact& pc, const std::vector
         const double u0 = pc.approach[q] - a_n * dt;
         const double d = u0 * u0 - 2 * a_n * s0;
         double t = 0;
-        if (s0 > 0) t = d >= 0 && u0 < 0 ? 2 * s0 / (-u0 + std::sqrt(d)) : dt;
-        met[q] = std::min(t, dt);
-        speed[q] = u0 + a_n * met[q];
+        if (s0 > 0) {
+            // Not closing within the step by its start motion (other rows brought it in):
+            // nothing to time.
+            if (d < 0 || u0 >= 0) return std::nullopt;
+            t = 2 * s0 / (-u0 + std::sqrt(d));
+            if (t > dt) return std::nullopt;
+        }
+        met[q] = t;
+        speed[q] = u0 + a_n * t;
+        if (speed[q] >= 0) return std::nullopt;
     }
     // Both points of a flat landing meet together; a tilted one turns the body, left to the
     // bounce at the step's end.
     if (c.count == 2 && std::abs(met[0] - met[1]) > 1e-6 * dt) return std::nullopt;
-    if (speed[0] >= 0) return std::nullopt;
     const double rest = dt - met[0];
+    // So slow off the wall that it would be back within the step: left to the rows.
+    if (-e * speed[0] * rest + 0.5 * a_n * rest * rest < 0) return std::nullopt;
     for (int k = 0; k < c.count; ++k) {
         c.points[k].target = -e * speed[static_cast<std::size_t>(k)] + a_n * rest;
     }

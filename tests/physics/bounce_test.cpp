@@ -167,6 +167,22 @@ INSTANTIATE_TEST_SUITE_P(Bounce, FreeFlight, ::testing::Values(false, true),
                              return info.param ? "Box" : "Disc";
                          });
 
+// Two boxes dropped one on the other fall together along the parabola: each moves by its mean
+// velocity, the upper one no more than the lower (moved by the mean alone, it rose g dt^2 / 2
+// a step off the lower one, 1 cm in a second).
+TEST(Bounce, AStackFallingTogetherStaysTogether) {
+    WorldDef def;
+    def.walls.push_back(testing::box({-10, 0}, {10, 40}));
+    def.bodies = {testing::body(*box_shape(1, 1), {0, 20.5}), testing::body(*box_shape(1, 1), {0, 21.5})};
+    World world(def);
+    for (int k = 1; k <= 480; ++k) {
+        world.step();
+        const double t = world.time();
+        ASSERT_NEAR(world.bodies()[0].position.y, 20.5 - 0.5 * g * t * t, 1e-9) << t;
+        ASSERT_NEAR(world.bodies()[1].position.y - world.bodies()[0].position.y, 1.0, 1e-9) << t;
+    }
+}
+
 // Angles are integrated and never limited per step (some engines clamp rotation to an eighth
 // of a turn per step, Box2D v3.2 among them), so 2 000 rad/s (4.2 rad per 480 Hz step) is kept
 // exactly.

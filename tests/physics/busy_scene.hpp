@@ -65,7 +65,7 @@ inline std::uint64_t state_hash(const World& world) {
 }
 
 // What run_mixed_scene() gives, pinned like busy_scene_hash.
-inline constexpr std::uint64_t mixed_scene_hash = 8562242338950528157ull;
+inline constexpr std::uint64_t mixed_scene_hash = 16175628040589199889ull;
 
 // Boxes, rounded hexagons, capsules and discs falling into a box past a slanted segment, with
 // a flick and a grab: the manifold solver's determinism.
@@ -133,7 +133,7 @@ inline std::uint64_t run_heavy_light_scene() {
 }
 
 // What run_resting_scene() gives, pinned like busy_scene_hash.
-inline constexpr std::uint64_t resting_scene_hash = 17103795671827966224ull;
+inline constexpr std::uint64_t resting_scene_hash = 16339297378939358578ull;
 
 // An 8-row pyramid of boxes with a capsule and a rounded hexagon beside it, all landing from
 // a millimetre up and resting for two seconds, awake (sleep off): the manifold solver's steps
