@@ -130,6 +130,10 @@ void BodySolver::push_out(std::vector<Body>& bodies) {
     // A contact neither of whose bodies was pushed since it was last looked at would be
     // looked at in vain: its separations are what they were (a resting pile's later sweeps
     // cost next to nothing).
+    const auto looked_at_since_pushed = [&](std::size_t i) {
+        const PairContact& pc = fresh_[i];
+        return pushed_at_[pc.a] <= seen_at_[i] && pushed_at_[pc.b] <= seen_at_[i];
+    };
     std::uint32_t pushes_before_sweep = 0;
     for (int sweep = 0; sweep < def_.position_iterations; ++sweep) {
         // A sweep that pushed nothing leaves every contact as it was looked at: the next would
@@ -138,25 +142,19 @@ void BodySolver::push_out(std::vector<Body>& bodies) {
         pushes_before_sweep = pushes_;
         for (std::size_t i = 0; i < fresh_.size(); ++i) {
             if (direct_[i] || blocked_[i]) continue;
-            const PairContact& pc = fresh_[i];
-            if (sweep > 0 && pushed_at_[pc.a] <= seen_at_[i] && pushed_at_[pc.b] <= seen_at_[i]) {
-                continue;
-            }
+            if (sweep > 0 && looked_at_since_pushed(i)) continue;
             seen_at_[i] = pushes_;
-            push_out_contact(bodies, pc);
+            push_out_contact(bodies, fresh_[i]);
         }
     }
     // Walls win, as in the disc solver: what the sweeps left in a wall or fixed body (a light
     // body between a heavy one and the floor, pushed back in by it) is pushed out of it last,
-    // even into its neighbour, which the next step's rows and push-out see.
-    // A contact the sweeps looked at after the last push of either body is as they left it.
+    // even into its neighbour, which the next step's rows and push-out see. A contact the
+    // sweeps looked at after the last push of either body is as they left it.
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         const PairContact& pc = fresh_[i];
         if (bodies[pc.a].motion != Motion::fixed && bodies[pc.b].motion != Motion::fixed) continue;
-        if (!direct_[i] && !blocked_[i] && pushed_at_[pc.a] <= seen_at_[i] &&
-            pushed_at_[pc.b] <= seen_at_[i]) {
-            continue;
-        }
+        if (!direct_[i] && !blocked_[i] && looked_at_since_pushed(i)) continue;
         push_out_contact(bodies, pc);
     }
 }
@@ -165,19 +163,24 @@ double BodySolver::separation_now(const PairContact& pc, int k, V2& ra, V2& rb) 
     // A point's separation follows from how far its two anchors moved along the manifold's
     // normal since the manifold was made, which is accurate for the small motions of a step
     // and costs no new manifold.
+    const Anchor& an = pc.anchors[static_cast<std::size_t>(k)];
+    offsets_now(pc, an.ra, an.rb, ra, rb);
+    const V2 drift = (moved_[pc.b] + rb - an.rb) - (moved_[pc.a] + ra - an.ra);
+    return an.separation + pc.contact.normal.dot(drift);
+}
+
+void BodySolver::offsets_now(const PairContact& pc, const V2& ra0, const V2& rb0, V2& ra,
+                             V2& rb) const {
     // A rounded shape's point is a point of its core, which turns with the body, and its
     // radius along the normal, which does not: turned whole, a spinning circle's anchor left
     // the contact (0.2 rad in a step rises 8 mm at r = 0.4) and the circle, measured apart,
     // was left 8 mm deep in the floor. Its offset so is along the normal: a push does not spin
     // it.
-    const Anchor& an = pc.anchors[static_cast<std::size_t>(k)];
     const V2& n = pc.contact.normal;
     const V2 round_a = shapes_[pc.a].radius * n;
     const V2 round_b = -shapes_[pc.b].radius * n;
-    ra = turned_by(an.ra - round_a, spin_[pc.a]) + round_a;
-    rb = turned_by(an.rb - round_b, spin_[pc.b]) + round_b;
-    const V2 drift = (moved_[pc.b] + rb - an.rb) - (moved_[pc.a] + ra - an.ra);
-    return an.separation + n.dot(drift);
+    ra = turned_by(ra0 - round_a, spin_[pc.a]) + round_a;
+    rb = turned_by(rb0 - round_b, spin_[pc.b]) + round_b;
 }
 
 void BodySolver::turn_body(std::uint32_t i, double by) {

@@ -1,11 +1,11 @@
 // Sleeping islands (body_solver.hpp). A settled pile costs a step of full work per physics step
 // for nothing: every body at rest, every contact solved to the same impulses. An island (bodies
-// joined by contacts with points, walls not joining) that touches a wall or a fixed body and
+// joined by contacts with points, walls not joining) that presses on a wall or a fixed body and
 // whose bodies have all moved slower than `sleep_speed` for `sleep_after` seconds is put to
 // sleep: its bodies stop exactly, drop out of the solve and keep their contacts parked, as they
-// were, for the warm start and the events when they wake. An island wakes whole when an awake body comes within the reach of a contact of one
-// of its bodies (the pair's manifold in the step would have a point), when a throw moves one of
-// them, or when one of them is replaced. Every decision depends on the state alone, in index
+// were, for the warm start and the events when they wake. An island wakes whole when an awake
+// body comes within the reach of a contact of one of its bodies (the pair's manifold in the
+// step would have a point), when a throw moves one of them, or when one of them is replaced. Every decision depends on the state alone, in index
 // order: same input, same sleep.
 #include <algorithm>
 #include <cmath>

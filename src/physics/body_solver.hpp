@@ -217,6 +217,9 @@ private:
     // (kg m) along the normal at ra, rb; an island's or block's points pushed together; one
     // contact's points pushed.
     double separation_now(const PairContact& pc, int k, V2& ra, V2& rb) const;
+    // The offsets ra0, rb0 (from each body's centroid, at the step's start) of a point of pc,
+    // turned with the bodies' turns in the step into ra, rb.
+    void offsets_now(const PairContact& pc, const V2& ra0, const V2& rb0, V2& ra, V2& rb) const;
     void turn_body(std::uint32_t i, double by);
     void push_apart(std::vector<Body>& bodies, const PairContact& pc, const V2& ra,
                     const V2& rb, double amount);

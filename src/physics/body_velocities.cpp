@@ -188,13 +188,10 @@ void BodySolver::bounce(std::vector<Body>& bodies, double settle, double dt) {
         }
         if (!bounce && !direct_[i]) continue;
         pc.as_solved = false;
-        // A rounded shape's point turns with its core only (separation_now).
-        const V2 round_a = shapes_[pc.a].radius * c.normal;
-        const V2 round_b = -shapes_[pc.b].radius * c.normal;
         for (int k = 0; k < c.count; ++k) {
             BlockPoint& p = c.points[k];
-            const V2 ra = turned_by(p.ra - round_a, spin_[pc.a]) + round_a;
-            const V2 rb = turned_by(p.rb - round_b, spin_[pc.b]) + round_b;
+            V2 ra, rb;
+            offsets_now(pc, p.ra, p.rb, ra, rb);
             const V2 point = 0.5 * ((bodies[pc.a].x + ra) + (bodies[pc.b].x + rb));
             p.ra = point - bodies[pc.a].x;
             p.rb = point - bodies[pc.b].x;
@@ -267,7 +264,7 @@ void BodySolver::limit_bounce_energy(const std::vector<Body>& bodies) {
         const PairContact& pc = fresh_[i];
         ++hits_of_[pc.a];
         ++hits_of_[pc.b];
-        const std::uint32_t r = find(moving(pc.a) ? pc.a : pc.b);
+        const std::uint32_t r = cluster_[moving(pc.a) ? pc.a : pc.b];
         cluster_points_[r] += static_cast<std::uint32_t>(pc.contact.count);
         for (const std::uint32_t j : {pc.a, pc.b}) {
             if (!moving(j) && bodies[j].motion != Motion::fixed) cluster_held_[r] = 1;
@@ -278,7 +275,7 @@ void BodySolver::limit_bounce_energy(const std::vector<Body>& bodies) {
     bool any = false;
     for (std::size_t i = 0; i < n; ++i) {
         if (!moving(static_cast<std::uint32_t>(i)) || hits_of_[i] == 0) continue;
-        const std::size_t r = find(static_cast<std::uint32_t>(i));
+        const std::size_t r = cluster_[i];
         if (cluster_points_[r] < 2 || cluster_held_[r] != 0) continue;
         any = true;
         const BlockBody& before = rows_state_[i];
@@ -310,14 +307,14 @@ void BodySolver::limit_bounce_energy(const std::vector<Body>& bodies) {
     }
     for (std::size_t i = 0; i < n; ++i) {
         if (!moving(static_cast<std::uint32_t>(i)) || hits_of_[i] == 0) continue;
-        const double s = scale_[find(static_cast<std::uint32_t>(i))];
+        const double s = scale_[cluster_[i]];
         if (s == 1.0) continue;
         state_[i].v = rows_state_[i].v + s * (state_[i].v - rows_state_[i].v);
         state_[i].omega = rows_state_[i].omega + s * (state_[i].omega - rows_state_[i].omega);
     }
     for (std::size_t k = 0; k < bounced_.size(); ++k) {
         PairContact& pc = fresh_[bounced_[k]];
-        const double s = scale_[find(moving(pc.a) ? pc.a : pc.b)];
+        const double s = scale_[cluster_[moving(pc.a) ? pc.a : pc.b]];
         if (s == 1.0) continue;
         for (int q = 0; q < pc.contact.count; ++q) {
             const double before = bounce_impulses_[2 * k + static_cast<std::size_t>(q)];
@@ -364,12 +361,13 @@ std::optional<double> BodySolver::time_bounce(PairContact& pc, const std::vector
     // bounce at the step's end.
     if (c.count == 2 && std::abs(met[0] - met[1]) > 1e-6 * dt) return std::nullopt;
     const double rest = dt - met[0];
+    const double gap = -e * speed[0] * rest + 0.5 * a_n * rest * rest;   // at the step's end
     // So slow off the wall that it would be back within the step: left to the rows.
-    if (-e * speed[0] * rest + 0.5 * a_n * rest * rest < 0) return std::nullopt;
+    if (gap < 0) return std::nullopt;
     for (int k = 0; k < c.count; ++k) {
         c.points[k].target = -e * speed[static_cast<std::size_t>(k)] + a_n * rest;
     }
-    return -e * speed[0] * rest + 0.5 * a_n * rest * rest;
+    return gap;
 }
 
 // The kinetic energy of the island's moving bodies (members_) at these velocities, J, in
