@@ -74,6 +74,10 @@ void BodySolver::integrate_positions(std::vector<Body>& bodies, double dt) {
         Body& b = bodies[i];
         moved[i] = (free_[i] != 0 ? V2(b.v - half_fall) : b.v) * dt;
         turned[i] = b.omega * dt;
+        if (shifted_) {
+            moved[i] += strike_shift_[i];
+            turned[i] += strike_turn_[i];
+        }
         b.x += moved[i];
         b.angle += turned[i];
     }

@@ -184,13 +184,25 @@ private:
     bool keeps_contacts(const std::vector<Body>& bodies, double dt) const;
     void move_contacts(const std::vector<Body>& bodies, double dt);
     void count_motion(const std::vector<Body>& bodies, bool kept);
-    // (body_strikes.cpp) Touching pairs closing faster than their strike speed, resolved
-    // two bodies at a time before the rows, the blows passed on through touching pairs.
+    // (body_strikes.cpp) Pairs touching, or meeting within the step, closing faster than
+    // their strike speed, resolved two bodies at a time before the rows at the time they
+    // meet, the blows passed on through touching pairs.
     void strike_touching(std::vector<Body>& bodies, const V2& gravity, double dt);
     double strike_speed(const PairContact& pc, double g, double dt) const;   // m/s
-    bool strikes_now(const PairContact& pc, const std::vector<Body>& bodies, double g,
-                     double dt) const;
-    double strike(std::vector<Body>& bodies, const PairContact& pc);   // its impulse, N s
+    // When point k of pc meets at the step's start velocities, seconds into the step (0: it
+    // touches now); nothing when it does not close faster than `settle` m/s or not within dt.
+    std::optional<double> meets(const PairContact& pc, int k, const BlockBody& va,
+                                const BlockBody& vb, double settle, double dt) const;
+    // When the pair's first point meets (as meets()), if any point does.
+    std::optional<double> strikes_at(const PairContact& pc, const std::vector<Body>& bodies,
+                                     double g, double dt) const;
+    // Strikes pc's meeting points at `t` seconds into the step: its bodies' velocities change
+    // now, their positions move on as if they changed at t (strike_shift_). Its impulse, N s.
+    double strike(std::vector<Body>& bodies, const PairContact& pc, double t, double g,
+                  double dt);
+    // c's normal and offsets moved on to t seconds into the step (strike).
+    void at_time(BlockContact& c, const PairContact& pc, const std::vector<Body>& bodies,
+                 double t) const;
     // How near a pair's points must be to touch, metres.
     double touch_distance(const PairContact& pc) const;
     // A body's velocities at the step's start, before begin_step's gravity.
@@ -426,6 +438,13 @@ private:
     std::vector<std::uint32_t> queue_, contact_start_, contacts_of_, strikes_of_;
     std::vector<unsigned char> queued_, struck_;
     std::vector<double> struck_impulse_;     // N s per contact of fresh_: its strikes' this step
+    // Per body: when its latest strike of the step was (seconds into it), and how far its
+    // position and angle are to move besides its end velocity's motion (metres, radians),
+    // which puts its strikes at their times; `shifted_`: some strike was after the start.
+    std::vector<double> struck_at_;
+    std::vector<V2> strike_shift_;
+    std::vector<double> strike_turn_;
+    bool shifted_ = false;
     V2 fall_ = V2::Zero();                   // m/s: gravity times the step, this step's
     std::vector<std::uint32_t> still_, moving_, changed_;   // scratch: see time_impacts
     std::vector<double> moving_lo_;
