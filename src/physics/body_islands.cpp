@@ -71,13 +71,27 @@ void BodySolver::find_islands(const std::vector<Body>& bodies) {
             heaviest_[low] = std::min(heaviest_[low], heaviest_[high]);
         }
     }
+    // Joined bodies are one island, which iterates: a direct solve knows contacts only.
+    joints_.for_each_pair([&](std::uint32_t a, std::uint32_t b) {
+        if (!moves(a) || !moves(b)) return;
+        if (const auto merged = unite(a, b)) {
+            const auto [low, high] = *merged;
+            lightest_[low] = std::max(lightest_[low], lightest_[high]);
+            heaviest_[low] = std::min(heaviest_[low], heaviest_[high]);
+        }
+    });
     for (const PairContact& pc : fresh_) points_[island_of(pc, bodies)] += pc.contact.count;
+    jointed_.assign(n, 0);
+    for (std::uint32_t k = 0; k < n; ++k) {
+        if (joints_.holds(k)) jointed_[root(k)] = 1;
+    }
     group_key_.resize(fresh_.size());
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         const PairContact& pc = fresh_[i];
         const std::uint32_t r = island_of(pc, bodies);
         if (lightest_[r] < def_.direct_mass_ratio * heaviest_[r]) continue;
         far_islands_ = true;
+        if (jointed_[r]) continue;
         if (points_[r] <= def_.direct_points) {
             direct_[i] = 1;
             group_key_[i] = r;

@@ -120,6 +120,8 @@ void BodySolver::push_out(std::vector<Body>& bodies) {
     pushes_ = 0;
     pushed_at_.assign(bodies.size(), 0);
     seen_at_.assign(fresh_.size(), 0);
+    // Joints first, so that the contacts see where the joints hold their bodies.
+    if (!joints_.empty()) correct_joints(bodies);
     // Whatever overlap is left beyond the slop is pushed out, point by point: positions only,
     // so no velocity (and no energy) is added. An island whose direct solve failed iterates
     // like the others, and is pushed so.

@@ -104,8 +104,10 @@ void BodySolver::fall_asleep(std::vector<Body>& bodies, double dt) {
     for (std::size_t i = 0; i < n; ++i) {
         const Body& b = bodies[i];
         if (b.asleep) continue;
+        // A jointed body stays awake: its joints' other bodies would have to sleep with it.
         const bool still = b.motion == Motion::dynamic && b.v.squaredNorm() < slow * slow &&
-                           std::abs(b.omega) * b.radius < slow;
+                           std::abs(b.omega) * b.radius < slow &&
+                           !joints_.holds(static_cast<std::uint32_t>(i));
         still_for_[i] = still ? still_for_[i] + dt : 0;
     }
     // The islands: union-find by the lower index, over contacts with points between bodies

@@ -57,7 +57,8 @@ void BodySolver::list_pairs(const std::vector<Body>& bodies) {
     for (const std::uint64_t key : fat_list_) {
         const auto i = static_cast<std::uint32_t>(key >> 32);
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
-        if ((stirring_[i] | stirring_[j]) != 0 && boxes_overlap(boxes_[i], boxes_[j])) {
+        if ((stirring_[i] | stirring_[j]) != 0 && boxes_overlap(boxes_[i], boxes_[j]) &&
+            !joints_.keeps_apart(i, j)) {
             pairs_.push_back(key);
         }
     }
@@ -174,6 +175,12 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
         mark_sunk(bodies);
         time_impacts(bodies, dt, settle);
     }
+    if (!joints_.empty()) {
+        // The impacts moved bodies to where they met, and the push-out's last word is the
+        // walls': the joints are corrected again (nothing to do where nothing moved them).
+        const StageTimer timer(profile_, &StepProfile::positions);
+        correct_joints(bodies);
+    }
     record_touches();
     std::swap(contacts_, fresh_);
     count_motion(bodies, kept);
@@ -185,6 +192,7 @@ void BodySolver::begin_step(std::vector<Body>& bodies, const V2& gravity, double
     start_x_.resize(bodies.size());
     start_v_.resize(bodies.size());
     fall_ = gravity * dt;
+    dt_ = dt;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         Body& b = bodies[i];
         if (inner_[i] < 0) inner_[i] = inner_radius(shapes_[i]);
@@ -332,7 +340,7 @@ BodySolver::Overlap BodySolver::max_overlap(const std::vector<Body>& bodies,
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
         const Body& a = bodies[i];
         const Body& b = bodies[j];
-        if (!boxes_overlap(boxes_[i], boxes_[j])) continue;
+        if (!boxes_overlap(boxes_[i], boxes_[j]) || joints_.keeps_apart(i, j)) continue;
         const Manifold m = collide(shapes[i], Transform::of(a.x, a.angle), shapes[j],
                                    Transform::of(b.x, b.angle), 0);
         for (int k = 0; k < m.count; ++k) {

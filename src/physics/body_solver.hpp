@@ -20,6 +20,7 @@
 #include "block_solver.hpp"
 #include "fat_pairs.hpp"
 #include "island.hpp"
+#include "joint.hpp"
 #include "manifold.hpp"
 #include "pair_touch.hpp"
 #include "shape.hpp"
@@ -45,6 +46,10 @@ inline BlockBody velocity_of(const Body& b) {
 struct BodySolverDef {
     int iterations = 6;            // velocity iterations per step (docs/physics.md)
     int position_iterations = 8;   // overlap-removal sweeps per step
+    // Passes over the joints' rows after each velocity iteration's pass over the contacts:
+    // the tail of a 20-link chain whipping round gains energy and parts by 4 mm at one, holds
+    // under 0.2 mm at four (docs/tried.md); a joint costs little next to a contact.
+    int joint_passes = 4;
     double speculative = 0.02;     // metres: points this far apart are already contacts
     double slop = 5e-4;            // metres of overlap left alone (resting contact jitters less)
     // Metres of overlap a push-out leaves: under the slop, so that a point just pushed is not
@@ -137,6 +142,9 @@ public:
     std::size_t touching() const;
     // Where the stages of each step add their times (stage_timer.hpp); null: not timed.
     void set_profile(StepProfile* profile) { profile_ = profile; }
+    // The world's joints (joint.hpp), solved with the contacts from the next step on.
+    void set_joints(Joints joints) { joints_ = std::move(joints); }
+    const Joints& joints() const { return joints_; }
 
 private:
     struct Anchor {
@@ -223,7 +231,13 @@ private:
     // Solves again, from their arrival and with less of the warm start, the islands of masses
     // far apart that the iterations left with more kinetic energy than they came with.
     void solve_gainers_again(const std::vector<Body>& bodies);   // body_velocities.cpp
+    // (body_joints.cpp) Scales back the velocities of groups of jointed bodies that the rows
+    // left with more kinetic energy than they arrived with.
+    void limit_joint_energy(const std::vector<Body>& bodies);
     void push_out(std::vector<Body>& bodies);               // body_positions.cpp
+    // The joints' position passes (body_joints.cpp): before the contacts' push-out, and at
+    // the step's end.
+    void correct_joints(std::vector<Body>& bodies);
     // Its parts: point k's separation now from its anchors (and its offsets now, into ra and
     // rb); a body's turn in the step grown by `by` radians; a positional impulse of `amount`
     // (kg m) along the normal at ra, rb; an island's or block's points pushed together; one
@@ -319,6 +333,8 @@ private:
 
     BodySolverDef def_;
     StepProfile* profile_ = nullptr;
+    Joints joints_;
+    double dt_ = 0;                         // s: this step's
     std::span<const Polygon> shapes_;       // each body's shape: set by step(), read within it
     // Per body: its shape's inner radius (toi.hpp), metres (< 0: not computed yet), and how
     // long it has moved slower than def_.sleep_speed, seconds. fit() sizes them.
@@ -398,6 +414,7 @@ private:
     std::vector<std::uint32_t> parent_;
     std::vector<double> lightest_, heaviest_;
     std::vector<std::uint8_t> grounded_;   // fall_asleep's: the island rests on a fixed body
+    std::vector<unsigned char> jointed_;    // find_islands': per root, a joint holds a body
     bool far_islands_ = false;              // some island's masses are direct_mass_ratio apart
     std::vector<int> points_;
     std::vector<unsigned char> direct_;

@@ -60,17 +60,21 @@ void BodySolver::solve_velocities(std::vector<Body>& bodies) {
         const PairContact& pc = fresh_[i];
         rows_.push_back(RowRef{pc.a, pc.b, &fresh_[i].contact, pc.as_solved});
     }
+    // The joints' warm start goes into the velocities the rows are built from.
+    if (!joints_.empty()) joints_.prepare(bodies, state_, dt_);
     block_rows_.build(rows_, state_);
     for (int it = 0; it < def_.iterations; ++it) {
         block_rows_.solve();
-        if (blocks_.empty()) continue;
-        // A block's impulses are taken back out and solved again, together, in doubles.
+        if (blocks_.empty() && joints_.empty()) continue;
+        // A block's impulses are taken back out and solved again, together, in doubles; the
+        // joints' rows are solved in doubles too, after the contacts of the pass.
         block_rows_.flush(state_);
         for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
             if (direct_solver_.velocities(block, state_)) return;
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
         });
+        for (int pass = 0; pass < def_.joint_passes; ++pass) joints_.solve(state_);
         block_rows_.reload(state_);
     }
     block_rows_.finish(rows_, state_);
@@ -78,6 +82,7 @@ void BodySolver::solve_velocities(std::vector<Body>& bodies) {
         fresh_[i].as_solved = direct_[i] == 0 && blocked_[i] == 0;
     }
     if (far_islands_) solve_gainers_again(bodies);
+    if (!joints_.empty()) limit_joint_energy(bodies);
     for (std::size_t i = 0; i < bodies.size(); ++i) store(bodies[i], state_[i]);
 }
 
@@ -109,6 +114,10 @@ void BodySolver::solve_gainers_again(const std::vector<Body>& bodies) {
             if (pushed(pc.a)) again_[root(pc.b)] = 2;
             if (pushed(pc.b)) again_[root(pc.a)] = 2;
             if (direct_[i]) again_[island_of(pc, bodies)] = 2;
+        }
+        // Its rows are the contacts' only: an island a joint holds is left as solved.
+        for (std::uint32_t i = 0; i < n; ++i) {
+            if (joints_.holds(i)) again_[root(i)] = 2;
         }
         bool any = false;
         for (std::uint32_t r = 0; r < n; ++r) {

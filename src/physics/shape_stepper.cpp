@@ -55,6 +55,7 @@ ShapeStepper::ShapeStepper(const WorldDef& def, int substeps, std::vector<Body>&
         const Polygon shape = capsule ? *capsule : make_circle(0.5 * w.thickness);
         add(shape, 0.5 * (a + b), std::atan2(b.y() - a.y(), b.x() - a.x()), i);
     }
+    solver_.set_joints(Joints(def.joints, bodies));
 }
 
 void ShapeStepper::replaced(std::size_t i, const BodyDef& def) { shapes_[i] = shape_of(def); }

@@ -29,6 +29,10 @@ public:
     void add_stats(const std::vector<Body>& bodies, std::size_t body_count,
                    WorldStats& stats) const override;
     void set_profile(StepProfile* profile) override { solver_.set_profile(profile); }
+    void joint_states(const std::vector<Body>& bodies,
+                      std::vector<JointState>& out) const override {
+        solver_.joints().states(bodies, out);
+    }
 
 private:
     V2 gravity_;

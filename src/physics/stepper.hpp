@@ -36,6 +36,11 @@ public:
     // The measures only the solver knows: the deepest overlap, the pairs touching, the sweeps.
     virtual void add_stats(const std::vector<Body>& bodies, std::size_t body_count,
                            WorldStats& stats) const = 0;
+    // Each joint's state now, in definition order (none: a solver without joints).
+    virtual void joint_states(const std::vector<Body>& /*bodies*/,
+                              std::vector<JointState>& out) const {
+        out.clear();
+    }
     // Where the stages of each step add their times (stage_timer.hpp); null: not timed.
     virtual void set_profile(StepProfile* profile) { profile_ = profile; }
 

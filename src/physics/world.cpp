@@ -1,6 +1,6 @@
 // The fixed-rate world: the bodies, throws, respawns, events and shared measures, stepped by
-// the disc solver (disc_stepper.hpp) or, once any body has a shape, the manifold solver
-// (shape_stepper.hpp).
+// the disc solver (disc_stepper.hpp) or, once any body has a shape or a joint joins bodies,
+// the manifold solver (shape_stepper.hpp).
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -43,7 +43,7 @@ struct World::Impl {
                                                       1.0 / (longest_substep * def.rate))))),
           gravity(def.gravity),
           body_count(def.bodies.size()),
-          manifold(uses_manifold_solver(any_shape(def))),
+          manifold(uses_manifold_solver(any_shape(def), !def.joints.empty())),
           throws(def.throws),
           respawns(def.respawns),
           profiled(def.profile) {
@@ -79,6 +79,7 @@ struct World::Impl {
     // Filled from the bodies when asked for, not every step (a renderer asks once per frame).
     mutable std::vector<BodyState> states;
     mutable std::int64_t published_steps = -1;  // the step count `states` is for
+    mutable std::vector<JointState> joint_states;
     std::int64_t steps = 0;
     std::optional<NonFiniteState> failure;
     bool profiled;
@@ -154,6 +155,10 @@ double World::time() const { return static_cast<double>(impl_->steps) / impl_->r
 int World::substeps() const { return impl_->substeps; }
 bool World::manifold_solver() const { return impl_->manifold; }
 int World::iterations() const { return impl_->stepper->iterations(); }
+std::span<const JointState> World::joints() const {
+    impl_->stepper->joint_states(impl_->bodies, impl_->joint_states);
+    return impl_->joint_states;
+}
 std::size_t World::respawns_applied() const { return impl_->respawns_applied; }
 std::vector<ContactEvent> World::take_events() { return std::exchange(impl_->events, {}); }
 std::optional<NonFiniteState> World::failure() const { return impl_->failure; }

@@ -4,6 +4,7 @@
 //     physics::World world(def);
 //     while (world.time() < t_end) world.step();
 //     for (const auto& d : world.bodies()) ...
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -92,9 +93,11 @@ struct Envelope {
 inline constexpr Envelope envelope{};
 
 // Which solver steps a world: the manifold solver once any body has a shape, among the
-// definition's bodies or those its respawns bring; the disc solver otherwise. Scenes ask it to
-// know which of the envelope's speed limits applies.
-inline bool uses_manifold_solver(bool any_shaped_body) { return any_shaped_body; }
+// definition's bodies or those its respawns bring, or any joint joins bodies; the disc solver
+// otherwise. Scenes ask it to know which of the envelope's speed limits applies.
+inline bool uses_manifold_solver(bool any_shaped_body, bool any_joint = false) {
+    return any_shaped_body || any_joint;
+}
 
 // The moment of inertia about the centroid of a body of this definition's shape and mass,
 // kg m^2 (m r^2 / 2 for a disc).
@@ -107,6 +110,44 @@ struct RespawnDef {
     double at = 0.0;               // seconds
     std::size_t first = 0;         // index into WorldDef::bodies
     std::vector<BodyDef> bodies;
+};
+
+// A spring that softens a joint: its natural frequency and damping ratio, as the joint's two
+// bodies would ring with their masses alone (Box2D's hertz and damping ratio).
+struct SpringDef {
+    double frequency = 0.0;        // Hz, > 0
+    double damping = 0.0;          // damping ratio, >= 0 (1: critically damped)
+};
+
+// A joint between two bodies, or between a body and the world (an end with no body is fixed
+// where its anchor is at t = 0). Anchors and the axis are given in the world at t = 0, and are
+// fixed to each body from then on (docs/physics.md, "Joints").
+struct JointDef {
+    enum class Kind {
+        revolute,    // a pin: the bodies share a point and turn freely about it
+        distance,    // a rod (fixed length), a rope (never longer) or a spring
+        prismatic,   // a slider: B moves along `axis` fixed in A, without turning against A
+        weld,        // glued at their relative pose at t = 0 (or held to it by a spring)
+    };
+    Kind kind = Kind::revolute;
+    std::optional<std::size_t> a, b;   // indices into WorldDef::bodies; none: the world
+    Vec2 anchor_a;                 // metres, in the world at t = 0 (revolute, prismatic, weld:
+    Vec2 anchor_b;                 // both the one shared point)
+    Vec2 axis{1.0, 0.0};           // prismatic: the direction of travel at t = 0 (any length)
+    double length = -1.0;          // distance: metres; below 0: the anchors' distance at t = 0
+    bool rope = false;             // distance: may be shorter than `length`, never longer
+    std::optional<SpringDef> spring;   // distance and weld: soft; absent: rigid
+    // Revolute: B's angle less A's, relative to t = 0, radians; prismatic: B's travel along
+    // the axis from t = 0, metres. lower <= upper.
+    std::optional<std::array<double, 2>> limits;
+    // Revolute: relative turning speed (rad/s) up to `max_force` N m of torque; prismatic:
+    // sliding speed (m/s) up to `max_force` N.
+    struct Motor {
+        double speed = 0.0;
+        double max_force = 0.0;
+    };
+    std::optional<Motor> motor;
+    bool collide = false;          // whether the two bodies still collide with each other
 };
 
 struct WorldDef {
@@ -127,6 +168,7 @@ struct WorldDef {
     std::vector<WallDef> walls;
     std::vector<ThrowDef> throws;
     std::vector<RespawnDef> respawns;   // in order of `at`
+    std::vector<JointDef> joints;
 };
 
 struct BodyState {
@@ -134,6 +176,14 @@ struct BodyState {
     Vec2 velocity;                 // m/s
     double angle = 0.0;            // radians
     double angular_velocity = 0.0; // rad/s
+};
+
+// A joint now: where its two anchors are, and what it did in the last substep.
+struct JointState {
+    Vec2 anchor_a;                 // metres, in the world (A's anchor; the world's if none)
+    Vec2 anchor_b;
+    Vec2 force;                    // N on B (its opposite on A), the constraint's reaction
+    double torque = 0.0;           // N m on B, about its anchor
 };
 
 // A pair that was not touching one step before and touches now: one per pair of bodies,
@@ -192,7 +242,8 @@ public:
     int rate() const;              // steps per second (WorldDef::rate)
     double time() const;           // step_count() / rate(), seconds
     int substeps() const;          // per step: WorldDef::substeps, or the count chosen for 0
-    // True when some body has a shape: the manifold solver steps the world (docs/physics.md).
+    // True when some body has a shape or a joint joins bodies: the manifold solver steps the
+    // world (docs/physics.md).
     bool manifold_solver() const;
     // Velocity iterations per substep of the solver in use: WorldDef::iterations, or for 0
     // the solver's own.
@@ -200,6 +251,9 @@ public:
 
     // Same order as WorldDef::discs; valid until the next step() (ask again after it).
     std::span<const BodyState> bodies() const;
+
+    // Same order as WorldDef::joints; valid until the next step().
+    std::span<const JointState> joints() const;
 
     // How many of WorldDef::respawns have been carried out.
     std::size_t respawns_applied() const;

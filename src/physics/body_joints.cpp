@@ -1,0 +1,116 @@
+// The joints' stages of the manifold solver's step (body_solver.hpp); their rows are solved
+// with the contacts' (body_velocities.cpp, joint.hpp).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "body_solver.hpp"
+
+namespace discreel::physics::detail {
+
+void BodySolver::correct_joints(std::vector<Body>& bodies) {
+    // Positions only, as the contacts' push-out: each pass moves every joint back to its
+    // geometry with its bodies' true masses, until the worst is within tolerance.
+    const Joints::Move move = [&](std::uint32_t i, const V2& by, double turn) {
+        bodies[i].x += by;
+        bodies[i].angle += turn;
+        moved_[i] += by;
+        turn_body(i, turn);
+        ++pushes_;
+        pushed_at_[i] = pushes_;
+    };
+    for (int pass = 0; pass < def_.position_iterations; ++pass) {
+        if (joints_.correct(bodies, move) <= Joints::tolerance) break;
+    }
+}
+
+void BodySolver::limit_joint_energy(const std::vector<Body>& bodies) {
+    // Rigid joints do no work: solved exactly, a group of bodies that joints and contacts
+    // join leaves the rows with at most the kinetic energy it arrived with. Solved by passes
+    // that have not settled (the tail of a whipping chain), the warm start can leave it more
+    // (a 40-link chain gained 13 J between two frames). Such a group's velocities are scaled
+    // back to its arrival's energy: about the group's centre of mass when nothing fixed holds
+    // it (its momentum kept), whole when a fixed body or the world does; the joints' rows stay
+    // satisfied (they are linear in the velocities). A group that a motor, a spring or a held
+    // body works on is left as solved.
+    const auto n = static_cast<std::uint32_t>(bodies.size());
+    const auto moves = [&](std::uint32_t i) { return i < n && bodies[i].inv_mass > 0; };
+    const auto held = [&](std::uint32_t i) { return i < n && bodies[i].motion == Motion::held; };
+    std::vector<std::uint32_t>& group = cluster_;
+    group.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) group[i] = i;
+    const auto find = [&](std::uint32_t i) {
+        while (group[i] != i) i = group[i] = group[group[i]];
+        return i;
+    };
+    const auto join = [&](std::uint32_t a, std::uint32_t b) {
+        const std::uint32_t ra = find(a), rb = find(b);
+        group[std::max(ra, rb)] = std::min(ra, rb);
+    };
+    // Per body, then per root: a joint holds it, something fixed does, something works on it.
+    constexpr unsigned char jointed = 1, fixed = 2, worked = 4;
+    std::vector<unsigned char>& flags = cluster_held_;
+    flags.assign(n, 0);
+    // An end of a joint or contact whose other end does not move.
+    const auto held_by = [&](std::uint32_t body, std::uint32_t other) {
+        flags[body] |= held(other) ? worked : fixed;
+    };
+    joints_.for_each_joint([&](std::uint32_t a, std::uint32_t b, bool works) {
+        if (moves(a) && moves(b)) join(a, b);
+        for (const auto& [body, other] : {std::pair{a, b}, std::pair{b, a}}) {
+            if (!moves(body)) continue;
+            flags[body] |= jointed | (works ? worked : 0);
+            if (!moves(other)) held_by(body, other);
+        }
+    });
+    for (const PairContact& pc : fresh_) {
+        if (moves(pc.a) && moves(pc.b)) {
+            join(pc.a, pc.b);
+        } else if (moves(pc.a) || moves(pc.b)) {
+            held_by(moves(pc.a) ? pc.a : pc.b, moves(pc.a) ? pc.b : pc.a);
+        }
+    }
+    // Per root: kinetic energy arrived and solved (in the group's frame), mass, momentum.
+    constexpr std::size_t fields = 5;
+    std::vector<double>& sums = energy_;
+    sums.assign(fields * n, 0.0);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (!moves(i)) continue;
+        const std::uint32_t r = find(i);
+        flags[r] |= flags[i];
+        const double mass = 1 / bodies[i].inv_mass;
+        sums[fields * r + 2] += mass;
+        sums[fields * r + 3] += mass * state_[i].v.x();
+        sums[fields * r + 4] += mass * state_[i].v.y();
+    }
+    const auto limited = [&](std::uint32_t r) {
+        return (flags[r] & (jointed | worked)) == jointed;
+    };
+    const auto frame_of = [&](std::uint32_t r) -> V2 {
+        if ((flags[r] & fixed) != 0) return V2::Zero();
+        return V2(sums[fields * r + 3], sums[fields * r + 4]) / sums[fields * r + 2];
+    };
+    const auto kinetic = [](const BlockBody& b, const V2& frame) {
+        return 0.5 * (b.v - frame).squaredNorm() / b.inv_mass +
+               (b.inv_inertia > 0 ? 0.5 * b.omega * b.omega / b.inv_inertia : 0.0);
+    };
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (!moves(i) || !limited(find(i))) continue;
+        const std::uint32_t r = find(i);
+        sums[fields * r] += kinetic(arrived_[i], frame_of(r));
+        sums[fields * r + 1] += kinetic(state_[i], frame_of(r));
+    }
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (!moves(i) || !limited(find(i))) continue;
+        const std::uint32_t r = find(i);
+        const double arrived = sums[fields * r], solved = sums[fields * r + 1];
+        if (!(solved > arrived * (1 + 1e-12))) continue;
+        const V2 frame = frame_of(r);
+        const double scale = std::sqrt(arrived / solved);
+        state_[i].v = frame + scale * (state_[i].v - frame);
+        state_[i].omega *= scale;
+    }
+}
+
+}  // namespace discreel::physics::detail

@@ -1,0 +1,117 @@
+#pragma once
+// The joints of the manifold solver (body_solver.hpp): each one a few constraint rows between
+// two bodies (or a body and the world), solved in the contacts' velocity iterations, warm
+// started from the last step, then held to their geometry by a position pass that moves
+// positions only, so it adds no kinetic energy (Box2D v2.4's non-linear Gauss-Seidel).
+//
+// Rows per kind, each in velocities at the anchors:
+// - revolute: the anchors' relative velocity (a 2x2 block), a motor and limits on the
+//   relative turning speed;
+// - distance: the relative velocity along the anchors' line; a rope only while taut (it may
+//   shorten freely); a spring pushes by its stiffness from the step's start (explicit, which
+//   keeps its frequency and energy; an implicit spring loses amplitude at every step) and damps
+//   implicitly (stable at any damping);
+// - prismatic: the velocity across the axis and the relative turning (a 2x2 block), a motor
+//   and limits along the axis;
+// - weld: the anchors' velocity and the turning (a 3x3 block), or the turning by a spring.
+// A row that would need a fast spring (2 pi f h above 1/2) is solved soft instead (Box2D's
+// soft constraint), which stays stable for any frequency.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "block_solver.hpp"
+#include "discreel/physics.hpp"
+
+namespace discreel::physics::detail {
+
+class Joints {
+public:
+    Joints() = default;
+    // The joints of `defs`, their anchors and axes fixed to the bodies where they are now.
+    Joints(std::span<const JointDef> defs, const std::vector<Body>& bodies);
+
+    bool empty() const { return joints_.empty(); }
+    // Whether a joint holds body i.
+    bool holds(std::uint32_t i) const { return i < held_.size() && held_[i] != 0; }
+    // Whether contacts between bodies i < j are left out: a joint joins them without
+    // `collide`.
+    bool keeps_apart(std::uint32_t i, std::uint32_t j) const;
+    // Calls f(a, b) for each joint between two bodies.
+    void for_each_pair(const std::function<void(std::uint32_t, std::uint32_t)>& f) const;
+    // Calls f(a, b, works) for each joint, an end fixed to the world being `world`; `works`:
+    // it has a motor or a spring, which may add energy (the rigid rows never do).
+    void for_each_joint(const std::function<void(std::uint32_t, std::uint32_t, bool)>& f) const;
+    static constexpr std::uint32_t world = 0xffffffffu;
+
+    // The velocity stage: offsets and masses from the bodies' poses now, springs' pushes and
+    // last step's impulses applied to `state` (the bodies' velocities, in their order).
+    void prepare(const std::vector<Body>& bodies, std::span<BlockBody> state, double dt);
+    // One pass over every joint's rows.
+    void solve(std::span<BlockBody> state);
+
+    // The position stage: one pass over every joint, each moved back to its geometry by
+    // `move(body, by, turn)` (metres, radians; only bodies that move are moved). Returns the
+    // largest error it found (metres, or radians of a weld's or a limit's angle).
+    using Move = std::function<void(std::uint32_t, const V2&, double)>;
+    double correct(const std::vector<Body>& bodies, const Move& move) const;
+
+    // Each joint's anchors now and its reaction in the last step, in definition order.
+    void states(const std::vector<Body>& bodies, std::vector<JointState>& out) const;
+
+    // Below this error a joint is not moved by the position stage, metres (or radians).
+    static constexpr double tolerance = 1e-6;
+
+private:
+    struct Joint {
+        JointDef::Kind kind = JointDef::Kind::revolute;
+        std::uint32_t a = world, b = world;
+        V2 local_a = V2::Zero(), local_b = V2::Zero();   // anchors in each body's frame
+        V2 axis = V2::UnitX();     // prismatic: unit, in A's frame
+        double reference = 0;      // B's angle less A's at t = 0, radians
+        double length = 0;         // distance, metres
+        bool rope = false, collide = false;
+        bool spring = false;
+        double frequency = 0, damping = 0;   // Hz, ratio
+        bool limited = false;
+        double lower = 0, upper = 0;
+        bool motor = false;
+        double speed = 0, max_force = 0;
+
+        // The step's, from prepare():
+        V2 ra = V2::Zero(), rb = V2::Zero();   // offsets from the centroids, metres
+        V2 u = V2::UnitX(), n = V2::UnitY();   // distance: along; prismatic: axis, across
+        double error = 0;          // distance: length less wanted; limits: the angle or travel
+        std::array<double, 6> k{};   // the block's symmetric matrix (11 12 13 22 23 33)
+        double mass = 0;           // the scalar row's (distance, prismatic axis), kg
+        double angular_mass = 0;   // kg m^2
+        double gamma = 0, bias = 0, soft_mass = 0;   // a soft or damped row's
+        double push = 0;           // the spring's impulse applied at prepare, N s
+        double dt = 0;
+        // Accumulated impulses, N s (the angular ones N m s): warm start in, reaction out.
+        V2 linear = V2::Zero();    // revolute, weld: the point's
+        double across = 0;         // prismatic
+        double along = 0;          // distance, prismatic: the rigid or damped row's
+        double angular = 0;        // prismatic, weld
+        double motor_impulse = 0, lower_impulse = 0, upper_impulse = 0;
+    };
+    BlockBody& at(std::span<BlockBody> state, std::uint32_t i) {
+        return i == world ? ground_ : state[i];
+    }
+    void prepare_joint(Joint& j, const std::vector<Body>& bodies, std::span<BlockBody> state);
+    void solve_joint(Joint& j, std::span<BlockBody> state);
+    // One joint's motor and limit rows on a relative speed `w` (rad/s or m/s) along which an
+    // impulse of 1 is applied by `apply(impulse)`.
+    void solve_axis(Joint& j, double w, double mass, const std::function<void(double)>& apply);
+    double correct_joint(const Joint& j, const std::vector<Body>& bodies,
+                         const Move& move) const;
+
+    std::vector<Joint> joints_;
+    std::vector<unsigned char> held_;          // per body
+    std::vector<std::uint64_t> apart_;         // sorted a << 32 | b of joints without collide
+    BlockBody ground_;                         // the world's end: never moves
+};
+
+}  // namespace discreel::physics::detail
