@@ -6,10 +6,11 @@ set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 discreel=${DISCREEL:-$root/build/bin/discreel}
 
-# still SCENE SECONDS: configs/SCENE.yaml at that time, 960x540, to docs/images/SCENE.png
+# still SCENE SECONDS [SIZE]: configs/SCENE.yaml at that time, 960x540 unless SIZE, to
+# docs/images/SCENE.png
 still() {
     "$discreel" render "$root/configs/$1.yaml" -o "$root/docs/images/$1.png" --at "$2" \
-        --size 960x540
+        --size "${3:-960x540}"
 }
 
 still demo 6.6
@@ -21,3 +22,6 @@ still rain 2.0
 still polygons 3.0
 still pyramid 2.6
 still shapes 4.0
+still bridge 1.3
+still cradle-strings 1.2
+still pendulum-wave 6.0 960x360

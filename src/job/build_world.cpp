@@ -49,6 +49,7 @@ physics::WorldDef build_world(const scene::Scene& scene) {
         wall.friction = w.friction;
         def.walls.push_back(wall);
     }
+    def.joints = scene.joints;
     def.throws.reserve(scene.throws.size());
     for (const scene::Throw& t : scene.throws) {
         physics::ThrowDef th;

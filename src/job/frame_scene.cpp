@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace discreel::job {
 namespace {
@@ -47,6 +48,17 @@ void add_box_capsules(const scene::Wall& w, std::vector<render::CapsuleGeom>& ou
 constexpr float kTrailStrength = 0.65f;
 // With fading, the oldest end thins to this fraction of the trail's width.
 constexpr float kTrailThinnest = 0.3f;
+
+// v turned counter-clockwise by `angle` radians.
+Vec2 rotated(Vec2 v, double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+Vec2 normalised(Vec2 v) {
+    const double length = std::hypot(v.x, v.y);
+    return length > 0 ? Vec2{v.x / length, v.y / length} : Vec2{1, 0};
+}
 
 render::Rgba toward(const render::Rgba& from, const render::Rgba& to, float amount) {
     const float k = amount * to.a;
@@ -128,6 +140,18 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
     frame_.discs.resize(disc_count_);
     frame_.polygons.resize(polygon_count_);
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) set_look(i, scene.bodies[i]);
+
+    for (const physics::JointDef& j : scene.joints) {
+        // In the body's frame: turned back by its angle at t = 0.
+        const auto local = [&](const std::optional<std::size_t>& body, Vec2 p) {
+            if (!body || *body >= scene.bodies.size()) return p;
+            const scene::Body& b = scene.bodies[*body];
+            return rotated(Vec2{p.x - b.position.x, p.y - b.position.y}, -b.angle);
+        };
+        const double turn = j.a && *j.a < scene.bodies.size() ? scene.bodies[*j.a].angle : 0.0;
+        joint_ends_.push_back(
+            {local(j.a, j.anchor_a), local(j.b, j.anchor_b), rotated(j.axis, -turn)});
+    }
 
     const scene::Trails& trails = scene.style.trails;
     if (trails.enabled) {
@@ -232,9 +256,98 @@ const render::FrameScene& FrameSceneBuilder::build(int frame,
         frame_.camera.center_y = follow_center_.y;
     }
     add_trails();
+    add_joints(discs);
     add_arrows(discs);
     add_clock(frame);
     return frame_;
+}
+
+void FrameSceneBuilder::add_joints(std::span<const physics::BodyState> discs) {
+    frame_.joints.clear();
+    const scene::JointLines& style = scene_.style.joints;
+    if (!style.enabled || scene_.joints.empty()) return;
+    const double metres_per_pixel = frame_.camera.height / scene_.video.height;
+    const auto half = static_cast<float>(0.5 * style.width * metres_per_pixel);
+    const render::Rgba color = to_rgba(style.color);
+    const render::Rgba hole = toward(color, frame_.background, 0.85f);
+    // Where a point fixed to a body (its frame's p) is now; the world's points stay.
+    const auto at = [&](const std::optional<std::size_t>& body, Vec2 p) {
+        if (!body || *body >= discs.size()) return p;
+        const physics::BodyState& s = discs[*body];
+        const Vec2 r = rotated(p, s.angle);
+        return Vec2{s.position.x + r.x, s.position.y + r.y};
+    };
+    const auto line = [&](Vec2 p, Vec2 q, float radius, const render::Rgba& c) {
+        frame_.joints.push_back({static_cast<float>(p.x), static_cast<float>(p.y),
+                                 static_cast<float>(q.x), static_cast<float>(q.y), radius, c});
+    };
+    const auto ring = [&](Vec2 p) {
+        line(p, p, 3.5f * half, color);
+        line(p, p, 1.8f * half, hole);
+    };
+    for (std::size_t k = 0; k < scene_.joints.size(); ++k) {
+        const physics::JointDef& j = scene_.joints[k];
+        const Vec2 pa = at(j.a, joint_ends_[k].a), pb = at(j.b, joint_ends_[k].b);
+        using Kind = physics::JointDef::Kind;
+        switch (j.kind) {
+        case Kind::revolute:
+            ring(pb);
+            break;
+        case Kind::weld:
+            line(pb, pb, 3.0f * half, color);
+            break;
+        case Kind::prismatic: {
+            // The rail: along the axis through A's anchor, over the limits (or to B).
+            const Vec2 u = j.a ? rotated(joint_ends_[k].axis, discs[*j.a].angle)
+                               : normalised(joint_ends_[k].axis);
+            const auto along = [&](double s) { return Vec2{pa.x + s * u.x, pa.y + s * u.y}; };
+            const double travel = (pb.x - pa.x) * u.x + (pb.y - pa.y) * u.y;
+            const auto [lo, hi] = j.limits ? std::pair{(*j.limits)[0], (*j.limits)[1]}
+                                           : std::pair{std::min(0.0, travel), std::max(0.0, travel)};
+            line(along(lo), along(hi), half, color);
+            ring(pb);
+            break;
+        }
+        case Kind::distance:
+            if (j.spring) {
+                add_zigzag(pa, pb, half, color);
+            } else {
+                line(pa, pb, half, color);
+            }
+            line(pa, pa, 2.2f * half, color);
+            line(pb, pb, 2.2f * half, color);
+            break;
+        }
+    }
+}
+
+void FrameSceneBuilder::add_zigzag(Vec2 a, Vec2 b, float half, const render::Rgba& color) {
+    // A spring: straight ends and eight zigs between, as wide as a few line widths or a
+    // twentieth of its length, so a stretched spring thins and a squeezed one bunches up.
+    const double dx = b.x - a.x, dy = b.y - a.y;
+    const double length = std::hypot(dx, dy);
+    const auto push = [&](Vec2 p, Vec2 q) {
+        frame_.joints.push_back({static_cast<float>(p.x), static_cast<float>(p.y),
+                                 static_cast<float>(q.x), static_cast<float>(q.y), half, color});
+    };
+    if (!(length > 0)) return;
+    const double ux = dx / length, uy = dy / length;
+    const double width = std::max(4.0 * half, 0.05 * length);
+    constexpr int zigs = 8;
+    const auto point = [&](double s, double side) {
+        return Vec2{a.x + s * dx - side * width * uy, a.y + s * dy + side * width * ux};
+    };
+    Vec2 previous = point(0.15, 0);
+    push(a, previous);
+    for (int z = 0; z < zigs; ++z) {
+        const double s = 0.15 + 0.7 * (z + 0.5) / zigs;
+        const Vec2 next = point(s, z % 2 == 0 ? 1 : -1);
+        push(previous, next);
+        previous = next;
+    }
+    const Vec2 end = point(0.85, 0);
+    push(previous, end);
+    push(end, b);
 }
 
 void FrameSceneBuilder::add_trails() {

@@ -46,7 +46,15 @@ private:
     void add_trails();
     void add_arrows(std::span<const physics::BodyState> discs);
     void add_clock(int frame);
+    void add_joints(std::span<const physics::BodyState> discs);
+    void add_zigzag(Vec2 a, Vec2 b, float half, const render::Rgba& color);
 
+    // Each joint's anchors (and a slider's axis) in its bodies' frames at t = 0, as physics
+    // fixes them; an end without a body keeps its world point.
+    struct JointEnds {
+        Vec2 a, b, axis;
+    };
+    std::vector<JointEnds> joint_ends_;
     const scene::Scene& scene_;
     render::FrameScene frame_;
     std::vector<Slot> slots_;            // per body, in the scene's numbering

@@ -129,11 +129,11 @@ void make_capsule_instances(const FrameScene& frame, double pixels_per_metre,
     }
 }
 
-void make_trail_instances(const FrameScene& frame, double pixels_per_metre,
-                          std::vector<CapsuleInstance>& out) {
+void make_line_instances(const FrameScene& frame, std::span<const LineGeom> lines,
+                         double pixels_per_metre, std::vector<CapsuleInstance>& out) {
     const ToPixels to_px{frame.camera, pixels_per_metre};
     out.clear();
-    for (const LineGeom& l : frame.trails) {
+    for (const LineGeom& l : lines) {
         out.push_back({
             .a = {to_px.x(l.ax), to_px.y(l.ay)},
             .b = {to_px.x(l.bx), to_px.y(l.by)},

@@ -3,6 +3,7 @@
 // Positions are pixels relative to the image centre, y up: the camera is applied here in
 // double precision so far-from-origin scenes keep sub-pixel accuracy in float attributes.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "discreel/render.hpp"
@@ -64,8 +65,9 @@ void make_disc_instances(const FrameScene& frame, double pixels_per_metre,
                          std::vector<DiscInstance>& out);
 void make_capsule_instances(const FrameScene& frame, double pixels_per_metre,
                             std::vector<CapsuleInstance>& out);
-void make_trail_instances(const FrameScene& frame, double pixels_per_metre,
-                          std::vector<CapsuleInstance>& out);
+// Flat lines (the frame's trails or joints), in the frame's camera.
+void make_line_instances(const FrameScene& frame, std::span<const LineGeom> lines,
+                         double pixels_per_metre, std::vector<CapsuleInstance>& out);
 // Each arrow becomes three flat capsules: the shaft and two barbs.
 void make_arrow_instances(const FrameScene& frame, double pixels_per_metre,
                           std::vector<CapsuleInstance>& out);

@@ -66,6 +66,7 @@ struct Renderer::Impl {
     std::vector<DiscInstance> disc_instances;        // reused from frame to frame
     std::vector<CapsuleInstance> capsule_instances;
     std::vector<CapsuleInstance> trail_instances;
+    std::vector<CapsuleInstance> joint_instances;
     std::vector<CapsuleInstance> arrow_instances;
     std::vector<PolygonInstance> polygon_instances;
     std::vector<GlyphInstance> glyph_instances;
@@ -219,7 +220,8 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
 
     const double pixels_per_metre = static_cast<double>(height) / view_height;
     make_capsule_instances(frame, pixels_per_metre, capsule_instances);
-    make_trail_instances(frame, pixels_per_metre, trail_instances);
+    make_line_instances(frame, frame.trails, pixels_per_metre, trail_instances);
+    make_line_instances(frame, frame.joints, pixels_per_metre, joint_instances);
     make_polygon_instances(frame, pixels_per_metre, polygon_instances);
     make_disc_instances(frame, pixels_per_metre, disc_instances);
     make_arrow_instances(frame, pixels_per_metre, arrow_instances);
@@ -236,6 +238,7 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
                          polygon_point_sprites);
     draw_points_or_quads(disc_program, *disc_stream, disc_instances, disc_point_sprites);
     glUseProgram(capsule_program.id());
+    capsule_stream->draw(joint_instances.data(), joint_instances.size());
     capsule_stream->draw(arrow_instances.data(), arrow_instances.size());
     glUseProgram(glyph_program.id());
     glyph_stream->draw(glyph_instances.data(), glyph_instances.size());

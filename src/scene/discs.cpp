@@ -542,9 +542,20 @@ void check_discs(Loader& loader) {
     }
     // A shape's circle is only its bound: for a pair with a shape the outlines decide, and a
     // pair clear by its outlines does not hide a later overlap of the same body.
+    // Bodies a joint joins (without `collide`) never collide, and may start overlapping: a
+    // chain's links overlap at their pins.
+    std::vector<std::pair<std::size_t, std::size_t>> joined;
+    for (const physics::JointDef& j : loader.scene.joints) {
+        if (j.a && j.b && !j.collide) joined.emplace_back(std::min(*j.a, *j.b), std::max(*j.a, *j.b));
+    }
+    std::sort(joined.begin(), joined.end());
     const auto confirm = [&](std::size_t later, std::size_t earlier) {
         const Body& a = discs[later];
         const Body& b = discs[earlier];
+        if (std::binary_search(joined.begin(), joined.end(),
+                               std::pair{std::min(later, earlier), std::max(later, earlier)})) {
+            return false;
+        }
         if (!a.shape && !b.shape) return true;
         // Touching is allowed: a stack's boxes start face to face.
         return shape_overlap(a, b) > 1e-9 * std::max(a.radius, b.radius);

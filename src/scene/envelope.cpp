@@ -155,7 +155,8 @@ void check_envelope(Loader& loader) {
         std::any_of(scene.bodies.begin(), scene.bodies.end(), shaped) ||
         std::any_of(scene.respawns.begin(), scene.respawns.end(), [&](const Respawn& r) {
             return std::any_of(r.bodies.begin(), r.bodies.end(), shaped);
-        }));
+        }),
+        !scene.joints.empty());
     if (ratio > physics::envelope.crowd_mass_ratio) {
         // A crowd this far apart in mass sinks in at any speed: the speeds are not judged.
         const BodySource& source = loader.sources[extremes->heaviest];

@@ -23,9 +23,9 @@ using detail::Fields;
 using detail::Location;
 using detail::Value;
 
-constexpr std::array<std::string_view, 11> top_level_keys{
+constexpr std::array<std::string_view, 12> top_level_keys{
     "version", "video", "audio", "camera", "style", "physics", "walls", "discs", "bodies",
-    "throws", "golden"};
+    "throws", "joints", "golden"};
 constexpr int supported_version = 1;
 // Values under unknown top-level keys beyond which a file is refused before it is parsed into
 // nodes: a misspelt section of an ordinary scene holds fewer, and is reported with the file's
@@ -215,7 +215,7 @@ private:
             refuse(key_mark_, "unknown top-level key '" + section_ +
                                   "', holding more values than any scene needs; expected one "
                                   "of: version, video, camera, style, physics, walls, discs, "
-                                  "bodies, throws, golden");
+                                  "bodies, throws, joints, golden");
         }
         if (open_.size() == 2 && !parent.is_map) {   // an entry of a top-level list
             const std::size_t entries = index + 1;
@@ -233,6 +233,10 @@ private:
             if (section_ == "throws" && entries > max_throws) {
                 refuse(mark, "throws: too many throws (more than " + std::to_string(max_throws) +
                                  "); the limit is " + std::to_string(max_throws));
+            }
+            if (section_ == "joints" && entries > max_joints) {
+                refuse(mark, "joints: too many joints (more than " + std::to_string(max_joints) +
+                                 "); the limit is " + std::to_string(max_joints));
             }
         }
     }
@@ -276,8 +280,8 @@ void read_scene(const Value& root, detail::Loader& loader) {
     } else {
         d.error(root.where, "missing required key 'version'; start the file with 'version: 1'");
     }
-    // Dependency order, not file order: discs take their defaults from physics, throws and
-    // camera.follow refer to discs, golden frames are checked against the video's length.
+    // Dependency order, not file order: discs take their defaults from physics, throws,
+    // joints and camera.follow refer to discs (joined bodies may overlap at t = 0), golden frames are checked against the video's length.
     if (const auto v = fields->get("video")) detail::read_video(loader, *v);
     if (const auto v = fields->get("audio")) detail::read_audio(loader, *v);
     if (const auto v = fields->get("camera")) detail::read_camera(loader, *v);
@@ -294,6 +298,9 @@ void read_scene(const Value& root, detail::Loader& loader) {
     if (const auto v = fields->get("discs")) detail::read_discs(loader, *v);
     if (const auto v = fields->get("bodies"); v && !loader.disc_limit_reached) {
         detail::read_bodies(loader, *v);
+    }
+    if (const auto v = fields->get("joints"); v && !loader.disc_limit_reached) {
+        detail::read_joints(loader, *v);
     }
     detail::check_discs(loader);
     detail::resolve_camera_follow(loader);

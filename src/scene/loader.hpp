@@ -55,6 +55,7 @@ void read_discs(Loader& loader, const Value& value);
 void read_bodies(Loader& loader, const Value& value);   // after read_discs: one numbering
 void check_discs(Loader& loader);   // ids, overlaps at t = 0
 void read_throws(Loader& loader, const Value& value);
+void read_joints(Loader& loader, const Value& value);   // after the bodies, before check_discs
 void read_golden(Loader& loader, const std::optional<Value>& value);
 void check_ranges(Loader& loader);     // masses, speeds and spins no scene needs (refused)
 void check_envelope(Loader& loader);   // mass ratios and speeds the solver is known to handle

@@ -89,11 +89,22 @@ void read_clock(const Value& value, Clock& clock, Diagnostics& d) {
         if (const auto c = read_color(*color, d)) clock.color = *c;
 }
 
+void read_joint_lines(const Value& value, JointLines& lines, Diagnostics& d) {
+    static constexpr std::array<std::string_view, 3> known{"enabled", "color", "width"};
+    const auto fields = open_overlay(value, known, lines.enabled, d);
+    if (!fields) return;
+    if (const auto color = fields->get("color"))
+        if (const auto c = read_color(*color, d)) lines.color = *c;
+    if (const auto width = fields->get("width"))
+        if (const auto v = read_between(*width, min_arrow_width, max_arrow_width, d))
+            lines.width = *v;
+}
+
 }  // namespace
 
 void read_style(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 5> known{"outline", "spin_marker",
-                                                           "velocity_arrows", "trails", "clock"};
+    static constexpr std::array<std::string_view, 6> known{
+        "outline", "spin_marker", "velocity_arrows", "trails", "clock", "joints"};
     auto& d = loader.diagnostics;
     Style& style = loader.scene.style;
     const auto fields = Fields::open(value, known, d);
@@ -106,6 +117,7 @@ void read_style(Loader& loader, const Value& value) {
         read_arrows(*arrows, style.velocity_arrows, d);
     if (const auto trails = fields->get("trails")) read_trails(*trails, style.trails, d);
     if (const auto clock = fields->get("clock")) read_clock(*clock, style.clock, d);
+    if (const auto joints = fields->get("joints")) read_joint_lines(*joints, style.joints, d);
 }
 
 }  // namespace discreel::scene::detail

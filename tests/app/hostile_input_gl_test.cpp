@@ -309,7 +309,7 @@ TEST(HostileInputGLTest, WhatCannotBeASceneIsRefusedBeforeItIsParsed) {
     EXPECT_EQ(run.err, dir / "values.yaml" +
                            ":2:1: unknown top-level key 'x', holding more values than any scene "
                            "needs; expected one of: version, video, camera, style, physics, "
-                           "walls, discs, bodies, throws, golden\n");
+                           "walls, discs, bodies, throws, joints, golden\n");
 
     std::string discs = "version: 1\ndiscs:\n";
     for (int i = 0; i < 1001; ++i) discs += "  - {position: [1, 1], radius: 0.1}\n";

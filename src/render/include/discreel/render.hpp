@@ -46,7 +46,8 @@ struct CapsuleGeom {                // walls: segment a..b swept by a circle of 
 };
 
 // A flat line with round caps, drawn without the walls' darker rim: motion trails (one segment
-// per stretch of history, its colour already faded toward the background).
+// per stretch of history, its colour already faded toward the background) and joints (a pin's
+// ring is two dots, one over the other).
 struct LineGeom {
     float ax = 0, ay = 0, bx = 0, by = 0;   // world metres
     float radius = 0;               // metres (half the line width); drawn at least one pixel wide
@@ -89,6 +90,7 @@ struct FrameScene {
     std::vector<LineGeom> trails;
     std::vector<PolygonGeom> polygons;
     std::vector<DiscGeom> discs;
+    std::vector<LineGeom> joints;         // over the bodies: joints' lines, springs, pins
     std::vector<ArrowGeom> arrows;
     std::vector<TextGeom> texts;
 };

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "discreel/physics.hpp"
 #include "discreel/shapes.hpp"
 #include "discreel/vec2.hpp"
 
@@ -40,6 +41,7 @@ inline constexpr double max_frames = 1e9;
 // Fixed limits on the shape of a file: beyond them it is malformed rather than ambitious.
 inline constexpr std::size_t max_walls = 10'000;
 inline constexpr std::size_t max_throws = 10'000;
+inline constexpr std::size_t max_joints = 100'000;
 inline constexpr std::size_t max_waypoints = 10'000;      // per grab path
 inline constexpr std::size_t max_golden_frames = 1'000;
 inline constexpr std::size_t max_alias_values = 1'000'000;  // values repeated by YAML aliases
@@ -119,12 +121,20 @@ struct Clock {
     Color color{0xff, 0xff, 0xff, 0xff};
 };
 
+// Joints drawn over the bodies: lines between anchors (springs as zigzags), rings at pins.
+struct JointLines {
+    bool enabled = true;           // whenever the scene has joints
+    Color color{0xe5, 0xe9, 0xf0, 0xff};
+    double width = 2.0;            // pixels, line width, 0.5..20
+};
+
 struct Style {
     bool outline = true;           // a darker rim on discs
     bool spin_marker = true;       // a contrasting spoke on every non-static disc, so spin shows
     VelocityArrows velocity_arrows;
     Trails trails;
     Clock clock;
+    JointLines joints;
 };
 
 struct Physics {
@@ -203,6 +213,8 @@ struct Scene {
     std::vector<Body> bodies;
     std::vector<Throw> throws;
     std::vector<Respawn> respawns;   // in order of `at`
+    // Joints between bodies (indices into `bodies`; an end without one is the world's).
+    std::vector<physics::JointDef> joints;
     std::vector<int> golden_frames;  // default: first, middle, last
 };
 
