@@ -14,6 +14,7 @@ namespace discreel::app {
 struct OutputFiles {
     std::optional<std::string> trace;    // CSV, one row per disc per frame
     std::optional<std::string> events;   // CSV, one row per new contact
+    std::optional<std::string> joints;   // CSV, one row per joint per frame
 };
 
 struct RenderOptions {

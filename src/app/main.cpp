@@ -48,6 +48,9 @@ void add_output_files(CLI::App& cmd, OutputFiles& files) {
         ->option_text("FILE");
     cmd.add_option("--events", files.events, "Write one CSV row per new contact to FILE")
         ->option_text("FILE");
+    cmd.add_option("--joints", files.joints,
+                   "Write one CSV row per joint per frame (anchors, force, torque) to FILE")
+        ->option_text("FILE");
 }
 
 // A number option that must be finite (CLI11 reads "nan" and "inf" as doubles) and, where

@@ -33,6 +33,7 @@ std::optional<std::string> existing_output(const RenderOptions& o,
     }
     if (o.files.trace) paths.push_back(*o.files.trace);
     if (o.files.events) paths.push_back(*o.files.events);
+    if (o.files.joints) paths.push_back(*o.files.joints);
     for (const std::string& path : paths) {
         struct stat info{};
         if (lstat(path.c_str(), &info) == 0) return path;
@@ -119,8 +120,9 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             << "\naudio=" << (plan->audio || output.format == "wav" ? "yes" : "no") << '\n';
         return standard_output_ok(out, err) ? exit_ok : exit_runtime_failure;
     }
-    if (plan->segment && (o.files.trace || o.files.events)) {
-        report_error(err, "--trace and --events belong to a whole render, not to one segment");
+    if (plan->segment && (o.files.trace || o.files.events || o.files.joints)) {
+        report_error(err, "--trace, --events and --joints belong to a whole render, not to one "
+                          "segment");
         return exit_bad_input;
     }
     // Tasks of one render share the directory of its segments, and make it if need be.
@@ -189,6 +191,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     def.jobs = o.jobs;
     def.trace = o.files.trace;
     def.events = o.files.events;
+    def.joints = o.files.joints;
     def.threaded = !o.sequential;
     def.on_progress = [&](const job::Progress& p) { progress.update(p.frames_done, p.elapsed); };
     def.should_stop = [] { return stop_signal() != 0; };

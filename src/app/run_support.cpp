@@ -36,6 +36,7 @@ bool check_distinct_files(const std::vector<NamedPath>& inputs,
 void add_output_paths(const OutputFiles& files, std::vector<NamedPath>& outputs) {
     if (files.trace) outputs.push_back({"--trace", *files.trace});
     if (files.events) outputs.push_back({"--events", *files.events});
+    if (files.joints) outputs.push_back({"--joints", *files.joints});
 }
 
 bool standard_output_ok(std::ostream& out, std::ostream& err) {

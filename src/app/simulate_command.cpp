@@ -43,6 +43,7 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     def.scene = std::move(scene);
     def.trace = o.files.trace;
     def.events = o.files.events;
+    def.joints = o.files.joints;
     def.should_stop = [] { return stop_signal() != 0; };
     def.on_warning = [&err](const std::string& message) {
         err << "discreel: warning: " << message << '\n';

@@ -98,7 +98,7 @@ Expected<RenderSummary> render(const RenderDef& def) {
     if (segmented(*output)) return render_segments(def, range, sink_def, output->format);
     if (def.segment) return Error{"only video files (.mp4, .mkv, .webm) are made of segments"};
 
-    auto outputs = SideOutputs::open(def.trace, def.events, scene);
+    auto outputs = SideOutputs::open(def.trace, def.events, def.joints, scene);
     if (!outputs) return outputs.error();
     sink_def.sound = def.audio;
     auto sink = encode::open_sink(sink_def);
@@ -155,8 +155,8 @@ Expected<RenderSummary> render(const RenderDef& def) {
             simulated = playback.advance_to(frame, def.should_stop);
             if (!simulated) return nullptr;
             warnings.say(playback.take_warnings());
-            outputs->record(frame, playback.time_of_frame(frame), playback.bodies(),
-                            playback.take_events(), playback.world().respawns_applied());
+            outputs->record(frame, playback.time_of_frame(frame), playback.world(),
+                            playback.take_events());
             if (frame < range.first) {
                 playback.observe(frame);   // trails and the follow camera
                 return nullptr;

@@ -203,8 +203,8 @@ private:
                 return fail(advanced.error());
             }
             warnings_.say(playback.take_warnings());
-            outputs.record(frame, playback.time_of_frame(frame), playback.bodies(),
-                           playback.take_events(), playback.world().respawns_applied());
+            outputs.record(frame, playback.time_of_frame(frame), playback.world(),
+                           playback.take_events());
         }
     }
 
@@ -246,8 +246,9 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
                          std::to_string(count) + (count == 1 ? " segment" : " segments") +
                          " (0.." + std::to_string(count - 1) + ")"};
         }
-        if (def.trace || def.events) {
-            return Error{"--trace and --events belong to a whole render, not to one segment"};
+        if (def.trace || def.events || def.joints) {
+            return Error{"--trace, --events and --joints belong to a whole render, not to one "
+                         "segment"};
         }
         wanted = {*def.segment};
         paths = {sink.path};
@@ -279,8 +280,8 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
         sound.emplace(std::move(*opened));
     }
     std::optional<SideOutputs> outputs;
-    if (def.trace || def.events) {
-        auto opened = SideOutputs::open(def.trace, def.events, def.scene);
+    if (def.trace || def.events || def.joints) {
+        auto opened = SideOutputs::open(def.trace, def.events, def.joints, def.scene);
         if (!opened) return opened.error();
         outputs.emplace(std::move(*opened));
     }

@@ -4,6 +4,7 @@ namespace discreel::job {
 
 Expected<SideOutputs> SideOutputs::open(const std::optional<std::string>& trace,
                                         const std::optional<std::string>& events,
+                                        const std::optional<std::string>& joints,
                                         const scene::Scene& scene) {
     SideOutputs outputs;
     if (trace) {
@@ -16,13 +17,19 @@ Expected<SideOutputs> SideOutputs::open(const std::optional<std::string>& trace,
         if (!writer) return writer.error();
         outputs.events_.emplace(std::move(*writer));
     }
+    if (joints) {
+        auto writer = JointWriter::create(*joints, scene);
+        if (!writer) return writer.error();
+        outputs.joints_.emplace(std::move(*writer));
+    }
     return outputs;
 }
 
-void SideOutputs::record(int frame, double t, std::span<const physics::BodyState> discs,
-                         std::span<const physics::ContactEvent> events, std::size_t respawns) {
-    if (trace_) trace_->write_frame(frame, t, discs, respawns);
+void SideOutputs::record(int frame, double t, const physics::World& world,
+                         std::span<const physics::ContactEvent> events) {
+    if (trace_) trace_->write_frame(frame, t, world.bodies(), world.respawns_applied());
     if (events_) events_->write(events);
+    if (joints_) joints_->write_frame(frame, t, world.joints());
 }
 
 Status SideOutputs::seal() {
@@ -32,6 +39,9 @@ Status SideOutputs::seal() {
     if (events_) {
         if (Status s = events_->file().seal(); !s) return s;
     }
+    if (joints_) {
+        if (Status s = joints_->file().seal(); !s) return s;
+    }
     return {};
 }
 
@@ -39,6 +49,7 @@ std::vector<OutputFile*> SideOutputs::files() {
     std::vector<OutputFile*> files;
     if (trace_) files.push_back(&trace_->file().file());
     if (events_) files.push_back(&events_->file().file());
+    if (joints_) files.push_back(&joints_->file().file());
     return files;
 }
 

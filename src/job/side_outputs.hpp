@@ -1,5 +1,5 @@
 #pragma once
-// The optional trace and events files that render and simulate write alongside their main
+// The optional trace, events and joints files that render and simulate write alongside their main
 // work, under temporary names until committed with the run's other outputs.
 #include <optional>
 #include <span>
@@ -18,11 +18,12 @@ class SideOutputs {
 public:
     static Expected<SideOutputs> open(const std::optional<std::string>& trace,
                                       const std::optional<std::string>& events,
+                                      const std::optional<std::string>& joints,
                                       const scene::Scene& scene);
 
     // `respawns`: World::respawns_applied() at that frame.
-    void record(int frame, double t, std::span<const physics::BodyState> discs,
-                std::span<const physics::ContactEvent> events, std::size_t respawns);
+    void record(int frame, double t, const physics::World& world,
+                std::span<const physics::ContactEvent> events);
     // Writes what is buffered and seals the files; then files() are ready to be committed
     // together with the run's other outputs.
     Status seal();
@@ -31,6 +32,7 @@ public:
 private:
     std::optional<TraceWriter> trace_;
     std::optional<EventWriter> events_;
+    std::optional<JointWriter> joints_;
 };
 
 }  // namespace discreel::job

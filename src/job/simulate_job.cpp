@@ -11,7 +11,7 @@ namespace discreel::job {
 Expected<SimulateSummary> simulate(const SimulateDef& def) {
     const auto started = std::chrono::steady_clock::now();
     const scene::Scene& scene = def.scene;
-    auto outputs = SideOutputs::open(def.trace, def.events, scene);
+    auto outputs = SideOutputs::open(def.trace, def.events, def.joints, scene);
     if (!outputs) return outputs.error();
 
     Playback playback(scene);
@@ -27,8 +27,7 @@ Expected<SimulateSummary> simulate(const SimulateDef& def) {
         warnings.say(playback.take_warnings());
         const std::vector<physics::ContactEvent> events = playback.take_events();
         summary.contacts += events.size();
-        outputs->record(frame, playback.time_of_frame(frame), playback.bodies(), events,
-                        playback.world().respawns_applied());
+        outputs->record(frame, playback.time_of_frame(frame), playback.world(), events);
         const physics::WorldStats stats = playback.world().stats();
         if (stats.max_overlap > summary.deepest.max_overlap) summary.deepest = stats;
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 
 namespace discreel::job {
 
@@ -37,6 +38,36 @@ void TraceWriter::write_frame(int frame, double t, std::span<const physics::Body
         for (double v : {s.position.x, s.position.y, s.angle, s.velocity.x, s.velocity.y,
                          s.angular_velocity, def.radius, def.is_static ? 0.0 : def.mass,
                          def.is_static ? 0.0 : def.inertia}) {
+            row_ += ',';
+            append_number(row_, v);
+        }
+        row_ += '\n';
+        file_.write(row_);
+    }
+}
+
+Expected<JointWriter> JointWriter::create(const std::string& path, const scene::Scene& scene) {
+    auto file = AtomicTextFile::create(path);
+    if (!file) return file.error();
+    return JointWriter(std::move(*file), scene);
+}
+
+JointWriter::JointWriter(AtomicTextFile file, const scene::Scene& scene)
+    : file_(std::move(file)), scene_(&scene) {
+    file_.write("frame,t,joint,ax,ay,bx,by,force,torque\n");
+}
+
+void JointWriter::write_frame(int frame, double t, std::span<const physics::JointState> joints) {
+    for (std::size_t k = 0; k < joints.size(); ++k) {
+        const physics::JointState& j = joints[k];
+        row_.clear();
+        row_ += std::to_string(frame);
+        row_ += ',';
+        append_number(row_, t);
+        row_ += ',';
+        row_ += k < scene_->joint_ids.size() ? scene_->joint_ids[k] : std::to_string(k);
+        for (double v : {j.anchor_a.x, j.anchor_a.y, j.anchor_b.x, j.anchor_b.y,
+                         std::hypot(j.force.x, j.force.y), j.torque}) {
             row_ += ',';
             append_number(row_, v);
         }

@@ -1,7 +1,7 @@
 #pragma once
-// The CSV trace and contact-event files (docs/cli.md, "Trace and events"). Numbers are written
-// in the shortest form that reads back to the same double, so a trace can be compared bit for
-// bit.
+// The CSV trace, contact-event and joint files (docs/cli.md, "Trace, events and joints").
+// Numbers are written in the shortest form that reads back to the same double, so a trace can
+// be compared bit for bit.
 #include <memory>
 #include <span>
 #include <string>
@@ -32,6 +32,22 @@ private:
     const scene::Scene* scene_;
     std::vector<const scene::Body*> bodies_;   // each body's current definition
     std::size_t respawns_ = 0;
+    std::string row_;
+};
+
+class JointWriter {
+public:
+    // frame,t,joint,ax,ay,bx,by,force,torque — one row per joint per frame: its anchors in
+    // the world (m), the size of its reaction force (N) and its torque (N m) in the last step;
+    // joint is the joint's id, or its index.
+    static Expected<JointWriter> create(const std::string& path, const scene::Scene& scene);
+    void write_frame(int frame, double t, std::span<const physics::JointState> joints);
+    AtomicTextFile& file() { return file_; }
+
+private:
+    JointWriter(AtomicTextFile file, const scene::Scene& scene);
+    AtomicTextFile file_;
+    const scene::Scene* scene_;
     std::string row_;
 };
 

@@ -264,7 +264,12 @@ void read_joints(Loader& loader, const Value& value) {
         if (!fields) continue;
         physics::JointDef j;
         j.kind = kind;
-        if (JointReader(loader, *fields, ids, kind, j).read()) loader.scene.joints.push_back(j);
+        if (!JointReader(loader, *fields, ids, kind, j).read()) continue;
+        const auto id = fields->get("id");
+        loader.scene.joint_ids.push_back(id && id->node.IsScalar()
+                                             ? id->node.Scalar()
+                                             : std::to_string(loader.scene.joints.size()));
+        loader.scene.joints.push_back(j);
     }
 }
 

@@ -495,6 +495,39 @@ TEST(CliTest, SimulateRunsAndNamesTheSolverSettings) {
     EXPECT_NE(read_file(dir / "plain.csv"), read_file(dir / "tuned.csv"));
 }
 
+// A bob at rest on a 2 m rod: each frame's row gives the anchors where they are (the world's
+// pivot, the bob's centre) and the rod's tension, the bob's weight m g (none before a step).
+TEST(CliTest, JointsListEachJointsAnchorsAndForceEveryFrame) {
+    TempDir dir;
+    testing::write_file(dir / "p.yaml",
+                        "version: 1\nvideo: {fps: 30, duration: 0.5}\n"
+                        "discs:\n  - {id: bob, position: [1, 3], radius: 0.1, mass: 2}\n"
+                        "joints:\n  - distance: {id: rod, b: bob, anchor_a: [1, 5], "
+                        "anchor_b: [1, 3]}\n");
+    const auto run = run_command({bin, "simulate", dir / "p.yaml", "--joints", dir / "j.csv"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::istringstream in(read_file(dir / "j.csv"));
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "frame,t,joint,ax,ay,bx,by,force,torque");
+    int rows = 0;
+    while (std::getline(in, line)) {
+        std::vector<std::string> f;
+        std::istringstream fields(line);
+        for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+        ASSERT_EQ(f.size(), 9u) << line;
+        EXPECT_EQ(f[0], std::to_string(rows)) << line;
+        EXPECT_EQ(f[2], "rod") << line;
+        EXPECT_EQ(f[3] + "," + f[4], "1,5") << line;
+        EXPECT_NEAR(std::stod(f[5]), 1, 1e-12) << line;
+        EXPECT_NEAR(std::stod(f[6]), 3, 1e-12) << line;
+        EXPECT_NEAR(std::stod(f[7]), rows == 0 ? 0 : 2 * 9.81, 1e-9) << line;
+        EXPECT_EQ(f[8], "0") << line;
+        ++rows;
+    }
+    EXPECT_EQ(rows, 15);   // frames 0..14: 0.5 s at 30 fps
+}
+
 // render and simulate drive the physics the same way, so their traces are the same bytes.
 TEST(CliGLTest, RenderWritesTheSameTraceAsSimulate) {
     TempDir dir;

@@ -82,6 +82,7 @@ struct RenderDef {
     FrameRange frames;                       // frames before `first` are simulated, not drawn
     std::optional<std::string> trace;        // CSV path, one row per disc per frame
     std::optional<std::string> events;       // CSV path, one row per new contact
+    std::optional<std::string> joints;       // CSV path, one row per joint per frame
     bool threaded = true;                    // false: one thread, same bytes, slower
     // Video files (.mp4, .mkv, .webm) are encoded in segments of scene.video.segment seconds,
     // each its own closed group of pictures on one encoder thread, and joined by stream copy:
@@ -131,7 +132,7 @@ Expected<RenderSummary> render(const RenderDef& def);
 
 struct SimulateDef {
     scene::Scene scene;
-    std::optional<std::string> trace, events;   // CSV paths, as for render
+    std::optional<std::string> trace, events, joints;   // CSV paths, as for render
     std::function<bool()> should_stop;
     std::function<void(const std::string&)> on_warning;   // as RenderDef's
 };

@@ -215,6 +215,7 @@ struct Scene {
     std::vector<Respawn> respawns;   // in order of `at`
     // Joints between bodies (indices into `bodies`; an end without one is the world's).
     std::vector<physics::JointDef> joints;
+    std::vector<std::string> joint_ids;   // per joint: its `id`, or its index
     std::vector<int> golden_frames;  // default: first, middle, last
 };
 
