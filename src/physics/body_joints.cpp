@@ -11,17 +11,21 @@ namespace discreel::physics::detail {
 
 void BodySolver::correct_joints(std::vector<Body>& bodies) {
     // Positions only, as the contacts' push-out: each pass moves every joint back to its
-    // geometry with its bodies' true masses, until the worst is within tolerance.
-    const Joints::Move move = [&](std::uint32_t i, const V2& by, double turn) {
-        bodies[i].x += by;
-        bodies[i].angle += turn;
-        moved_[i] += by;
-        turn_body(i, turn);
-        ++pushes_;
-        pushed_at_[i] = pushes_;
-    };
-    for (int pass = 0; pass < def_.position_iterations; ++pass) {
-        if (joints_.correct(bodies, move) <= Joints::tolerance) break;
+    // geometry with its bodies' true masses, until the worst is within tolerance. The moves
+    // are the step's motion too (the contacts' separations follow them), and count as pushes.
+    joint_moves_.resize(bodies.size());
+    for (int pass = 0; pass < def_.joint_position_passes; ++pass) {
+        const double worst = joints_.correct(bodies, joint_moves_);
+        for (const std::uint32_t i : joints_.held_bodies()) {
+            Joints::Moved& m = joint_moves_[i];
+            if (m.by == V2::Zero() && m.turn == 0) continue;
+            moved_[i] += m.by;
+            turn_body(i, m.turn);
+            ++pushes_;
+            pushed_at_[i] = pushes_;
+            m = {};
+        }
+        if (worst <= Joints::tolerance) break;
     }
 }
 

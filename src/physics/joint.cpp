@@ -130,6 +130,10 @@ Joints::Joints(std::span<const JointDef> defs, const std::vector<Body>& bodies) 
         joints_.push_back(j);
     }
     std::sort(apart_.begin(), apart_.end());
+    for (std::uint32_t i = 0; i < held_.size(); ++i) {
+        if (held_[i]) held_list_.push_back(i);
+    }
+    turn_.assign(held_.size(), {1.0, 0.0});
 }
 
 bool Joints::keeps_apart(std::uint32_t i, std::uint32_t j) const {
@@ -231,7 +235,8 @@ void Joints::solve(std::span<BlockBody> state) {
     for (Joint& j : joints_) solve_joint(j, state);
 }
 
-void Joints::solve_axis(Joint& j, double w, double mass, const std::function<void(double)>& apply_along) {
+template <class Apply>
+void Joints::solve_axis(Joint& j, double w, double mass, Apply&& apply_along) {
     if (!(mass > 0)) return;
     if (j.motor) {
         const double limit = j.max_force * j.dt;
@@ -332,26 +337,62 @@ void Joints::solve_joint(Joint& j, std::span<BlockBody> state) {
     }
 }
 
-double Joints::correct(const std::vector<Body>& bodies, const Move& move) const {
+double Joints::correct(std::vector<Body>& bodies, std::span<Moved> moved) {
+    for (const std::uint32_t i : held_list_) {
+        if (i < bodies.size()) turn_[i] = {std::cos(bodies[i].angle), std::sin(bodies[i].angle)};
+    }
     double worst = 0;
-    for (const Joint& j : joints_) worst = std::max(worst, correct_joint(j, bodies, move));
+    for (const Joint& j : joints_) worst = std::max(worst, correct_joint(j, bodies, moved));
     return worst;
 }
 
-double Joints::correct_joint(const Joint& j, const std::vector<Body>& bodies,
-                             const Move& move) const {
+Joints::Placed Joints::placed(const std::vector<Body>& bodies, std::uint32_t i) const {
+    if (i >= bodies.size()) return {};
+    const Body& b = bodies[i];
+    return {b.x, b.angle, turn_[i].first, turn_[i].second, b.inv_mass, b.inv_inertia};
+}
+
+void Joints::move(std::vector<Body>& bodies, std::span<Moved> moved, std::uint32_t i,
+                  const V2& by, double turn) {
+    bodies[i].x += by;
+    bodies[i].angle += turn;
+    moved[i].by += by;
+    moved[i].turn += turn;
+    // A correction turns a body by little: below a hundredth of a radian the series (to the
+    // sixth power) is exact to rounding.
+    double c = 0, s = 0;
+    if (std::abs(turn) < 0.01) {
+        const double t2 = turn * turn;
+        c = 1 - t2 / 2 + t2 * t2 / 24;
+        s = turn * (1 - t2 / 6 + t2 * t2 / 120);
+    } else {
+        c = std::cos(turn);
+        s = std::sin(turn);
+    }
+    const auto [c0, s0] = turn_[i];
+    turn_[i] = {c0 * c - s0 * s, s0 * c + c0 * s};
+}
+
+double Joints::correct_joint(const Joint& j, std::vector<Body>& bodies, std::span<Moved> moved) {
     using Kind = JointDef::Kind;
-    const Pose pa = pose_of(bodies, j.a), pb = pose_of(bodies, j.b);
+    const Placed pa = placed(bodies, j.a), pb = placed(bodies, j.b);
     const double ma = pa.inv_mass, ia = pa.inv_inertia, mb = pb.inv_mass, ib = pb.inv_inertia;
     if (ma + mb + ia + ib <= 0) return 0;
-    V2 ra = rotated(pa.angle, j.local_a);
-    const V2 rb = rotated(pb.angle, j.local_b);
+    const auto turned = [](const Placed& p, const V2& v) {
+        return V2(p.cos * v.x() - p.sin * v.y(), p.sin * v.x() + p.cos * v.y());
+    };
+    V2 ra = turned(pa, j.local_a);
+    const V2 rb = turned(pb, j.local_b);
     const V2 d = (pb.x + rb) - (pa.x + ra);
     const double angle = pb.angle - pa.angle - j.reference;
     // A positional impulse p (kg m) at the offsets and an angular one l (kg m^2 rad).
     const auto shift = [&](const V2& at_a, const V2& p, double l) {
-        if (j.a != world && (ma > 0 || ia > 0)) move(j.a, -ma * p, -ia * (cross(at_a, p) + l));
-        if (j.b != world && (mb > 0 || ib > 0)) move(j.b, mb * p, ib * (cross(rb, p) + l));
+        if (j.a != world && (ma > 0 || ia > 0)) {
+            move(bodies, moved, j.a, -ma * p, -ia * (cross(at_a, p) + l));
+        }
+        if (j.b != world && (mb > 0 || ib > 0)) {
+            move(bodies, moved, j.b, mb * p, ib * (cross(rb, p) + l));
+        }
     };
     // A limit of an angle or a travel along u (u zero: an angle), pushed back within it.
     const auto limit = [&](double value, double mass, const V2& at_a, const V2& u) {
@@ -384,7 +425,7 @@ double Joints::correct_joint(const Joint& j, const std::vector<Body>& bodies,
     }
     case Kind::prismatic: {
         ra += d;
-        const V2 u = rotated(pa.angle, j.axis), n = perp(u);
+        const V2 u = turned(pa, j.axis), n = perp(u);
         const double a1 = cross(ra, u), a2 = cross(rb, u);
         const double off =
             limit(u.dot(d), inverse_or_zero(ma + mb + ia * a1 * a1 + ib * a2 * a2), ra, u);

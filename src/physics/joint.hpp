@@ -52,11 +52,16 @@ public:
     // One pass over every joint's rows.
     void solve(std::span<BlockBody> state);
 
-    // The position stage: one pass over every joint, each moved back to its geometry by
-    // `move(body, by, turn)` (metres, radians; only bodies that move are moved). Returns the
-    // largest error it found (metres, or radians of a weld's or a limit's angle).
-    using Move = std::function<void(std::uint32_t, const V2&, double)>;
-    double correct(const std::vector<Body>& bodies, const Move& move) const;
+    // The position stage: one pass over every joint, each moved back to its geometry by moving
+    // its bodies (only bodies that move), each move also added to moved[body]: metres and
+    // radians. Returns the largest error it found (metres, or radians of an angle).
+    struct Moved {
+        V2 by = V2::Zero();
+        double turn = 0;
+    };
+    double correct(std::vector<Body>& bodies, std::span<Moved> moved);
+    // The bodies a joint holds, ascending.
+    std::span<const std::uint32_t> held_bodies() const { return held_list_; }
 
     // Each joint's anchors now and its reaction in the last step, in definition order.
     void states(const std::vector<Body>& bodies, std::vector<JointState>& out) const;
@@ -104,12 +109,25 @@ private:
     void solve_joint(Joint& j, std::span<BlockBody> state);
     // One joint's motor and limit rows on a relative speed `w` (rad/s or m/s) along which an
     // impulse of 1 is applied by `apply(impulse)`.
-    void solve_axis(Joint& j, double w, double mass, const std::function<void(double)>& apply);
-    double correct_joint(const Joint& j, const std::vector<Body>& bodies,
-                         const Move& move) const;
+    template <class Apply>
+    static void solve_axis(Joint& j, double w, double mass, Apply&& apply);
+    double correct_joint(const Joint& j, std::vector<Body>& bodies, std::span<Moved> moved);
+    // A body's pose for the position stage: the world's end at the origin, and the cosine and
+    // sine of its angle, kept in turn_ through the pass (one libm call per body, not per joint).
+    struct Placed {
+        V2 x = V2::Zero();
+        double angle = 0, cos = 1, sin = 0;
+        double inv_mass = 0, inv_inertia = 0;
+    };
+    Placed placed(const std::vector<Body>& bodies, std::uint32_t i) const;
+    // Moves body i by `by` and turns it by `turn` (its cached cosine and sine with it).
+    void move(std::vector<Body>& bodies, std::span<Moved> moved, std::uint32_t i, const V2& by,
+              double turn);
 
     std::vector<Joint> joints_;
     std::vector<unsigned char> held_;          // per body
+    std::vector<std::uint32_t> held_list_;     // the bodies held, ascending
+    std::vector<std::pair<double, double>> turn_;   // per body: cos, sin of its angle (correct)
     std::vector<std::uint64_t> apart_;         // sorted a << 32 | b of joints without collide
     BlockBody ground_;                         // the world's end: never moves
 };

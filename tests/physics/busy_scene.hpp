@@ -164,6 +164,65 @@ inline std::uint64_t run_resting_scene() {
     return state_hash(world);
 }
 
+// What run_joint_scene() gives, pinned like busy_scene_hash.
+inline constexpr std::uint64_t joint_scene_hash = 6534053902226278295ull;
+
+// Every kind of joint at work beside falling boxes: a chain of capsules from a pin, a bob on a
+// rope, a box on a damped spring, a motor driving a slider into its limit, a turning paddle
+// with a motor, and a welded pair; the manifold solver's joints and their determinism.
+inline WorldDef joint_scene() {
+    WorldDef def;
+    const Material material{.restitution = 0.3, .friction = 0.5};
+    def.walls.push_back(box({0, 0}, {16, 12}, material));
+    const auto joint = [&](JointDef::Kind kind, std::optional<std::size_t> a, std::size_t b,
+                           Vec2 anchor, Vec2 anchor_b = {}) {
+        JointDef j;
+        j.kind = kind;
+        j.a = a;
+        j.b = b;
+        j.anchor_a = anchor;
+        j.anchor_b = kind == JointDef::Kind::distance ? anchor_b : anchor;
+        def.joints.push_back(j);
+        return &def.joints.back();
+    };
+    const auto add = [&](BodyDef d) {
+        def.bodies.push_back(d);
+        return def.bodies.size() - 1;
+    };
+    for (int i = 0; i < 8; ++i) {   // the chain, level from (2, 10)
+        const std::size_t link = add(body(*capsule_shape(0.4, 0.06), {2.2 + 0.4 * i, 10}, 2.0,
+                                          material));
+        joint(JointDef::Kind::revolute, i == 0 ? std::nullopt : std::optional(link - 1), link,
+              {2.0 + 0.4 * i, 10});
+    }
+    const std::size_t bob = add(body(circle_shape(0.2), {7, 7}, 1.0, material));
+    joint(JointDef::Kind::distance, std::nullopt, bob, {6, 10}, {7, 7})->rope = true;
+    const std::size_t weight = add(body(*box_shape(0.5, 0.5), {9, 6}, 1.0, material));
+    joint(JointDef::Kind::distance, std::nullopt, weight, {9, 9}, {9, 6})->spring =
+        SpringDef{1.5, 0.2};
+    const std::size_t cart = add(body(*box_shape(0.8, 0.3), {11, 2}, 1.0, material));
+    JointDef* slider = joint(JointDef::Kind::prismatic, std::nullopt, cart, {11, 2});
+    slider->axis = {1, 0.2};
+    slider->limits = std::array<double, 2>{-1.0, 1.5};
+    slider->motor = JointDef::Motor{1.0, 50.0};
+    const std::size_t paddle = add(body(*box_shape(2.0, 0.2), {13, 7}, 1.0, material));
+    joint(JointDef::Kind::revolute, std::nullopt, paddle, {13, 7})->motor =
+        JointDef::Motor{2.0, 100.0};
+    const std::size_t left = add(body(*box_shape(0.6, 0.6), {4.7, 4}, 1.0, material));
+    const std::size_t right = add(body(*box_shape(0.6, 0.6), {5.3, 4}, 1.0, material));
+    joint(JointDef::Kind::weld, left, right, {5.0, 4.0});
+    for (int i = 0; i < 6; ++i) {   // boxes falling onto the chain and the paddle
+        add(body(*box_shape(0.4, 0.3), {3 + 1.9 * i, 11.3}, 1.0, material));
+    }
+    return def;
+}
+
+inline std::uint64_t run_joint_scene() {
+    World world(joint_scene());
+    run_for(world, 2.0);
+    return state_hash(world);
+}
+
 // The busy scene's state after two seconds, hashed.
 inline std::uint64_t run_busy_scene() {
     World world(busy_scene());

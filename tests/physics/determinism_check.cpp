@@ -2,7 +2,7 @@
 // (DISCREEL_PHYSICS_ONLY: the `arch` tests build it for aarch64 and without the AVX2 clones).
 // Runs the busy scene (the disc solver), the mixed scene (the manifold solver), the
 // heavy-light scene (the disc solver's direct islands) and the resting scene (the manifold
-// solver's kept contacts) twice each and prints their hashes;
+// solver's kept contacts) and the joint scene twice each and prints their hashes;
 // exits 0 only if every run gives the pinned one.
 #include <cinttypes>
 #include <cstdint>
@@ -45,7 +45,8 @@ int main() {
     const bool heavy_light =
         check("heavy-light scene", run_heavy_light_scene, heavy_light_scene_hash);
     const bool resting = check("resting scene", run_resting_scene, resting_scene_hash);
-    if (!busy || !mixed || !heavy_light || !resting) return 1;
+    const bool joints = check("joint scene", run_joint_scene, joint_scene_hash);
+    if (!busy || !mixed || !heavy_light || !resting || !joints) return 1;
     std::printf("OK\n");
     return 0;
 }

@@ -27,6 +27,12 @@ TEST(Determinism, RestingSceneGivesTheSameBitsEveryRun) {
     EXPECT_EQ(first, testing::resting_scene_hash) << first;
 }
 
+TEST(Determinism, JointSceneGivesTheSameBitsEveryRun) {
+    const std::uint64_t first = testing::run_joint_scene();
+    EXPECT_EQ(testing::run_joint_scene(), first);
+    EXPECT_EQ(first, testing::joint_scene_hash) << first;
+}
+
 TEST(Determinism, HeavyLightSceneGivesTheSameBitsEveryRun) {
     const std::uint64_t first = testing::run_heavy_light_scene();
     EXPECT_EQ(testing::run_heavy_light_scene(), first);
