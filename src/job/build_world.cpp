@@ -16,6 +16,7 @@ physics::BodyDef body_of(const scene::Body& d) {
     disc.friction = d.friction;
     disc.is_static = d.is_static;
     disc.shape = d.shape;
+    disc.kinematic = d.kinematic;
     return disc;
 }
 

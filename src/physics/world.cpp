@@ -12,6 +12,7 @@
 #include "shape_stepper.hpp"
 #include "stage_timer.hpp"
 #include "stepper.hpp"
+#include "kinematics.hpp"
 #include "throws.hpp"
 
 namespace discreel::physics {
@@ -45,6 +46,7 @@ struct World::Impl {
           body_count(def.bodies.size()),
           manifold(uses_manifold_solver(any_shape(def), !def.joints.empty())),
           throws(def.throws),
+          kinematics(def.bodies),
           respawns(def.respawns),
           profiled(def.profile) {
         for (const BodyDef& d : def.bodies) bodies.push_back(detail::make_body(d));
@@ -55,6 +57,7 @@ struct World::Impl {
         }
         if (def.profile) stepper->set_profile(&profile);
         throws.start(bodies);
+        kinematics.start(bodies);
         states.resize(body_count);
         if (const auto i = stepper->end_step(bodies, 0.0)) failure = NonFiniteState{*i, 0.0};
     }
@@ -71,6 +74,7 @@ struct World::Impl {
     // The definition's bodies, then the stepper's fixed bodies for the walls.
     std::vector<Body> bodies;
     detail::Throws throws;
+    detail::Kinematics kinematics;
     std::vector<RespawnDef> respawns;
     std::size_t respawns_applied = 0;
     std::unique_ptr<detail::Stepper> stepper;
@@ -96,9 +100,11 @@ void World::Impl::step() {
     const double t1 = static_cast<double>(steps + 1) / rate;
     respawn(t0);
     const bool thrown = throws.begin_step(t0, t1, bodies);
+    kinematics.begin_step(t0, t1, bodies);
     began.clear();
     stepper->step(bodies, t0, t1, thrown, began);
     throws.end_step(t1, bodies);
+    kinematics.end_step(t1, bodies);
     ++steps;
     add_events(t1);
     if (const auto i = stepper->end_step(bodies, 1.0 / rate)) failure = NonFiniteState{*i, t1};

@@ -20,9 +20,10 @@
 namespace discreel::scene::detail {
 namespace {
 
-constexpr std::array<std::string_view, 14> entry_keys{
-    "id",       "position",    "velocity", "angle", "angular_velocity", "radius", "mass",
-    "density",  "restitution", "friction", "color", "static",           "grid",   "random"};
+constexpr std::array<std::string_view, 15> entry_keys{
+    "id",       "position",    "velocity", "angle",  "angular_velocity", "radius", "mass",
+    "density",  "restitution", "friction", "color",  "static",           "grid",   "random",
+    "kinematic"};
 // A generator's own keys, followed by the per-disc keys it applies to every disc. Those may be
 // written inside `grid:` (as docs/scene-format.md shows) or beside it; `position` is recognised
 // only so that the message can say what to use instead.
@@ -65,6 +66,14 @@ Properties read_properties(Loader& loader, const Fields& fields, const Value& it
     if (const auto v = fields.get("color")) p.color = read_color(*v, d);
     if (const auto v = fields.get("static"))
         if (const auto s = read_bool(*v, d)) p.is_static = *s;
+    if (const auto v = fields.get("kinematic")) {
+        if (p.is_static) {
+            d.error(fields.key_location("kinematic"),
+                    item.path + ": a body is 'static' or 'kinematic', not both");
+        } else {
+            p.kinematic = read_kinematic(*v, d);
+        }
+    }
     return p;
 }
 
@@ -102,6 +111,7 @@ Body make_disc(const Properties& p, std::string id, Vec2 position, double radius
     disc.friction = p.friction;
     disc.color = p.color ? *p.color : palette_color(index);
     disc.is_static = p.is_static;
+    disc.kinematic = p.kinematic;
     disc.inertia = inertia_of(disc);
     return disc;
 }

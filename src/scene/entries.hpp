@@ -23,7 +23,11 @@ struct Properties {
     double friction = 0.2;
     std::optional<Color> color;       // none: from the palette by body index
     bool is_static = false;
+    std::optional<physics::KinematicDef> kinematic;   // single entries only
 };
+
+// A `kinematic:` mapping; nothing when it has problems (each reported).
+std::optional<physics::KinematicDef> read_kinematic(const Value& value, Diagnostics& d);
 
 Properties read_properties(Loader& loader, const Fields& fields, const Value& item);
 std::optional<std::string> read_id(const Value& value, Diagnostics& d);

@@ -88,6 +88,11 @@ void read_throws(Loader& loader, const Value& value) {
                 d.error(disc->where, disc->path + ": disc '" + loader.scene.bodies[*index].id +
                                          "' is static and cannot be thrown");
                 ok = false;
+            } else if (index && loader.scene.bodies[*index].kinematic) {
+                d.error(disc->where, disc->path + ": body '" + loader.scene.bodies[*index].id +
+                                         "' is kinematic: it moves as its 'kinematic' says and "
+                                         "cannot be thrown");
+                ok = false;
             }
             ok = ok && index;
             t.body = index.value_or(0);

@@ -27,7 +27,8 @@ std::vector<std::filesystem::path> shipped_scenes() {
     return scenes;
 }
 
-// Runs a shipped scene frame by frame (with its throws, or without), handing the world to
+// Runs a shipped scene frame by frame (with its throws, or without them, its respawns and its
+// kinematic bodies' motion: each held where it starts, as a static body), handing the world to
 // `look` at frame 0 and after every frame.
 void run_frames(const std::filesystem::path& path, bool with_throws,
                 const std::function<void(int frame, const physics::World& world)>& look) {
@@ -37,6 +38,11 @@ void run_frames(const std::filesystem::path& path, bool with_throws,
     if (!with_throws) {
         s.throws.clear();
         s.respawns.clear();
+        for (scene::Body& b : s.bodies) {
+            if (!b.kinematic) continue;
+            b.kinematic.reset();
+            b.is_static = true;
+        }
     }
     job::Playback playback(s);
     look(0, playback.world());

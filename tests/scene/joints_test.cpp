@@ -114,3 +114,35 @@ TEST(Joints, MistakesAreReportedAtTheirPlace) {
 
 }  // namespace
 }  // namespace discreel::scene
+
+namespace discreel::scene {
+namespace {
+
+TEST(Kinematic, AKinematicBodyLoadsItsMotion) {
+    const Scene scene = testing::load_ok(
+        "version: 1\n"
+        "bodies:\n"
+        "  - {id: sail, box: [4, 0.25], position: [6, 3], kinematic: {angular_velocity: 2}}\n"
+        "  - {id: lift, box: [2, 0.2], position: [2, 1],\n"
+        "     kinematic: {path: [[0.5, 2, 5, 0.3], [1, 2, 1, 0]], loop: true}}\n"
+        "discs:\n"
+        "  - {position: [9, 1], radius: 0.2, kinematic: {velocity: [1, 0.5]}}\n");
+    ASSERT_EQ(scene.bodies.size(), 3u);
+    const Body& disc = scene.bodies[0];   // discs come first
+    ASSERT_TRUE(disc.kinematic.has_value());
+    EXPECT_EQ(disc.kinematic->velocity.y, 0.5);
+    const Body& sail = scene.bodies[1];
+    ASSERT_TRUE(sail.kinematic.has_value());
+    EXPECT_EQ(sail.kinematic->angular_velocity, 2);
+    EXPECT_TRUE(sail.kinematic->path.empty());
+    const Body& lift = scene.bodies[2];
+    ASSERT_TRUE(lift.kinematic.has_value());
+    ASSERT_EQ(lift.kinematic->path.size(), 2u);
+    EXPECT_EQ(lift.kinematic->path[0].t, 0.5);
+    EXPECT_EQ(lift.kinematic->path[0].angle, 0.3);
+    EXPECT_TRUE(lift.kinematic->loop);
+    EXPECT_FALSE(lift.is_static);
+}
+
+}  // namespace
+}  // namespace discreel::scene

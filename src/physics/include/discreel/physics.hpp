@@ -18,6 +18,23 @@
 
 namespace discreel::physics {
 
+// A kinematic body's motion: it moves as told, whatever touches it, and pushes what it meets
+// as an infinitely heavy body does (a moving platform, a windmill's sails).
+struct KinematicDef {
+    struct Pose {
+        double t = 0.0;            // seconds
+        Vec2 position;             // metres
+        double angle = 0.0;        // radians
+    };
+    Vec2 velocity;                 // m/s, kept for ever (no path)
+    double angular_velocity = 0.0; // rad/s, kept for ever (no path)
+    // When not empty: poses to pass through at their times, straight from one to the next
+    // (from where the body starts to the first, if that is after t = 0); after the last it
+    // stays there, or with `loop` starts again from the path's beginning.
+    std::vector<Pose> path;
+    bool loop = false;
+};
+
 // A body: a disc of `radius`, or, with `shape`, any convex shape, all in one numbering. A
 // world whose bodies are all plain discs is stepped by the disc solver; one with any shape by
 // the manifold solver (docs/physics.md, uses_manifold_solver).
@@ -32,6 +49,7 @@ struct BodyDef {
     double restitution = 0.8;      // coefficient of restitution, 0..1
     double friction = 0.2;         // Coulomb coefficient, >= 0
     bool is_static = false;        // a fixed peg: collides, never moves
+    std::optional<KinematicDef> kinematic;   // moved as told, not by what touches it
 };
 
 struct WallDef {

@@ -176,6 +176,7 @@ struct Body {
     double friction = 0.2;         // resolved from physics.friction when not given
     Color color;                   // resolved from a palette by index when not given
     bool is_static = false;        // a fixed peg: collides, never moves
+    std::optional<physics::KinematicDef> kinematic;   // moved as told (a platform, a windmill)
 };
 
 struct Waypoint {
