@@ -17,6 +17,9 @@ physics::BodyDef body_of(const scene::Body& d) {
     disc.is_static = d.is_static;
     disc.shape = d.shape;
     disc.kinematic = d.kinematic;
+    disc.category = d.category;
+    disc.collides = d.collides;
+    disc.sensor = d.sensor;
     return disc;
 }
 
@@ -48,6 +51,8 @@ physics::WorldDef build_world(const scene::Scene& scene) {
         wall.thickness = w.thickness;
         wall.restitution = w.restitution;
         wall.friction = w.friction;
+        wall.category = w.category;
+        wall.collides = w.collides;
         def.walls.push_back(wall);
     }
     def.joints = scene.joints;

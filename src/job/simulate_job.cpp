@@ -1,4 +1,5 @@
 // job::simulate: the physics of a whole clip, without drawing, and its trace and events.
+#include <algorithm>
 #include <chrono>
 
 #include "discreel/commit.hpp"
@@ -26,7 +27,10 @@ Expected<SimulateSummary> simulate(const SimulateDef& def) {
         }
         warnings.say(playback.take_warnings());
         const std::vector<physics::ContactEvent> events = playback.take_events();
-        summary.contacts += events.size();
+        summary.contacts += static_cast<std::size_t>(
+            std::count_if(events.begin(), events.end(), [](const physics::ContactEvent& e) {
+                return e.kind == physics::ContactEvent::Kind::contact;
+            }));
         outputs->record(frame, playback.time_of_frame(frame), playback.world(), events);
         const physics::WorldStats stats = playback.world().stats();
         if (stats.max_overlap > summary.deepest.max_overlap) summary.deepest = stats;

@@ -74,6 +74,8 @@ Status write_soundtrack(const scene::Scene& scene, FrameRange range, const Sampl
         const render::Camera camera = playback.frame_scene(frame).camera;
         const double half_width = camera.height * aspect / 2;
         for (const physics::ContactEvent& event : playback.take_events()) {
+            // A sensor's overlaps are silent: nothing struck.
+            if (event.kind != physics::ContactEvent::Kind::contact) continue;
             const Body& body = bodies[event.a];
             const bool disc = event.other_kind == physics::ContactEvent::Other::body;
             const Body other = disc ? bodies[event.other]

@@ -84,7 +84,7 @@ Expected<EventWriter> EventWriter::create(const std::string& path, const scene::
 
 EventWriter::EventWriter(AtomicTextFile file, const scene::Scene& scene)
     : file_(std::move(file)), scene_(&scene) {
-    file_.write("t,a,b,impulse\n");
+    file_.write("t,a,b,impulse,kind\n");
 }
 
 void EventWriter::write(std::span<const physics::ContactEvent> events) {
@@ -101,7 +101,9 @@ void EventWriter::write(std::span<const physics::ContactEvent> events) {
         }
         row_ += ',';
         append_number(row_, e.impulse);
-        row_ += '\n';
+        row_ += e.kind == physics::ContactEvent::Kind::begin ? ",begin\n"
+                : e.kind == physics::ContactEvent::Kind::end ? ",end\n"
+                                                             : ",contact\n";
         file_.write(row_);
     }
 }

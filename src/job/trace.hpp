@@ -53,7 +53,8 @@ private:
 
 class EventWriter {
 public:
-    // t,a,b,impulse — one row per new contact; b is a disc id or wall:<index>.
+    // t,a,b,impulse,kind — one row per new contact (kind `contact`) and per overlap of a sensor
+    // that began or ended (`begin`, `end`, impulse 0); b is a body id or wall:<index>.
     static Expected<EventWriter> create(const std::string& path, const scene::Scene& scene);
     void write(std::span<const physics::ContactEvent> events);
     AtomicTextFile& file() { return file_; }

@@ -101,7 +101,7 @@ void BodySolver::predict_impact(const std::vector<Body>& bodies, std::uint32_t i
     const Body& b = bodies[j];
     if (a.inv_mass == 0 && b.inv_mass == 0) return;
     if (!fast_[i] && !fast_[j]) return;
-    if (joints_.keeps_apart(std::min(i, j), std::max(i, j))) return;
+    if (apart(std::min(i, j), std::max(i, j))) return;
     if (predictions_left_ == 0) {
         // Out of sweeps: whichever of the two moves stays where its sweep starts.
         if (a.inv_mass > 0) unchecked_[i] = 1;

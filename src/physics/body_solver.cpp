@@ -58,7 +58,7 @@ void BodySolver::list_pairs(const std::vector<Body>& bodies) {
         const auto i = static_cast<std::uint32_t>(key >> 32);
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
         if ((stirring_[i] | stirring_[j]) != 0 && boxes_overlap(boxes_[i], boxes_[j]) &&
-            !joints_.keeps_apart(i, j)) {
+            !apart(i, j)) {
             pairs_.push_back(key);
         }
     }
@@ -182,6 +182,7 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
         correct_joints(bodies);
     }
     record_touches();
+    sense(bodies);
     std::swap(contacts_, fresh_);
     count_motion(bodies, kept);
     fall_asleep(bodies, dt);
@@ -330,6 +331,48 @@ void BodySolver::record_touches() {
     }
 }
 
+void BodySolver::sense(const std::vector<Body>& bodies) {
+    sensed_.clear();
+    if (!filter_.any_sensor()) return;
+    // The broad phase's pairs hold every pair whose boxes can overlap in the step: a sensor's
+    // that overlap now are measured at the step's end.
+    sensing_now_.clear();
+    for (const std::uint64_t key : fat_list_) {
+        const auto i = static_cast<std::uint32_t>(key >> 32);
+        const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
+        if (!filter_.senses(i, j) || !boxes_overlap(boxes_[i], boxes_[j])) continue;
+        const Body& a = bodies[i];
+        const Body& b = bodies[j];
+        const Manifold m = collide(shapes_[i], Transform::of(a.x, a.angle), shapes_[j],
+                                   Transform::of(b.x, b.angle), 0);
+        bool overlapping = false;
+        for (int k = 0; k < m.count; ++k) overlapping = overlapping || m.points[k].separation < 0;
+        if (overlapping) sensing_now_.push_back(key);
+    }
+    std::sort(sensing_now_.begin(), sensing_now_.end());
+    // Began: now, not before; ended: before, not now (both lists ascending).
+    const auto event = [&](std::uint64_t key, PairTouch::Kind kind) {
+        PairTouch t;
+        t.a = static_cast<std::uint32_t>(key >> 32);
+        t.b = static_cast<std::uint32_t>(key & 0xffffffffu);
+        t.began = true;
+        t.kind = kind;
+        sensed_.push_back(t);
+    };
+    std::size_t p = 0, q = 0;
+    while (p < sensing_.size() || q < sensing_now_.size()) {
+        if (q == sensing_now_.size() || (p < sensing_.size() && sensing_[p] < sensing_now_[q])) {
+            event(sensing_[p++], PairTouch::Kind::end);
+        } else if (p == sensing_.size() || sensing_now_[q] < sensing_[p]) {
+            event(sensing_now_[q++], PairTouch::Kind::begin);
+        } else {
+            ++p;
+            ++q;
+        }
+    }
+    std::swap(sensing_, sensing_now_);
+}
+
 BodySolver::Overlap BodySolver::max_overlap(const std::vector<Body>& bodies,
                                             std::span<const Polygon> shapes) const {
     // Every pair of the broad phase's whose boxes overlap (a fast pair left to its impacts has
@@ -340,7 +383,7 @@ BodySolver::Overlap BodySolver::max_overlap(const std::vector<Body>& bodies,
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
         const Body& a = bodies[i];
         const Body& b = bodies[j];
-        if (!boxes_overlap(boxes_[i], boxes_[j]) || joints_.keeps_apart(i, j)) continue;
+        if (!boxes_overlap(boxes_[i], boxes_[j]) || apart(i, j)) continue;
         const Manifold m = collide(shapes[i], Transform::of(a.x, a.angle), shapes[j],
                                    Transform::of(b.x, b.angle), 0);
         for (int k = 0; k < m.count; ++k) {

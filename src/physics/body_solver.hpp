@@ -22,6 +22,7 @@
 #include "island.hpp"
 #include "joint.hpp"
 #include "manifold.hpp"
+#include "pair_filter.hpp"
 #include "pair_touch.hpp"
 #include "shape.hpp"
 #include "toi.hpp"
@@ -149,6 +150,10 @@ public:
     // The world's joints (joint.hpp), solved with the contacts from the next step on.
     void set_joints(Joints joints) { joints_ = std::move(joints); }
     const Joints& joints() const { return joints_; }
+    // Which pairs may touch (pair_filter.hpp): categories, sensors.
+    PairFilter& filter() { return filter_; }
+    // The sensors' overlaps that began or ended in the last step, in pair order.
+    std::span<const PairTouch> sensed() const { return sensed_; }
 
 private:
     struct Anchor {
@@ -338,6 +343,17 @@ private:
     BodySolverDef def_;
     StepProfile* profile_ = nullptr;
     Joints joints_;
+    PairFilter filter_;
+    // Whether bodies i < j make no contact: a joint or their categories keep them apart, or
+    // one is a sensor.
+    bool apart(std::uint32_t i, std::uint32_t j) const {
+        return filter_.excludes(i, j) || joints_.keeps_apart(i, j);
+    }
+    // (body_solver.cpp) The sensors' overlaps now against the
+    // last step's: sensing_ (a << 32 | b, ascending) and the events in sensed_.
+    void sense(const std::vector<Body>& bodies);
+    std::vector<std::uint64_t> sensing_, sensing_now_;
+    std::vector<PairTouch> sensed_;
     double dt_ = 0;                         // s: this step's
     std::span<const Polygon> shapes_;       // each body's shape: set by step(), read within it
     // Per body: its shape's inner radius (toi.hpp), metres (< 0: not computed yet), and how

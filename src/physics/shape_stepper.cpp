@@ -56,9 +56,21 @@ ShapeStepper::ShapeStepper(const WorldDef& def, int substeps, std::vector<Body>&
         add(shape, 0.5 * (a + b), std::atan2(b.y() - a.y(), b.x() - a.x()), i);
     }
     solver_.set_joints(Joints(def.joints, bodies));
+    for (std::size_t i = 0; i < def.bodies.size(); ++i) {
+        const BodyDef& d = def.bodies[i];
+        solver_.filter().set(static_cast<std::uint32_t>(i), d.category, d.collides, d.sensor);
+    }
+    for (std::size_t k = 0; k < wall_of_.size(); ++k) {
+        const WallDef& w = def.walls[wall_of_[k]];
+        solver_.filter().set(static_cast<std::uint32_t>(body_count_ + k), w.category, w.collides,
+                             false);
+    }
 }
 
-void ShapeStepper::replaced(std::size_t i, const BodyDef& def) { shapes_[i] = shape_of(def); }
+void ShapeStepper::replaced(std::size_t i, const BodyDef& def) {
+    shapes_[i] = shape_of(def);
+    solver_.filter().set(static_cast<std::uint32_t>(i), def.category, def.collides, def.sensor);
+}
 
 void ShapeStepper::step(std::vector<Body>& bodies, double t0, double t1, bool thrown,
                         std::vector<PairTouch>& began) {
@@ -74,6 +86,7 @@ void ShapeStepper::step(std::vector<Body>& bodies, double t0, double t1, bool th
         for (const PairTouch& touch : solver_.touches()) {
             if (touch.began) began.push_back(touch);
         }
+        began.insert(began.end(), solver_.sensed().begin(), solver_.sensed().end());
         touching_ = solver_.touching();
     }
 }

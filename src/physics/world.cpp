@@ -34,6 +34,21 @@ bool any_shape(const WorldDef& def) {
            });
 }
 
+// Joints, filters and sensors are the manifold solver's.
+bool any_joint_filter_or_sensor(const WorldDef& def) {
+    const auto set = [](const BodyDef& d) {
+        return d.sensor || d.category != 1 || d.collides != 0xffffffffu;
+    };
+    const auto wall_set = [](const WallDef& w) {
+        return w.category != 2 || w.collides != 0xffffffffu;
+    };
+    return !def.joints.empty() || std::any_of(def.bodies.begin(), def.bodies.end(), set) ||
+           std::any_of(def.walls.begin(), def.walls.end(), wall_set) ||
+           std::any_of(def.respawns.begin(), def.respawns.end(), [&](const RespawnDef& r) {
+               return std::any_of(r.bodies.begin(), r.bodies.end(), set);
+           });
+}
+
 }  // namespace
 
 struct World::Impl {
@@ -44,7 +59,7 @@ struct World::Impl {
                                                       1.0 / (longest_substep * def.rate))))),
           gravity(def.gravity),
           body_count(def.bodies.size()),
-          manifold(uses_manifold_solver(any_shape(def), !def.joints.empty())),
+          manifold(uses_manifold_solver(any_shape(def), any_joint_filter_or_sensor(def))),
           throws(def.throws),
           kinematics(def.bodies),
           respawns(def.respawns),
@@ -145,6 +160,9 @@ void World::Impl::add_events(double t) {
             e.other = touch.b;
         }
         e.impulse = touch.impulse;
+        e.kind = touch.kind == PairTouch::Kind::begin ? ContactEvent::Kind::begin
+                 : touch.kind == PairTouch::Kind::end ? ContactEvent::Kind::end
+                                                      : ContactEvent::Kind::contact;
         events.push_back(e);
     }
 }

@@ -21,10 +21,11 @@
 namespace discreel::scene::detail {
 namespace {
 
-constexpr std::array<std::string_view, 18> entry_keys{
-    "id",       "position", "velocity",    "angle",    "angular_velocity", "mass",
-    "density",  "restitution", "friction", "color",    "static",           "rounding",
-    "box",      "polygon",  "capsule",     "circle",   "random_polygons",  "kinematic"};
+constexpr std::array<std::string_view, 21> entry_keys{
+    "id",        "position", "velocity",    "angle",    "angular_velocity", "mass",
+    "density",   "restitution", "friction", "color",    "static",           "rounding",
+    "box",       "polygon",  "capsule",     "circle",   "random_polygons",  "kinematic",
+    "category",  "collides", "sensor"};
 constexpr std::array<std::string_view, 5> shape_keys{"box", "polygon", "capsule", "circle",
                                                       "random_polygons"};
 constexpr std::array<std::string_view, 2> capsule_keys{"length", "radius"};

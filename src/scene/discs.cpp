@@ -20,10 +20,10 @@
 namespace discreel::scene::detail {
 namespace {
 
-constexpr std::array<std::string_view, 15> entry_keys{
-    "id",       "position",    "velocity", "angle",  "angular_velocity", "radius", "mass",
-    "density",  "restitution", "friction", "color",  "static",           "grid",   "random",
-    "kinematic"};
+constexpr std::array<std::string_view, 18> entry_keys{
+    "id",        "position",    "velocity", "angle",  "angular_velocity", "radius", "mass",
+    "density",   "restitution", "friction", "color",  "static",           "grid",   "random",
+    "kinematic", "category",    "collides", "sensor"};
 // A generator's own keys, followed by the per-disc keys it applies to every disc. Those may be
 // written inside `grid:` (as docs/scene-format.md shows) or beside it; `position` is recognised
 // only so that the message can say what to use instead.
@@ -66,6 +66,9 @@ Properties read_properties(Loader& loader, const Fields& fields, const Value& it
     if (const auto v = fields.get("color")) p.color = read_color(*v, d);
     if (const auto v = fields.get("static"))
         if (const auto s = read_bool(*v, d)) p.is_static = *s;
+    read_filter(loader, fields, p.category, p.collides);
+    if (const auto v = fields.get("sensor"))
+        if (const auto s = read_bool(*v, d)) p.sensor = *s;
     if (const auto v = fields.get("kinematic")) {
         if (p.is_static) {
             d.error(fields.key_location("kinematic"),
@@ -112,6 +115,9 @@ Body make_disc(const Properties& p, std::string id, Vec2 position, double radius
     disc.color = p.color ? *p.color : palette_color(index);
     disc.is_static = p.is_static;
     disc.kinematic = p.kinematic;
+    disc.category = p.category;
+    disc.collides = p.collides;
+    disc.sensor = p.sensor;
     disc.inertia = inertia_of(disc);
     return disc;
 }
@@ -553,7 +559,7 @@ void check_discs(Loader& loader) {
     // A shape's circle is only its bound: for a pair with a shape the outlines decide, and a
     // pair clear by its outlines does not hide a later overlap of the same body.
     // Bodies a joint joins (without `collide`) never collide, and may start overlapping: a
-    // chain's links overlap at their pins.
+    // chain's links overlap at their pins; so may bodies that do not meet.
     std::vector<std::pair<std::size_t, std::size_t>> joined;
     for (const physics::JointDef& j : loader.scene.joints) {
         if (j.a && j.b && !j.collide) joined.emplace_back(std::min(*j.a, *j.b), std::max(*j.a, *j.b));
@@ -564,6 +570,11 @@ void check_discs(Loader& loader) {
         const Body& b = discs[earlier];
         if (std::binary_search(joined.begin(), joined.end(),
                                std::pair{std::min(later, earlier), std::max(later, earlier)})) {
+            return false;
+        }
+        // Nor do a sensor and what it watches, or bodies whose categories exclude each other.
+        if (a.sensor || b.sensor || (a.category & b.collides) == 0 ||
+            (b.category & a.collides) == 0) {
             return false;
         }
         if (!a.shape && !b.shape) return true;

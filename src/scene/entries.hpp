@@ -24,7 +24,16 @@ struct Properties {
     std::optional<Color> color;       // none: from the palette by body index
     bool is_static = false;
     std::optional<physics::KinematicDef> kinematic;   // single entries only
+    std::uint32_t category = 1, collides = 0xffffffffu;   // bits (categories.cpp)
+    bool sensor = false;
 };
+
+// A category name's bit (categories.cpp), given the next free one when first named; nothing
+// when the name is not valid or a 33rd.
+std::optional<std::uint32_t> category_bit(Loader& loader, const Value& value);
+// `category` and `collides` of an entry into the bits; false on a problem (reported).
+bool read_filter(Loader& loader, const Fields& fields, std::uint32_t& category,
+                 std::uint32_t& collides);
 
 // A `kinematic:` mapping; nothing when it has problems (each reported).
 std::optional<physics::KinematicDef> read_kinematic(const Value& value, Diagnostics& d);

@@ -156,7 +156,14 @@ void check_envelope(Loader& loader) {
         std::any_of(scene.respawns.begin(), scene.respawns.end(), [&](const Respawn& r) {
             return std::any_of(r.bodies.begin(), r.bodies.end(), shaped);
         }),
-        !scene.joints.empty());
+        !scene.joints.empty() ||
+            std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                        [](const Body& b) {
+                            return b.sensor || b.category != 1 || b.collides != 0xffffffffu;
+                        }) ||
+            std::any_of(scene.walls.begin(), scene.walls.end(), [](const Wall& w) {
+                return w.category != 2 || w.collides != 0xffffffffu;
+            }));
     if (ratio > physics::envelope.crowd_mass_ratio) {
         // A crowd this far apart in mass sinks in at any speed: the speeds are not judged.
         const BodySource& source = loader.sources[extremes->heaviest];

@@ -2,6 +2,8 @@
 // State shared by the section readers while one scene file is loaded. Each section reads its
 // part of the YAML into Scene and reports problems; load.cpp calls them in dependency order
 // (physics before discs: discs take their defaults from it; discs before throws).
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,6 +44,9 @@ struct Loader {
     std::vector<ThrowSource> throw_sources;  // parallel to scene.throws, filled by read_throws
     Limits limits;
     std::optional<double> clip_duration;   // seconds, when the caller overrides video.duration
+    // Category names (`category`, `collides`) and their bits, in the order first named after
+    // "default" (1) and "walls" (2).
+    std::map<std::string, std::uint32_t> category_bits;
 };
 
 void read_video(Loader& loader, const Value& value);

@@ -3,13 +3,14 @@
 #include <array>
 #include <string_view>
 
+#include "entries.hpp"
 #include "loader.hpp"
 
 namespace discreel::scene::detail {
 
 void read_walls(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 6> known{"box",         "segment",  "thickness",
-                                                           "restitution", "friction", "color"};
+    static constexpr std::array<std::string_view, 8> known{
+        "box", "segment", "thickness", "restitution", "friction", "color", "category", "collides"};
     auto& d = loader.diagnostics;
     const auto items = read_list(value, d);
     if (!items) return;
@@ -24,6 +25,7 @@ void read_walls(Loader& loader, const Value& value) {
         Wall wall;
         wall.restitution = loader.scene.physics.restitution;
         wall.friction = loader.scene.physics.friction;
+        read_filter(loader, *fields, wall.category, wall.collides);
         const bool has_box = fields->has("box"), has_segment = fields->has("segment");
         if (has_box && has_segment) {
             d.error(fields->key_location(fields->later_of("box", "segment")),

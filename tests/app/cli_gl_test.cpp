@@ -450,17 +450,19 @@ TEST(CliTest, EventsListNewContactsWithTheirImpulse) {
     std::istringstream in(read_file(dir / "events.csv"));
     std::string line;
     std::getline(in, line);
-    EXPECT_EQ(line, "t,a,b,impulse");
+    EXPECT_EQ(line, "t,a,b,impulse,kind");
     int rows = 0, wall_rows = 0;
     double previous_t = 0;
     while (std::getline(in, line)) {
         ++rows;
         std::istringstream fields(line);
-        std::string t, a, b, impulse;
+        std::string t, a, b, impulse, kind;
         std::getline(fields, t, ',');
         std::getline(fields, a, ',');
         std::getline(fields, b, ',');
         std::getline(fields, impulse, ',');
+        std::getline(fields, kind, ',');
+        EXPECT_EQ(kind, "contact") << line;
         EXPECT_GE(std::stod(t), previous_t) << line;
         previous_t = std::stod(t);
         EXPECT_TRUE(a == "red" || a == "teal" || a == "peg") << line;
@@ -577,7 +579,7 @@ bodies:
     // mass 2 * 0.5 = 1 kg; inertia (1 + 0.25) / 12 kg m^2 (to the last bit of its sum of
     // parts); radius the half-diagonal.
     EXPECT_EQ(first, "0,0,crate,2,0.5,0,0,0,0,0.5590169943749475,1,0.10416666666666666");
-    EXPECT_EQ(read_file(dir / "e.csv").substr(0, 14), "t,a,b,impulse\n");
+    EXPECT_EQ(read_file(dir / "e.csv").substr(0, 19), "t,a,b,impulse,kind\n");
     std::istringstream events(read_file(dir / "e.csv"));
     std::string line;
     int rows = 0;

@@ -482,3 +482,60 @@ TEST(Kinematic, AKinematicDiscAmongDiscsMovesExactlyAndPushes) {
 
 }  // namespace
 }  // namespace discreel::physics
+
+namespace discreel::physics {
+namespace {
+
+TEST(Filters, DiscsWhoseCategoriesExcludeEachOtherPassThroughAndStillMeetWalls) {
+    WorldDef def = empty_world({0, 0});
+    def.walls.push_back(testing::box({-5, -5}, {5, 5}));
+    BodyDef ghost = testing::disc({-2, 0}, {2, 0}, 0.5, 1);
+    ghost.category = 4;                 // "ghosts"
+    ghost.collides = 2;                 // walls only
+    def.bodies.push_back(ghost);
+    def.bodies.push_back(testing::disc({2, 0}, {-2, 0}, 0.5, 1));   // meets everything
+    World world(def);
+    EXPECT_TRUE(world.manifold_solver());
+    while (world.time() < 1) world.step();
+    // They crossed without touching: each 2 m on.
+    EXPECT_NEAR(world.bodies()[0].position.x, 0, 1e-9);
+    EXPECT_NEAR(world.bodies()[1].position.x, 0, 1e-9);
+    EXPECT_TRUE(world.take_events().empty());
+    while (world.time() < 4) world.step();
+    // ... and bounced off the walls (reached at 3.25 s), elastic.
+    EXPECT_NEAR(world.bodies()[0].velocity.x, -2, 1e-9);
+    EXPECT_NEAR(world.bodies()[1].velocity.x, 2, 1e-9);
+}
+
+TEST(Sensors, ADiscFallingThroughASensorBeginsAndEndsWithinAStep) {
+    // A disc of r = 0.2 dropped from rest at y = 5 through a static 1 m tall sensor from y = 2
+    // to 3: it overlaps once its bottom passes 3 and until its top passes 2.
+    WorldDef def = empty_world();
+    BodyDef gate = testing::body(box_shape(2, 1).value(), {0, 2.5});
+    gate.is_static = true;
+    gate.sensor = true;
+    def.bodies.push_back(gate);
+    def.bodies.push_back(testing::disc({0, 5}, {0, 0}, 0.2, 1));
+    World world(def);
+    std::vector<ContactEvent> events;
+    while (world.time() < 2) {
+        world.step();
+        for (const ContactEvent& e : world.take_events()) events.push_back(e);
+    }
+    ASSERT_EQ(events.size(), 2u);
+    const double begin = std::sqrt(2 * (5 - 0.2 - 3) / g), end = std::sqrt(2 * (5 + 0.2 - 2) / g);
+    EXPECT_EQ(events[0].kind, ContactEvent::Kind::begin);
+    EXPECT_EQ(events[0].a, 0u);
+    EXPECT_EQ(events[0].other, 1u);
+    EXPECT_EQ(events[0].impulse, 0);
+    EXPECT_NEAR(events[0].t, begin, 1.0 / world.rate());
+    EXPECT_GE(events[0].t, begin);
+    EXPECT_EQ(events[1].kind, ContactEvent::Kind::end);
+    EXPECT_NEAR(events[1].t, end, 1.0 / world.rate());
+    EXPECT_GE(events[1].t, end);
+    // It pushed nothing: the disc fell freely through.
+    EXPECT_NEAR(world.bodies()[1].velocity.y, -g * world.time(), 1e-9);
+}
+
+}  // namespace
+}  // namespace discreel::physics

@@ -146,3 +146,47 @@ TEST(Kinematic, AKinematicBodyLoadsItsMotion) {
 
 }  // namespace
 }  // namespace discreel::scene
+
+namespace discreel::scene {
+namespace {
+
+TEST(Filters, CategoriesAreBitsInTheOrderNamedAndSensorsLoad) {
+    const Scene scene = testing::load_ok(
+        "version: 1\n"
+        "walls:\n"
+        "  - {box: [[0, 0], [10, 10]], collides: [default, ghosts]}\n"
+        "discs:\n"
+        "  - {id: ghost, position: [2, 2], radius: 0.3, category: ghosts, collides: [walls]}\n"
+        "  - {id: other, position: [2, 2.2], radius: 0.3}\n"   // overlaps the ghost: allowed
+        "bodies:\n"
+        "  - {id: gate, box: [2, 1], position: [5, 5], static: true, sensor: true}\n");
+    EXPECT_EQ(scene.walls[0].category, 2u);
+    EXPECT_EQ(scene.walls[0].collides, 1u | 4u);
+    EXPECT_EQ(scene.bodies[0].category, 4u);
+    EXPECT_EQ(scene.bodies[0].collides, 2u);
+    EXPECT_EQ(scene.bodies[1].category, 1u);
+    EXPECT_EQ(scene.bodies[1].collides, 0xffffffffu);
+    EXPECT_TRUE(scene.bodies[2].sensor);
+}
+
+TEST(Filters, MistakesAreReportedAtTheirPlace) {
+    std::string many = "version: 1\ndiscs:\n";
+    for (int k = 0; k < 31; ++k) {
+        many += "  - {position: [" + std::to_string(2 * k) + ", 1], radius: 0.5, category: c" +
+                std::to_string(k) + "}\n";
+    }
+    EXPECT_EQ(testing::problems(many),
+              Lines{"s.yaml:33:48: discs[30].category: 'c30' would be a 33rd category; a scene "
+                    "may name at most 32 (default and walls included)"});
+    EXPECT_EQ(testing::problems("version: 1\ndiscs:\n  - {position: [1, 1], radius: 0.5, "
+                                "collides: walls}\n"),
+              Lines{"s.yaml:3:47: discs[0].collides: expected a list (items starting with '- '), got "
+                    "'walls'"});
+    EXPECT_EQ(testing::problems("version: 1\ndiscs:\n  - {position: [1, 1], radius: 0.5, "
+                                "category: [a]}\n"),
+              Lines{"s.yaml:3:47: discs[0].category: expected a category name, got a list of "
+                    "1 item"});
+}
+
+}  // namespace
+}  // namespace discreel::scene

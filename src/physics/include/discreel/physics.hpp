@@ -50,6 +50,13 @@ struct BodyDef {
     double friction = 0.2;         // Coulomb coefficient, >= 0
     bool is_static = false;        // a fixed peg: collides, never moves
     std::optional<KinematicDef> kinematic;   // moved as told, not by what touches it
+    // Collision filtering: two things touch only where each one's category is among the
+    // other's `collides` bits (docs/physics.md, "Filters and sensors").
+    std::uint32_t category = 1;    // one bit; 1: "default"
+    std::uint32_t collides = 0xffffffffu;   // bits of the categories it meets; all by default
+    // A sensor pushes nothing and is pushed by nothing: its overlaps with the bodies it meets
+    // are reported as events (ContactEvent::Kind::begin and end).
+    bool sensor = false;
 };
 
 struct WallDef {
@@ -63,6 +70,8 @@ struct WallDef {
     double thickness = 0.02;       // metres, full thickness
     double restitution = 0.8;
     double friction = 0.2;
+    std::uint32_t category = 2;    // one bit; 2: "walls"
+    std::uint32_t collides = 0xffffffffu;
 };
 
 // Mixing rule for a contact between two materials (documented in docs/physics.md).
@@ -111,10 +120,11 @@ struct Envelope {
 inline constexpr Envelope envelope{};
 
 // Which solver steps a world: the manifold solver once any body has a shape, among the
-// definition's bodies or those its respawns bring, or any joint joins bodies; the disc solver
-// otherwise. Scenes ask it to know which of the envelope's speed limits applies.
-inline bool uses_manifold_solver(bool any_shaped_body, bool any_joint = false) {
-    return any_shaped_body || any_joint;
+// definition's bodies or those its respawns bring, or any joint, collision filter or sensor is
+// set; the disc solver otherwise. Scenes ask it to know which of the envelope's speed limits
+// applies.
+inline bool uses_manifold_solver(bool any_shaped_body, bool any_joint_filter_or_sensor = false) {
+    return any_shaped_body || any_joint_filter_or_sensor;
 }
 
 // The moment of inertia about the centroid of a body of this definition's shape and mass,
@@ -207,6 +217,9 @@ struct JointState {
 // A pair that was not touching one step before and touches now: one per pair of bodies,
 // whatever the number of points their contact has.
 struct ContactEvent {
+    // A contact began; or a body began or ended overlapping a sensor (impulse 0).
+    enum class Kind { contact, begin, end };
+    Kind kind = Kind::contact;
     double t = 0.0;                // seconds, time of the step that found it
     std::size_t a = 0;             // body index
     enum class Other { body, wall };
