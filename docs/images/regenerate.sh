@@ -25,3 +25,4 @@ still shapes 4.0
 still bridge 1.3
 still cradle-strings 1.2
 still pendulum-wave 6.0 960x360
+still windmill 2.0

@@ -30,14 +30,16 @@ constexpr std::array<std::string_view, 5> shape_keys{"box", "polygon", "capsule"
                                                       "random_polygons"};
 constexpr std::array<std::string_view, 2> capsule_keys{"length", "radius"};
 // The per-body keys a generator applies to every body, written inside it or beside it.
-constexpr std::array<std::string_view, 8> shared_body_keys{
-    "id", "mass", "density", "restitution", "friction", "color", "static", "rounding"};
+constexpr std::array<std::string_view, 11> shared_body_keys{
+    "id",     "mass",     "density",  "restitution", "friction", "color",
+    "static", "rounding", "category", "collides",    "sensor"};
 // The generator's own keys, the shared ones, and `angle`, recognised so that the message can
 // say what to use instead.
-constexpr std::array<std::string_view, 17> random_polygon_keys{
-    "count",   "region",  "sides",       "size",     "speed", "angular_speed",
-    "respawn_every", "colors", "id",     "mass",     "density", "restitution",
-    "friction", "color",  "static",      "rounding", "angle"};
+constexpr std::array<std::string_view, 20> random_polygon_keys{
+    "count",   "region",  "sides",       "size",     "speed",    "angular_speed",
+    "respawn_every", "colors", "id",     "mass",     "density",  "restitution",
+    "friction", "color",  "static",      "rounding", "category", "collides",
+    "sensor",  "angle"};
 
 // Generated polygons draw from their own streams, apart from the disc generators' (which use
 // their entry's index).

@@ -27,16 +27,17 @@ constexpr std::array<std::string_view, 18> entry_keys{
 // A generator's own keys, followed by the per-disc keys it applies to every disc. Those may be
 // written inside `grid:` (as docs/scene-format.md shows) or beside it; `position` is recognised
 // only so that the message can say what to use instead.
-constexpr std::array<std::string_view, 10> shared_disc_keys{
-    "id",   "velocity", "angle",       "angular_velocity", "mass",
-    "density", "restitution", "friction", "color",          "static"};
-constexpr std::array<std::string_view, 17> grid_keys{
+constexpr std::array<std::string_view, 13> shared_disc_keys{
+    "id",       "velocity",    "angle",    "angular_velocity", "mass",     "density",  "restitution",
+    "friction", "color",       "static",   "category",         "collides", "sensor"};
+constexpr std::array<std::string_view, 20> grid_keys{
     "origin", "count",    "spacing",     "radius",   "jitter", "colors", "id",   "velocity",
     "angle",  "angular_velocity", "mass", "density", "restitution", "friction", "color", "static",
-    "position"};
-constexpr std::array<std::string_view, 16> random_keys{
+    "category", "collides", "sensor", "position"};
+constexpr std::array<std::string_view, 19> random_keys{
     "count", "radius",  "region", "speed",   "colors",      "id",       "velocity", "angle",
-    "angular_velocity", "mass", "density", "restitution", "friction", "color", "static", "position"};
+    "angular_velocity", "mass", "density", "restitution", "friction", "color", "static",
+    "category", "collides", "sensor", "position"};
 
 }  // namespace
 
