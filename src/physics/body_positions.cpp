@@ -190,21 +190,9 @@ void BodySolver::offsets_now(const PairContact& pc, const V2& ra0, const V2& rb0
 }
 
 void BodySolver::turn_body(std::uint32_t i, double by) {
-    // The body's record of its turn in the step, and its cosine and sine with it by the
-    // angle-sum rule: a push turns a body by little, and below a hundredth of a radian the
-    // series (to the sixth power) is exact to rounding and needs no libm call.
+    // The body's record of its turn in the step, and its cosine and sine with it.
     turned_[i] += by;
-    double c = 0, s = 0;
-    if (std::abs(by) < 0.01) {
-        const double by2 = by * by;
-        c = 1 - by2 / 2 + by2 * by2 / 24;
-        s = by * (1 - by2 / 6 + by2 * by2 / 120);
-    } else {
-        c = std::cos(by);
-        s = std::sin(by);
-    }
-    const auto [c0, s0] = spin_[i];
-    spin_[i] = {c0 * c - s0 * s, s0 * c + c0 * s};
+    spin_[i] = turned_on(spin_[i], by);
 }
 
 void BodySolver::push_apart(std::vector<Body>& bodies, const PairContact& pc, const V2& ra,

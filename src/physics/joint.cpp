@@ -358,19 +358,7 @@ void Joints::move(std::vector<Body>& bodies, std::span<Moved> moved, std::uint32
     bodies[i].angle += turn;
     moved[i].by += by;
     moved[i].turn += turn;
-    // A correction turns a body by little: below a hundredth of a radian the series (to the
-    // sixth power) is exact to rounding.
-    double c = 0, s = 0;
-    if (std::abs(turn) < 0.01) {
-        const double t2 = turn * turn;
-        c = 1 - t2 / 2 + t2 * t2 / 24;
-        s = turn * (1 - t2 / 6 + t2 * t2 / 120);
-    } else {
-        c = std::cos(turn);
-        s = std::sin(turn);
-    }
-    const auto [c0, s0] = turn_[i];
-    turn_[i] = {c0 * c - s0 * s, s0 * c + c0 * s};
+    turn_[i] = turned_on(turn_[i], turn);
 }
 
 double Joints::correct_joint(const Joint& j, std::vector<Body>& bodies, std::span<Moved> moved) {
