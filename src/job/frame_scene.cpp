@@ -149,8 +149,8 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
             return rotated(Vec2{p.x - b.position.x, p.y - b.position.y}, -b.angle);
         };
         const double turn = j.a && *j.a < scene.bodies.size() ? scene.bodies[*j.a].angle : 0.0;
-        joint_ends_.push_back(
-            {local(j.a, j.anchor_a), local(j.b, j.anchor_b), rotated(j.axis, -turn)});
+        joint_ends_.push_back({local(j.a, j.anchor_a), local(j.b, j.anchor_b),
+                               rotated(normalised(j.axis), -turn)});
     }
 
     const scene::Trails& trails = scene.style.trails;

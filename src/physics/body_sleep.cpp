@@ -182,6 +182,11 @@ void BodySolver::forget(std::vector<Body>& bodies, std::size_t first, std::size_
     };
     std::erase_if(contacts_, replaced);
     std::erase_if(parked_, replaced);
+    // A sensor's overlaps with the old bodies go with them: a new body inside a sensor begins.
+    std::erase_if(sensing_, [&](std::uint64_t key) {
+        const auto a = static_cast<std::size_t>(key >> 32), b = static_cast<std::size_t>(key & 0xffffffffu);
+        return (a >= first && a < last) || (b >= first && b < last);
+    });
     unpark(bodies);
     count_parked();
 }

@@ -120,6 +120,7 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
     if (!wake_moved(bodies)) {
         // Every body that can move is asleep and stays so: nothing touches, nothing is swept.
         touches_.clear();
+        sensed_.clear();
         impact_touches_.clear();
         struck_impulse_.clear();
         predictions_made_ = 0;

@@ -80,10 +80,11 @@ void BodySolver::at_time(BlockContact& c, const PairContact& pc, const std::vect
     // their anchors, so that momentum and angular momentum are kept exactly.
     const Body& a = bodies[pc.a];
     const Body& b = bodies[pc.b];
+    // A body struck earlier in the step moved at its old velocity until then: its shift.
     const V2 va = a.v - fall_, vb = b.v - fall_;
-    const V2 xa = a.x + va * t, xb = b.x + vb * t;
-    const auto turn = [t](const V2& r, double omega) {
-        const double angle = omega * t;
+    const V2 xa = a.x + va * t + strike_shift_[pc.a], xb = b.x + vb * t + strike_shift_[pc.b];
+    const auto turn = [&](const V2& r, double omega, std::uint32_t body) {
+        const double angle = omega * t + strike_turn_[body];
         const double cs = std::cos(angle), sn = std::sin(angle);
         return V2(cs * r.x() - sn * r.y(), sn * r.x() + cs * r.y());
     };
@@ -92,13 +93,13 @@ void BodySolver::at_time(BlockContact& c, const PairContact& pc, const std::vect
     if (round_a && round_b) {
         if ((xb - xa).norm() > 0) n = (xb - xa).normalized();
     } else {
-        n = turn(c.normal, round_a ? b.omega : a.omega);
+        n = turn(c.normal, round_a ? b.omega : a.omega, round_a ? pc.b : pc.a);
     }
     const double ra_round = shapes_[pc.a].radius, rb_round = shapes_[pc.b].radius;
     for (int k = 0; k < c.count; ++k) {
         BlockPoint& p = c.points[k];
-        const V2 on_a = xa + turn(p.ra - ra_round * c.normal, a.omega) + ra_round * n;
-        const V2 on_b = xb + turn(p.rb + rb_round * c.normal, b.omega) - rb_round * n;
+        const V2 on_a = xa + turn(p.ra - ra_round * c.normal, a.omega, pc.a) + ra_round * n;
+        const V2 on_b = xb + turn(p.rb + rb_round * c.normal, b.omega, pc.b) - rb_round * n;
         const V2 mid = 0.5 * (on_a + on_b);
         p.ra = mid - xa;
         p.rb = mid - xb;

@@ -371,8 +371,14 @@ double Joints::correct_joint(const Joint& j, std::vector<Body>& bodies, std::spa
     };
     V2 ra = turned(pa, j.local_a);
     const V2 rb = turned(pb, j.local_b);
+    // A pass corrects at most max_shift metres and max_turn radians (Box2D's 0.2 m and 8
+    // degrees): a joint far from its geometry (a limit the start lies beyond) is brought back
+    // over steps, not flung there in one.
+    // The errors' sizes are returned whole, so the passes go on while they are large.
     const V2 d = (pb.x + rb) - (pa.x + ra);
-    const double angle = pb.angle - pa.angle - j.reference;
+    const double turn = pb.angle - pa.angle - j.reference;
+    const V2 d_step = d.norm() > max_shift ? V2(d * (max_shift / d.norm())) : d;
+    const double turn_step = std::clamp(turn, -max_turn, max_turn);
     // A positional impulse p (kg m) at the offsets and an angular one l (kg m^2 rad).
     const auto shift = [&](const V2& at_a, const V2& p, double l) {
         if (j.a != world && (ma > 0 || ia > 0)) {
@@ -385,7 +391,9 @@ double Joints::correct_joint(const Joint& j, std::vector<Body>& bodies, std::spa
     // A limit of an angle or a travel along u (u zero: an angle), pushed back within it.
     const auto limit = [&](double value, double mass, const V2& at_a, const V2& u) {
         if (!j.limited || !(mass > 0)) return 0.0;
-        const double c = value < j.lower ? value - j.lower : value > j.upper ? value - j.upper : 0;
+        const double c = std::clamp(
+            value < j.lower ? value - j.lower : value > j.upper ? value - j.upper : 0.0,
+            u == V2::Zero() ? -max_turn : -max_shift, u == V2::Zero() ? max_turn : max_shift);
         if (std::abs(c) <= tolerance) return std::abs(c);
         const double x = -mass * c;
         shift(at_a, x * u, u == V2::Zero() ? x : 0);
@@ -393,10 +401,10 @@ double Joints::correct_joint(const Joint& j, std::vector<Body>& bodies, std::spa
     };
     switch (j.kind) {
     case Kind::revolute: {
-        const double off = limit(angle, inverse_or_zero(ia + ib), ra, V2::Zero());
+        const double off = limit(turn, inverse_or_zero(ia + ib), ra, V2::Zero());
         if (d.norm() <= tolerance) return off;
         const auto k = point_matrix(ma, ia, ra, mb, ib, rb);
-        shift(ra, -solve2(k, d), 0);
+        shift(ra, -solve2(k, d_step), 0);
         return std::max(off, d.norm());
     }
     case Kind::distance: {
@@ -408,7 +416,7 @@ double Joints::correct_joint(const Joint& j, std::vector<Body>& bodies, std::spa
         const V2 u = d / length;
         const double cra = cross(ra, u), crb = cross(rb, u);
         const double mass = inverse_or_zero(ma + mb + ia * cra * cra + ib * crb * crb);
-        shift(ra, -mass * c * u, 0);
+        shift(ra, -mass * std::clamp(c, -max_shift, max_shift) * u, 0);
         return std::abs(c);
     }
     case Kind::prismatic: {
@@ -418,29 +426,30 @@ double Joints::correct_joint(const Joint& j, std::vector<Body>& bodies, std::spa
         const double off =
             limit(u.dot(d), inverse_or_zero(ma + mb + ia * a1 * a1 + ib * a2 * a2), ra, u);
         const double across = n.dot(d);
-        if (std::abs(across) <= tolerance && std::abs(angle) <= tolerance) return off;
+        if (std::abs(across) <= tolerance && std::abs(turn) <= tolerance) return off;
         const double s1 = cross(ra, n), s2 = cross(rb, n);
         const std::array<double, 6> k{ma + mb + ia * s1 * s1 + ib * s2 * s2, ia * s1 + ib * s2, 0,
                                       ia + ib, 0, 0};
+        const double across_step = std::clamp(across, -max_shift, max_shift);
         if (k[3] > 0) {
-            const V2 x = -solve2(k, {across, angle});
+            const V2 x = -solve2(k, {across_step, turn_step});
             shift(ra, x.x() * n, x.y());
         } else if (k[0] > 0) {
-            shift(ra, -across / k[0] * n, 0);
+            shift(ra, -across_step / k[0] * n, 0);
         }
-        return std::max({off, std::abs(across), std::abs(angle)});
+        return std::max({off, std::abs(across), std::abs(turn)});
     }
     case Kind::weld: {
         const auto k = point_matrix(ma, ia, ra, mb, ib, rb);
         if (j.spring) {
             if (d.norm() <= tolerance) return 0;
-            shift(ra, -solve2(k, d), 0);
+            shift(ra, -solve2(k, d_step), 0);
             return d.norm();
         }
-        if (d.norm() <= tolerance && std::abs(angle) <= tolerance) return 0;
-        const auto x = solve3(k, {-d.x(), -d.y(), -angle});
+        if (d.norm() <= tolerance && std::abs(turn) <= tolerance) return 0;
+        const auto x = solve3(k, {-d_step.x(), -d_step.y(), -turn_step});
         shift(ra, V2(x[0], x[1]), x[2]);
-        return std::max(d.norm(), std::abs(angle));
+        return std::max(d.norm(), std::abs(turn));
     }
     }
     return 0;

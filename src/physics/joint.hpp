@@ -68,6 +68,8 @@ public:
 
     // Below this error a joint is not moved by the position stage, metres (or radians).
     static constexpr double tolerance = 1e-6;
+    // The most one position pass moves a joint's error by, metres and radians.
+    static constexpr double max_shift = 0.2, max_turn = 0.14;
 
 private:
     struct Joint {

@@ -1,5 +1,6 @@
 #include "kinematics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace discreel::physics::detail {
@@ -29,15 +30,16 @@ Kinematics::Pose Kinematics::pose_at(const Moving& m, double t) {
         if (!m.def.loop || !(end > 0)) return {to_v2(path.back().position), path.back().angle};
         t = std::fmod(t, end);
     }
-    for (std::size_t k = 1; k < path.size(); ++k) {
-        const KinematicDef::Pose& p0 = path[k - 1];
-        const KinematicDef::Pose& p1 = path[k];
-        if (t >= p1.t) continue;
-        const double s = t <= p0.t ? 0.0 : (t - p0.t) / (p1.t - p0.t);
-        return {to_v2(p0.position) + (to_v2(p1.position) - to_v2(p0.position)) * s,
-                p0.angle + (p1.angle - p0.angle) * s};
-    }
-    return {to_v2(path.back().position), path.back().angle};
+    // The first pose after t (the path's times increase strictly).
+    const auto next = std::upper_bound(path.begin(), path.end(), t,
+                                       [](double v, const KinematicDef::Pose& p) { return v < p.t; });
+    if (next == path.begin()) return {to_v2(path.front().position), path.front().angle};
+    if (next == path.end()) return {to_v2(path.back().position), path.back().angle};
+    const KinematicDef::Pose& p0 = *(next - 1);
+    const KinematicDef::Pose& p1 = *next;
+    const double s = (t - p0.t) / (p1.t - p0.t);
+    return {to_v2(p0.position) + (to_v2(p1.position) - to_v2(p0.position)) * s,
+            p0.angle + (p1.angle - p0.angle) * s};
 }
 
 void Kinematics::start(std::vector<Body>& bodies) const {
@@ -54,15 +56,34 @@ void Kinematics::start(std::vector<Body>& bodies) const {
     }
 }
 
-void Kinematics::begin_step(double t0, double t1, std::vector<Body>& bodies) const {
+bool Kinematics::begin_step(double t0, double t1, std::vector<Body>& bodies) {
+    bool changed = jumped_;
+    jumped_ = false;
     for (const Moving& m : moving_) {
         Body& b = bodies[m.body];
-        const Pose from = pose_at(m, t0), to = pose_at(m, t1);
+        const Pose from = pose_at(m, t0);
+        Pose to = pose_at(m, t1);
+        // A looping path that starts its next lap within the step jumps back (unless it ends
+        // where it begins): the body moves on along the lap it is in, at that lap's last
+        // velocity, and is put at the new lap's pose at the step's end. Its chord would be
+        // the jump over one step: metres in 2 ms, pushing whatever it crosses.
+        const double end = m.def.path.empty() ? 0.0 : m.def.path.back().t;
+        if (m.def.loop && end > 0 && std::floor(t0 / end) != std::floor(t1 / end)) {
+            const double last = std::nextafter(end, 0.0);
+            const Pose before = pose_at(m, last - (t1 - t0));
+            const Pose at_end = pose_at(m, last);
+            to = {from.x + (at_end.x - before.x), from.angle + (at_end.angle - before.angle)};
+            jumped_ = true;
+        }
+        const V2 v = (to.x - from.x) / (t1 - t0);
+        const double omega = (to.angle - from.angle) / (t1 - t0);
+        changed = changed || v != b.v || omega != b.omega;
         b.x = from.x;
         b.angle = from.angle;
-        b.v = (to.x - from.x) / (t1 - t0);
-        b.omega = (to.angle - from.angle) / (t1 - t0);
+        b.v = v;
+        b.omega = omega;
     }
+    return changed;
 }
 
 void Kinematics::end_step(double t1, std::vector<Body>& bodies) const {

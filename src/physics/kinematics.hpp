@@ -19,7 +19,9 @@ public:
     // Takes hold of the kinematic bodies of `bodies`, at their pose at t = 0.
     void start(std::vector<Body>& bodies) const;
     // For the step [t0, t1]: each body at its pose at t0, with the velocities to its pose at t1.
-    void begin_step(double t0, double t1, std::vector<Body>& bodies) const;
+    // True when some body's velocity changed or one was put somewhere else since the last step
+    // (a looping path's new lap): the solver then forgets what it kept of the step before.
+    bool begin_step(double t0, double t1, std::vector<Body>& bodies);
     // Each body exactly at its pose at t1.
     void end_step(double t1, std::vector<Body>& bodies) const;
 
@@ -36,6 +38,7 @@ private:
     };
     static Pose pose_at(const Moving& m, double t);
     std::vector<Moving> moving_;
+    bool jumped_ = false;          // the last step ended by putting a body on a new lap
 };
 
 }  // namespace discreel::physics::detail

@@ -115,9 +115,9 @@ void World::Impl::step() {
     const double t1 = static_cast<double>(steps + 1) / rate;
     respawn(t0);
     const bool thrown = throws.begin_step(t0, t1, bodies);
-    kinematics.begin_step(t0, t1, bodies);
+    const bool steered = kinematics.begin_step(t0, t1, bodies);
     began.clear();
-    stepper->step(bodies, t0, t1, thrown, began);
+    stepper->step(bodies, t0, t1, thrown || steered, began);
     throws.end_step(t1, bodies);
     kinematics.end_step(t1, bodies);
     ++steps;

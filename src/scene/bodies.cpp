@@ -251,6 +251,11 @@ std::optional<PendingRespawns> read_random_polygons(Loader& loader, const Fields
     Fields merged = fields;
     merged.adopt(*own, shared_body_keys, d);
     bool ok = true;
+    if (merged.has("kinematic")) {
+        d.error(merged.key_location("kinematic"),
+                item.path + ": 'kinematic' moves one disc or body, not a generator's");
+        ok = false;
+    }
     for (const std::string_view misplaced : {"position", "velocity", "angle", "angular_velocity"}) {
         if (!merged.has(misplaced) && !own->has(misplaced)) continue;
         d.error(own->has(misplaced) ? own->key_location(misplaced) : merged.key_location(misplaced),

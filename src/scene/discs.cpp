@@ -431,6 +431,11 @@ void read_generator(Loader& loader, const Fields& fields, const Value& item,
     }
     Fields merged = fields;
     merged.adopt(*generator_fields, shared_disc_keys, d);
+    if (merged.has("kinematic")) {
+        d.error(merged.key_location("kinematic"),
+                item.path + ": 'kinematic' moves one disc or body, not a generator's");
+        ok = false;
+    }
     if (!is_grid && merged.has("velocity")) {
         d.error(merged.key_location("velocity"),
                 item.path + ": 'velocity' cannot be used with 'random'; give 'speed: [min, max]' "

@@ -1,10 +1,12 @@
 // `joints:` — pins, rods, ropes, springs, sliders and welds between bodies (or a body and the
 // world), each a mapping with one key that names its kind.
 #include <array>
+#include <set>
 #include <string>
 #include <string_view>
 
 #include "disc_ref.hpp"
+#include "entries.hpp"
 #include "loader.hpp"
 
 namespace discreel::scene::detail {
@@ -57,10 +59,7 @@ public:
         if (const auto v = fields_.get("motor")) read_motor(*v);
         if (const auto v = fields_.get("spring")) read_spring(*v);
         if (const auto v = fields_.get("collide")) j_.collide = flag(*v);
-        if (const auto v = fields_.get("id"); v && !v->node.IsScalar()) {
-            d_.error(v->where, v->path + ": expected a name, got " + describe(v->node));
-            ok_ = false;
-        }
+        if (const auto v = fields_.get("id")) ok_ = read_id(*v, d_).has_value() && ok_;
         return ok_;
     }
 
@@ -79,6 +78,12 @@ private:
             const auto index = resolve_disc(loader_, *values[k], ids_);
             ok_ = ok_ && index;
             *ends[k] = index;
+            if (index && respawned(*index)) {
+                d_.error(values[k]->where,
+                         values[k]->path + ": body '" + loader_.scene.bodies[*index].id +
+                             "' is replaced by its generator's respawns; a joint cannot hold it");
+                ok_ = false;
+            }
         }
         if (!values[0] && !values[1]) {
             d_.error(fields_.where(), fields_.path() +
@@ -91,6 +96,13 @@ private:
                                            "' to itself; 'a' and 'b' must be different bodies");
             ok_ = false;
         }
+    }
+
+    bool respawned(std::size_t body) const {
+        for (const Respawn& r : loader_.scene.respawns) {
+            if (body >= r.first && body < r.first + r.bodies.size()) return true;
+        }
+        return false;
     }
 
     Vec2 required_point(std::string_view key) {
@@ -115,6 +127,13 @@ private:
             const auto length = read_positive(*v, d_);
             ok_ = ok_ && length;
             j_.length = length.value_or(-1.0);
+        } else if (ok_ && j_.anchor_a.x == j_.anchor_b.x && j_.anchor_a.y == j_.anchor_b.y) {
+            // A length of 0 has no direction to hold along.
+            const auto at = fields_.get("anchor_b");
+            d_.error(at->where, at->path + ": the anchors are the same point, so the length "
+                                          "would be 0; give 'length', or use a revolute joint "
+                                          "to pin them together");
+            ok_ = false;
         }
     }
 
@@ -231,6 +250,7 @@ void read_joints(Loader& loader, const Value& value) {
         return;
     }
     const DiscIds ids(loader.scene.bodies);
+    std::set<std::string> named;   // the joints' ids so far
     for (const Value& item : *items) {
         if (d.full()) break;
         const std::size_t problems = d.count();
@@ -265,10 +285,15 @@ void read_joints(Loader& loader, const Value& value) {
         physics::JointDef j;
         j.kind = kind;
         if (!JointReader(loader, *fields, ids, kind, j).read()) continue;
-        const auto id = fields->get("id");
-        loader.scene.joint_ids.push_back(id && id->node.IsScalar()
-                                             ? id->node.Scalar()
-                                             : std::to_string(loader.scene.joints.size()));
+        std::string id = std::to_string(loader.scene.joints.size());
+        if (const auto v = fields->get("id")) {
+            id = v->node.Scalar();
+            if (!named.insert(id).second) {
+                d.error(v->where, v->path + ": id '" + id + "' is already used by another joint");
+                continue;
+            }
+        }
+        loader.scene.joint_ids.push_back(std::move(id));
         loader.scene.joints.push_back(j);
     }
 }

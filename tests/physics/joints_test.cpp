@@ -463,6 +463,25 @@ TEST(Kinematic, APathIsFollowedThroughItsPosesAndLoops) {
     EXPECT_NEAR(at(5).velocity.x, 4, 1e-9);
 }
 
+TEST(Kinematic, ALoopThatJumpsBackNeverSweepsAtTheJumpsSpeed) {
+    // From x = 2 to 6 in a second, then back to 2 for the next lap: the step of the jump keeps
+    // the lap's 4 m/s and puts the body at the lap's start at its end.
+    WorldDef def = empty_world({0, 0});
+    KinematicDef path;
+    path.path = {{0, {2, 5}, 0}, {1, {6, 5}, 0}};
+    path.loop = true;
+    def.bodies.push_back(kinematic_body(box_shape(1, 0.2).value(), {2, 5}, path));
+    World world(def);
+    double fastest = 0;
+    while (world.time() < 2.5) {
+        world.step();
+        fastest = std::max(fastest, std::abs(world.bodies()[0].velocity.x));
+        const double lap = world.time() - std::floor(world.time());
+        ASSERT_NEAR(world.bodies()[0].position.x, 2 + 4 * lap, 1e-9) << world.time();
+    }
+    EXPECT_NEAR(fastest, 4, 1e-9);
+}
+
 TEST(Kinematic, AKinematicDiscAmongDiscsMovesExactlyAndPushes) {
     // Plain discs only: the disc solver holds it as it holds a grabbed disc.
     WorldDef def = empty_world({0, 0});

@@ -99,6 +99,20 @@ TEST(Joints, MistakesAreReportedAtTheirPlace) {
                                              "weld: {b: arm, anchor: [1, 1]}}\n"),
               Lines{"s.yaml:6:42: joints[0]: one joint per entry; start another entry with '- "
                     "weld:'"});
+    EXPECT_EQ(problems(std::string(bodies) + "  - distance: {b: bob, anchor_a: [2, 3], "
+                                             "anchor_b: [2, 3]}\n"),
+              Lines{"s.yaml:6:52: joints[0].distance.anchor_b: the anchors are the same point, "
+                    "so the length would be 0; give 'length', or use a revolute joint to pin "
+                    "them together"});
+    EXPECT_EQ(problems(std::string(bodies) + "  - revolute: {id: pin, b: bob, anchor: [1, 1]}\n"
+                                             "  - revolute: {id: pin, b: arm, anchor: [1, 1]}\n"),
+              Lines{"s.yaml:7:20: joints[1].revolute.id: id 'pin' is already used by another "
+                    "joint"});
+    EXPECT_EQ(problems("version: 1\nbodies:\n  - random_polygons: {count: 2, region: [[0, 0], "
+                       "[8, 8]], size: [0.2, 0.3], respawn_every: 2}\n    id: rocks\n"
+                       "joints:\n  - revolute: {b: rocks.0, anchor: [1, 1]}\n"),
+              Lines{"s.yaml:6:19: joints[0].revolute.b: body 'rocks.0' is replaced by its "
+                    "generator's respawns; a joint cannot hold it"});
     EXPECT_EQ(problems(std::string(bodies) + "  - {}\n"),
               Lines{"s.yaml:6:5: joints[0]: a joint is one of revolute:, distance:, prismatic: "
                     "or weld:"});
@@ -117,6 +131,14 @@ TEST(Joints, MistakesAreReportedAtTheirPlace) {
 
 namespace discreel::scene {
 namespace {
+
+TEST(Kinematic, AGeneratorCannotBeKinematic) {
+    EXPECT_EQ(testing::problems("version: 1\ndiscs:\n  - grid: {origin: [1, 1], count: [2, 1], "
+                                "spacing: [1, 1], radius: 0.2}\n    kinematic: {velocity: [1, "
+                                "0]}\n"),
+              Lines{"s.yaml:4:5: discs[0]: 'kinematic' moves one disc or body, not a "
+                    "generator's"});
+}
 
 TEST(Kinematic, AKinematicBodyLoadsItsMotion) {
     const Scene scene = testing::load_ok(
