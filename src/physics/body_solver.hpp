@@ -49,11 +49,11 @@ struct BodySolverDef {
     int position_iterations = 8;   // overlap-removal sweeps per step
     // Passes over the joints' rows after each velocity iteration's pass over the contacts:
     // the tail of a 20-link chain whipping round gains energy and parts by 4 mm at one, holds
-    // under 0.2 mm at four (docs/tried.md); a joint costs little next to a contact.
+    // 0.35 mm at four (docs/tried.md); a joint costs little next to a contact.
     int joint_passes = 4;
     // The joints' position passes (body_joints.cpp), each time they run (twice a step), at
     // most: Box2D v2.4's three. At eight, a sagging 50 x 50 grid of pins cost 1.8 times as
-    // much for 0.1 of its 1.7 mm widest gap; a 20-link chain holds 0.2 mm either way.
+    // much for 0.1 of its 1.7 mm widest gap; a 20-link chain holds its pins within 0.35 mm.
     int joint_position_passes = 3;
     double speculative = 0.02;     // metres: points this far apart are already contacts
     double slop = 5e-4;            // metres of overlap left alone (resting contact jitters less)
