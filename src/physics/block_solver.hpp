@@ -38,6 +38,15 @@ struct BlockContact {
     double k11 = 0, k12 = 0, k22 = 0;
 };
 
+// A body's kinetic energy at these velocities, J, in a frame moving at `frame` (m/s); an
+// immovable body (inverse mass 0) has none.
+inline double kinetic_energy(const BlockBody& b, const V2& frame = V2::Zero()) {
+    double energy = 0;
+    if (b.inv_mass > 0) energy += 0.5 * (b.v - frame).squaredNorm() / b.inv_mass;
+    if (b.inv_inertia > 0) energy += 0.5 * b.omega * b.omega / b.inv_inertia;
+    return energy;
+}
+
 // Applies `impulse` (N s, on B; its opposite on A) at point p to both bodies.
 void apply_impulse(BlockBody& a, BlockBody& b, const BlockPoint& p, const V2& impulse);
 

@@ -9,13 +9,15 @@
 
 namespace discreel::physics::detail {
 
-std::uint32_t BodySolver::root(std::uint32_t i) {
-    while (parent_[i] != i) {
-        parent_[i] = parent_[parent_[i]];
-        i = parent_[i];
+std::uint32_t BodySolver::root_in(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
     }
     return i;
 }
+
+std::uint32_t BodySolver::root(std::uint32_t i) { return root_in(parent_, i); }
 
 std::optional<std::pair<std::uint32_t, std::uint32_t>> BodySolver::unite(std::uint32_t i,
                                                                        std::uint32_t j) {

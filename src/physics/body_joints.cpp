@@ -44,10 +44,7 @@ void BodySolver::limit_joint_energy(const std::vector<Body>& bodies) {
     std::vector<std::uint32_t>& group = cluster_;
     group.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) group[i] = i;
-    const auto find = [&](std::uint32_t i) {
-        while (group[i] != i) i = group[i] = group[group[i]];
-        return i;
-    };
+    const auto find = [&](std::uint32_t i) { return root_in(group, i); };
     const auto join = [&](std::uint32_t a, std::uint32_t b) {
         const std::uint32_t ra = find(a), rb = find(b);
         group[std::max(ra, rb)] = std::min(ra, rb);
@@ -95,15 +92,11 @@ void BodySolver::limit_joint_energy(const std::vector<Body>& bodies) {
         if ((flags[r] & fixed) != 0) return V2::Zero();
         return V2(sums[fields * r + 3], sums[fields * r + 4]) / sums[fields * r + 2];
     };
-    const auto kinetic = [](const BlockBody& b, const V2& frame) {
-        return 0.5 * (b.v - frame).squaredNorm() / b.inv_mass +
-               (b.inv_inertia > 0 ? 0.5 * b.omega * b.omega / b.inv_inertia : 0.0);
-    };
     for (std::uint32_t i = 0; i < n; ++i) {
         if (!moves(i) || !limited(find(i))) continue;
         const std::uint32_t r = find(i);
-        sums[fields * r] += kinetic(arrived_[i], frame_of(r));
-        sums[fields * r + 1] += kinetic(state_[i], frame_of(r));
+        sums[fields * r] += kinetic_energy(arrived_[i], frame_of(r));
+        sums[fields * r + 1] += kinetic_energy(state_[i], frame_of(r));
     }
     for (std::uint32_t i = 0; i < n; ++i) {
         if (!moves(i) || !limited(find(i))) continue;

@@ -318,6 +318,8 @@ private:
     // block into blocks_ (block_start_, blocked_).
     void find_islands(const std::vector<Body>& bodies);
     std::uint32_t root(std::uint32_t i);
+    // The root of i in a union-find forest of parents (halving the path to it).
+    static std::uint32_t root_in(std::vector<std::uint32_t>& parent, std::uint32_t i);
     // The island of a contact: its moving body's root (a wall, peg or held body joins none).
     std::uint32_t island_of(const PairContact& pc, const std::vector<Body>& bodies);
     // Joins the islands of i and j under the lower root: (that root, the other), or nothing

@@ -15,15 +15,6 @@ void store(Body& b, const BlockBody& s) {
     b.omega = s.omega;
 }
 
-// A body's kinetic energy at these velocities, J, in a frame moving at `frame` (m/s); an
-// immovable body (inverse mass 0) has none.
-double kinetic_energy(const BlockBody& b, const V2& frame = V2::Zero()) {
-    double energy = 0;
-    if (b.inv_mass > 0) energy += 0.5 * (b.v - frame).squaredNorm() / b.inv_mass;
-    if (b.inv_inertia > 0) energy += 0.5 * b.omega * b.omega / b.inv_inertia;
-    return energy;
-}
-
 }  // namespace
 
 void BodySolver::solve_velocities(std::vector<Body>& bodies) {
@@ -250,10 +241,7 @@ void BodySolver::limit_bounce_energy(const std::vector<Body>& bodies) {
     const std::size_t n = bodies.size();
     cluster_.resize(n);
     for (std::size_t i = 0; i < n; ++i) cluster_[i] = static_cast<std::uint32_t>(i);
-    const auto find = [&](std::uint32_t i) {
-        while (cluster_[i] != i) i = cluster_[i] = cluster_[cluster_[i]];
-        return i;
-    };
+    const auto find = [&](std::uint32_t i) { return root_in(cluster_, i); };
     const auto moving = [&](std::uint32_t i) { return bodies[i].inv_mass > 0; };
     for (const std::uint32_t i : bounced_) {
         const PairContact& pc = fresh_[i];
