@@ -91,6 +91,14 @@ struct Body {
     std::uint32_t island = 0;
 
     bool moves() const { return motion != Motion::fixed; }
+    // Held as a grab or a kinematic body holds it: infinitely heavy to the others, turned and
+    // moved only as told.
+    void hold() {
+        motion = Motion::held;
+        inv_mass = 0.0;
+        inv_inertia = 0.0;
+        omega = 0.0;
+    }
     bool falls() const { return motion == Motion::dynamic; }
 };
 

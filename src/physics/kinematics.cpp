@@ -49,10 +49,7 @@ void Kinematics::start(std::vector<Body>& bodies) const {
         b.x = p.x;
         b.angle = p.angle;
         b.v = V2::Zero();
-        b.omega = 0;
-        b.motion = Motion::held;
-        b.inv_mass = 0;
-        b.inv_inertia = 0;
+        b.hold();
     }
 }
 

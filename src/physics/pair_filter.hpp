@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "discreel/physics.hpp"
+
 namespace discreel::physics::detail {
 
 class PairFilter {
@@ -12,14 +14,14 @@ public:
     // and meets the categories of `collides` (bits); a sensor meets nothing, it watches.
     void set(std::uint32_t i, std::uint32_t category, std::uint32_t collides, bool sensor) {
         if (i >= category_.size()) {
-            category_.resize(i + 1, default_category);
-            collides_.resize(i + 1, all);
+            category_.resize(i + 1, physics::default_category);
+            collides_.resize(i + 1, all_categories);
             sensor_.resize(i + 1, 0);
         }
         category_[i] = category;
         collides_[i] = collides;
         sensor_[i] = sensor ? 1 : 0;
-        any_ = any_ || collides != all || sensor;
+        any_ = any_ || collides != all_categories || sensor;
         sensors_ = sensors_ || sensor;
     }
     // Whether any pair is left out (else every question below is a plain "no").
@@ -40,8 +42,6 @@ public:
         return sensors_ && (sensor(i) || sensor(j)) && meets(i, j);
     }
     bool sensor(std::uint32_t i) const { return i < sensor_.size() && sensor_[i] != 0; }
-
-    static constexpr std::uint32_t default_category = 1, all = 0xffffffffu;
 
 private:
     std::vector<std::uint32_t> category_, collides_;

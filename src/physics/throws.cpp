@@ -24,13 +24,6 @@ V2 final_velocity(const std::vector<Waypoint>& path) {
     return (to_v2(p1.position) - to_v2(p0.position)) / (p1.t - p0.t);
 }
 
-void hold(Body& b) {
-    b.motion = Motion::held;
-    b.inv_mass = 0.0;
-    b.inv_inertia = 0.0;
-    b.omega = 0.0;
-}
-
 void release(Body& b, const V2& v) {
     b.motion = Motion::dynamic;
     b.inv_mass = 1.0 / b.mass;
@@ -52,7 +45,7 @@ void Throws::start(std::vector<Body>& bodies) {
         if (path.front().t > 0) path.insert(path.begin(), Waypoint{0.0, Vec2{b.x.x(), b.x.y()}});
         b.x = to_v2(path.front().position);
         b.v = V2::Zero();
-        hold(b);
+        b.hold();
         th.stage = Stage::holding;
     }
 }

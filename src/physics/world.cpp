@@ -37,11 +37,9 @@ bool any_shape(const WorldDef& def) {
 // Joints, filters and sensors are the manifold solver's.
 bool any_joint_filter_or_sensor(const WorldDef& def) {
     const auto set = [](const BodyDef& d) {
-        return d.sensor || d.category != 1 || d.collides != 0xffffffffu;
+        return d.sensor || filters(d.category, d.collides, false);
     };
-    const auto wall_set = [](const WallDef& w) {
-        return w.category != 2 || w.collides != 0xffffffffu;
-    };
+    const auto wall_set = [](const WallDef& w) { return filters(w.category, w.collides, true); };
     return !def.joints.empty() || std::any_of(def.bodies.begin(), def.bodies.end(), set) ||
            std::any_of(def.walls.begin(), def.walls.end(), wall_set) ||
            std::any_of(def.respawns.begin(), def.respawns.end(), [&](const RespawnDef& r) {

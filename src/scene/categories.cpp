@@ -14,8 +14,8 @@ std::optional<std::uint32_t> category_bit(Loader& loader, const Value& value) {
     if (!id) return std::nullopt;
     auto& bits = loader.category_bits;
     if (bits.empty()) {
-        bits.emplace("default", 1u);
-        bits.emplace("walls", 2u);
+        bits.emplace("default", physics::default_category);
+        bits.emplace("walls", physics::walls_category);
     }
     if (const auto it = bits.find(*id); it != bits.end()) return it->second;
     if (bits.size() >= 32) {

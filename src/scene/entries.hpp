@@ -24,7 +24,8 @@ struct Properties {
     std::optional<Color> color;       // none: from the palette by body index
     bool is_static = false;
     std::optional<physics::KinematicDef> kinematic;   // single entries only
-    std::uint32_t category = 1, collides = 0xffffffffu;   // bits (categories.cpp)
+    std::uint32_t category = physics::default_category;   // bits (categories.cpp)
+    std::uint32_t collides = physics::all_categories;
     bool sensor = false;
 };
 

@@ -159,10 +159,10 @@ void check_envelope(Loader& loader) {
         !scene.joints.empty() ||
             std::any_of(scene.bodies.begin(), scene.bodies.end(),
                         [](const Body& b) {
-                            return b.sensor || b.category != 1 || b.collides != 0xffffffffu;
+                            return b.sensor || physics::filters(b.category, b.collides, false);
                         }) ||
             std::any_of(scene.walls.begin(), scene.walls.end(), [](const Wall& w) {
-                return w.category != 2 || w.collides != 0xffffffffu;
+                return physics::filters(w.category, w.collides, true);
             }));
     if (ratio > physics::envelope.crowd_mass_ratio) {
         // A crowd this far apart in mass sinks in at any speed: the speeds are not judged.

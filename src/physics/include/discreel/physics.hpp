@@ -18,6 +18,16 @@
 
 namespace discreel::physics {
 
+// Collision categories (BodyDef::category, collides): one bit each; a body's and a wall's by
+// default, and the bits of every category.
+inline constexpr std::uint32_t default_category = 1, walls_category = 2;
+inline constexpr std::uint32_t all_categories = 0xffffffffu;
+
+// Whether a body's or wall's filter differs from its kind's default (it meets everything).
+inline bool filters(std::uint32_t category, std::uint32_t collides, bool wall) {
+    return category != (wall ? walls_category : default_category) || collides != all_categories;
+}
+
 // A kinematic body's motion: it moves as told, whatever touches it, and pushes what it meets
 // as an infinitely heavy body does (a moving platform, a windmill's sails).
 struct KinematicDef {
@@ -52,8 +62,8 @@ struct BodyDef {
     std::optional<KinematicDef> kinematic;   // moved as told, not by what touches it
     // Collision filtering: two things touch only where each one's category is among the
     // other's `collides` bits (docs/physics.md, "Filters and sensors").
-    std::uint32_t category = 1;    // one bit; 1: "default"
-    std::uint32_t collides = 0xffffffffu;   // bits of the categories it meets; all by default
+    std::uint32_t category = default_category;    // one bit
+    std::uint32_t collides = all_categories;      // bits of the categories it meets
     // A sensor pushes nothing and is pushed by nothing: its overlaps with the bodies it meets
     // are reported as events (ContactEvent::Kind::begin and end).
     bool sensor = false;
@@ -70,8 +80,8 @@ struct WallDef {
     double thickness = 0.02;       // metres, full thickness
     double restitution = 0.8;
     double friction = 0.2;
-    std::uint32_t category = 2;    // one bit; 2: "walls"
-    std::uint32_t collides = 0xffffffffu;
+    std::uint32_t category = walls_category;
+    std::uint32_t collides = all_categories;
 };
 
 // Mixing rule for a contact between two materials (documented in docs/physics.md).

@@ -158,8 +158,8 @@ struct Wall {
     double restitution = 0.8;      // resolved from physics.restitution when not given
     double friction = 0.2;         // resolved from physics.friction when not given
     Color color{0x88, 0x99, 0xaa, 0xff};
-    std::uint32_t category = 2;    // "walls"
-    std::uint32_t collides = 0xffffffffu;
+    std::uint32_t category = physics::walls_category;
+    std::uint32_t collides = physics::all_categories;
 };
 
 // A body: a disc of `radius` from `discs:` (or a `circle:` body), or a body of another shape
@@ -180,8 +180,8 @@ struct Body {
     bool is_static = false;        // a fixed peg: collides, never moves
     std::optional<physics::KinematicDef> kinematic;   // moved as told (a platform, a windmill)
     // Collision filter bits (a category's bit; the bits of those it meets) and sensing.
-    std::uint32_t category = 1;
-    std::uint32_t collides = 0xffffffffu;
+    std::uint32_t category = physics::default_category;
+    std::uint32_t collides = physics::all_categories;
     bool sensor = false;           // overlaps reported, nothing pushed
 };
 
