@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <iterator>
 #include <utility>
 
 #include "discreel/clones.hpp"
@@ -13,6 +14,9 @@ namespace {
 using Floats = simd::Float8;
 using Mask = decltype(Floats{} < Floats{});
 using Velocity = BlockRows::Velocity;
+
+// An end that does not move, in the colouring.
+constexpr std::uint32_t still = 0xffffffffu;
 
 // One end of eight rows: its velocity corrections (gathered) and inverse masses (the block's),
 // lane by lane.
@@ -148,6 +152,25 @@ DISCREEL_CLONES void solve_blocks(std::span<BlockRows::Block> blocks, Velocity* 
     }
 }
 
+// The pins: each lane's anchors brought together by the block's inverse, both components at
+// once.
+DISCREEL_CLONES void solve_pin_blocks(std::span<BlockRows::PinBlock> blocks, Velocity* records) {
+    for (BlockRows::PinBlock& r : blocks) {
+        Ends a = gather(records, r.a, r.a_inv_mass, r.a_inv_inertia);
+        Ends b = gather(records, r.b, r.b_inv_mass, r.b_inv_inertia);
+        const Floats rel_x = (b.vx - b.w * r.rb_y) - (a.vx - a.w * r.ra_y);
+        const Floats rel_y = (b.vy + b.w * r.rb_x) - (a.vy + a.w * r.ra_x);
+        const Floats ex = r.bias_x - rel_x, ey = r.bias_y - rel_y;
+        const Floats px = r.i11 * ex + r.i12 * ey;
+        const Floats py = r.i12 * ex + r.i22 * ey;
+        r.px = r.px + px;
+        r.py = r.py + py;
+        push(a, b, r.ra_x, r.ra_y, r.rb_x, r.rb_y, px, py);
+        scatter(records, r.a, a);
+        scatter(records, r.b, b);
+    }
+}
+
 }  // namespace
 
 bool BlockRows::same_layout(std::span<const RowRef> rows,
@@ -166,49 +189,68 @@ std::uint64_t BlockRows::key_of(const RowRef& r, std::span<const BlockBody> bodi
     return std::uint64_t{r.a} << 33 | std::uint64_t{r.b} << 2 | moves(r.a) << 1 | moves(r.b);
 }
 
+template <class Ends>
+void BlockRows::colour(std::size_t count, std::size_t bodies, Ends&& ends) {
+    // Greedy, in the rows' order: each row takes the lowest colour none of its moving bodies
+    // has yet.
+    used_.assign(bodies, 0);
+    colour_of_.resize(count);
+    colour_start_.assign(overflow + 2, 0);
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::array<std::uint32_t, 2> end = ends(i);
+        std::uint64_t taken = 0;
+        for (const std::uint32_t e : end) taken |= e != still ? used_[e] : 0;
+        const auto c = static_cast<unsigned>(std::countr_one(taken));
+        colour_of_[i] = static_cast<std::uint8_t>(c);
+        ++colour_start_[c + 1];
+        if (c == overflow) continue;
+        for (const std::uint32_t e : end) {
+            if (e != still) used_[e] |= std::uint64_t{1} << c;
+        }
+    }
+    // Each colour starts on a block; an overflow row has a block to itself.
+    colour_start_[overflow + 1] *= width;
+    for (unsigned c = 0; c <= overflow; ++c) {
+        const std::uint32_t n = colour_start_[c + 1];
+        colour_start_[c + 1] = colour_start_[c] + (n + width - 1) / width * width;
+    }
+}
+
+// The bodies that rows with these moving ends move, ascending.
+template <class Ends>
+void moved_by(std::size_t count, std::size_t bodies, Ends&& ends,
+              std::vector<std::uint64_t>& scratch, std::vector<std::uint32_t>& out) {
+    scratch.assign(bodies, 0);
+    for (std::size_t i = 0; i < count; ++i) {
+        for (const std::uint32_t e : ends(i)) {
+            if (e != still) scratch[e] = 1;
+        }
+    }
+    out.clear();
+    for (std::size_t i = 0; i < bodies; ++i) {
+        if (scratch[i] != 0) out.push_back(static_cast<std::uint32_t>(i));
+    }
+}
+
 void BlockRows::lay_out(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
     const std::size_t n = bodies.size();
     layout_.resize(rows.size());
     for (std::size_t i = 0; i < rows.size(); ++i) layout_[i] = key_of(rows[i], bodies);
     bodies_at_layout_ = n;
-    // Greedy colouring in row order: each row takes the lowest colour none of its moving
-    // bodies has yet.
-    used_.assign(n, 0);
-    colour_of_.resize(rows.size());
-    colour_start_.assign(overflow + 2, 0);
+    const auto ends = [&](std::size_t i) {
+        return std::array<std::uint32_t, 2>{(layout_[i] & 2) != 0 ? rows[i].a : still,
+                                            (layout_[i] & 1) != 0 ? rows[i].b : still};
+    };
+    colour(rows.size(), n, ends);
     std::uint32_t copies = 0;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        const RowRef& r = rows[i];
-        const bool a_moves = (layout_[i] & 2) != 0, b_moves = (layout_[i] & 1) != 0;
-        copies += (a_moves ? 0 : 1) + (b_moves ? 0 : 1);
-        const std::uint64_t taken = (a_moves ? used_[r.a] : 0) | (b_moves ? used_[r.b] : 0);
-        const auto colour = static_cast<unsigned>(std::countr_one(taken));
-        colour_of_[i] = static_cast<std::uint8_t>(colour);
-        ++colour_start_[colour + 1];
-        if (colour == overflow) continue;
-        const std::uint64_t bit = std::uint64_t{1} << colour;
-        if (a_moves) used_[r.a] |= bit;
-        if (b_moves) used_[r.b] |= bit;
+        for (const std::uint32_t e : ends(i)) copies += e == still ? 1 : 0;
     }
-    // The bodies the rows move: those with a colour (an overflow row's too).
-    moved_.clear();
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        if ((layout_[i] & 2) != 0) used_[rows[i].a] |= 1;
-        if ((layout_[i] & 1) != 0) used_[rows[i].b] |= 1;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        if (used_[i] != 0) moved_.push_back(static_cast<std::uint32_t>(i));
-    }
-    // Each colour starts on a block; an overflow row has a block to itself.
-    colour_start_[overflow + 1] *= width;
-    for (unsigned c = 0; c <= overflow; ++c) {
-        const std::uint32_t count = colour_start_[c + 1];
-        colour_start_[c + 1] = colour_start_[c] + (count + width - 1) / width * width;
-    }
+    moved_by(rows.size(), n, ends, used_, rows_moved_);
     // A row end on an immovable body gets its own record, so that rows on one wall do not
     // chain through one record.
-    const auto scratch = static_cast<std::uint32_t>(n + copies);
-    velocities_.assign(n + copies + 1, Velocity{});
+    const auto scratch = static_cast<std::uint32_t>(n + 1 + copies);
+    velocities_.assign(n + copies + 2, Velocity{});
     const std::uint32_t lanes = colour_start_[overflow + 1];
     blocks_.assign(lanes / width, Block{});
     for (Block& block : blocks_) {
@@ -216,16 +258,63 @@ void BlockRows::lay_out(std::span<const RowRef> rows, std::span<const BlockBody>
         std::fill(std::begin(block.b), std::end(block.b), scratch);
     }
     lane_of_.resize(rows.size());
-    auto copy = static_cast<std::uint32_t>(n);
+    auto copy = static_cast<std::uint32_t>(n + 1);
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        const unsigned colour = colour_of_[i];
-        const std::uint32_t slot = colour_start_[colour];
-        colour_start_[colour] += colour == overflow ? width : 1;
+        const unsigned c = colour_of_[i];
+        const std::uint32_t slot = colour_start_[c];
+        colour_start_[c] += c == overflow ? width : 1;
         lane_of_[i] = slot;
         Block& block = blocks_[slot / width];
-        block.a[slot % width] = (layout_[i] & 2) != 0 ? rows[i].a : copy++;
-        block.b[slot % width] = (layout_[i] & 1) != 0 ? rows[i].b : copy++;
+        const auto [a, b] = ends(i);
+        block.a[slot % width] = a != still ? a : copy++;
+        block.b[slot % width] = b != still ? b : copy++;
     }
+}
+
+BlockRows::PinKey BlockRows::pin_key(const PinRef& p, std::span<const BlockBody> bodies) {
+    const auto moves = [&](std::uint32_t i) {
+        return i < bodies.size() && (bodies[i].inv_mass > 0 || bodies[i].inv_inertia > 0);
+    };
+    return {p.a, p.b, (moves(p.a) ? 2u : 0u) | (moves(p.b) ? 1u : 0u)};
+}
+
+void BlockRows::lay_out_pins(std::span<const PinRef> pins, std::span<const BlockBody> bodies) {
+    const std::size_t n = bodies.size();
+    pin_layout_.resize(pins.size());
+    for (std::size_t i = 0; i < pins.size(); ++i) pin_layout_[i] = pin_key(pins[i], bodies);
+    bodies_at_pin_layout_ = n;
+    const auto ends = [&](std::size_t i) {
+        const PinKey& k = pin_layout_[i];
+        return std::array<std::uint32_t, 2>{(k[2] & 2) != 0 ? k[0] : still,
+                                            (k[2] & 1) != 0 ? k[1] : still};
+    };
+    colour(pins.size(), n, ends);
+    moved_by(pins.size(), n, ends, used_, pins_moved_);
+    // Immovable ends and empty lanes share the pins' still record (index n): its corrections
+    // are zero and stay so, as their inverse masses are.
+    const auto still_record = static_cast<std::uint32_t>(n);
+    pin_blocks_.assign(colour_start_[overflow + 1] / width, PinBlock{});
+    for (PinBlock& block : pin_blocks_) {
+        std::fill(std::begin(block.a), std::end(block.a), still_record);
+        std::fill(std::begin(block.b), std::end(block.b), still_record);
+    }
+    pin_lane_of_.resize(pins.size());
+    for (std::size_t i = 0; i < pins.size(); ++i) {
+        const unsigned c = colour_of_[i];
+        const std::uint32_t slot = colour_start_[c];
+        colour_start_[c] += c == overflow ? width : 1;
+        pin_lane_of_[i] = slot;
+        PinBlock& block = pin_blocks_[slot / width];
+        const auto [a, b] = ends(i);
+        block.a[slot % width] = a != still ? a : still_record;
+        block.b[slot % width] = b != still ? b : still_record;
+    }
+}
+
+void BlockRows::merge_moved() {
+    moved_.clear();
+    std::set_union(rows_moved_.begin(), rows_moved_.end(), pins_moved_.begin(),
+                   pins_moved_.end(), std::back_inserter(moved_));
 }
 
 void BlockRows::fill(const RowRef& r, std::span<const BlockBody> bodies, Block& block,
@@ -295,11 +384,52 @@ void BlockRows::fill_bounds(const RowRef& r, std::span<const BlockBody> bodies, 
     }
 }
 
-void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
+void BlockRows::fill_pin(const PinRef& p, std::span<const BlockBody> bodies, PinBlock& block,
+                         unsigned l) const {
+    const BlockBody world{};
+    const BlockBody& a = p.a < bodies.size() ? bodies[p.a] : world;
+    const BlockBody& b = p.b < bodies.size() ? bodies[p.b] : world;
+    const double unit = mass_unit_;
+    const auto f = [](double x) { return static_cast<float>(x); };
+    block.a_inv_mass[l] = f(a.inv_mass * unit);
+    block.a_inv_inertia[l] = f(a.inv_inertia * unit);
+    block.b_inv_mass[l] = f(b.inv_mass * unit);
+    block.b_inv_inertia[l] = f(b.inv_inertia * unit);
+    block.ra_x[l] = f(p.ra.x());
+    block.ra_y[l] = f(p.ra.y());
+    block.rb_x[l] = f(p.rb.x());
+    block.rb_y[l] = f(p.rb.y());
+    // The inverse in doubles; none where the block is singular (neither end can move the
+    // anchors), as the joints' own 2x2 solve.
+    const double k11 = p.k11 * unit, k12 = p.k12 * unit, k22 = p.k22 * unit;
+    const double det = k11 * k22 - k12 * k12;
+    const double inv_det = std::abs(det) > 0 ? 1 / det : 0;
+    block.i11[l] = f(k22 * inv_det);
+    block.i12[l] = f(-k12 * inv_det);
+    block.i22[l] = f(k11 * inv_det);
+    // The velocities at build(), folded into the bias in doubles.
+    const V2 rel = velocity_at(b, p.rb) - velocity_at(a, p.ra);
+    block.bias_x[l] = f(p.target.x() - rel.x());
+    block.bias_y[l] = f(p.target.y() - rel.y());
+    block.px[l] = 0;
+    block.py[l] = 0;
+}
+
+void BlockRows::build(std::span<const RowRef> rows, std::span<const PinRef> pins,
+                      std::span<const BlockBody> bodies) {
     // The colours and lanes hold while the rows are those of the last layout, the same pairs
-    // in the same order with the same bodies movable: a resting pile lays out rarely.
+    // in the same order with the same bodies movable: a resting pile lays out rarely, a
+    // jointed scene's pins once.
     const bool laid_out = same_layout(rows, bodies);
     if (!laid_out) lay_out(rows, bodies);
+    bool pins_laid_out = pins.size() == pin_layout_.size() && bodies.size() == bodies_at_pin_layout_;
+    for (std::size_t i = 0; pins_laid_out && i < pins.size(); ++i) {
+        const PinKey key = pin_key(pins[i], bodies);
+        const PinKey& was = pin_layout_[i];
+        pins_laid_out = key[0] == was[0] && key[1] == was[1] && key[2] == was[2];
+    }
+    if (!pins_laid_out) lay_out_pins(pins, bodies);
+    if (!laid_out || !pins_laid_out) merge_moved();
     const double unit_before = mass_unit_;
     // The mass unit: a power of two at the heaviest moving body's mass (scaling by it is exact).
     double lightest_inverse = HUGE_VAL;
@@ -323,13 +453,20 @@ void BlockRows::build(std::span<const RowRef> rows, std::span<const BlockBody> b
             fill(rows[i], bodies, block, lane);
         }
     }
+    for (std::size_t i = 0; i < pins.size(); ++i) {
+        fill_pin(pins[i], bodies, pin_blocks_[pin_lane_of_[i] / width], pin_lane_of_[i] % width);
+    }
     // The bodies' double velocities hold none of the rows' impulses yet: the warm start is
     // the first change of the corrections.
     taken_.assign(rows.size(), {});
+    pin_taken_.assign(pins.size(), V2::Zero());
     warm_blocks(blocks_, velocities_.data());
 }
 
-void BlockRows::solve() { solve_blocks(blocks_, velocities_.data()); }
+void BlockRows::solve(int pin_passes) {
+    solve_blocks(blocks_, velocities_.data());
+    for (int pass = 0; pass < pin_passes; ++pass) solve_pin_blocks(pin_blocks_, velocities_.data());
+}
 
 void BlockRows::flush(std::span<BlockBody> bodies) const {
     for (const std::uint32_t i : moved_) {
@@ -347,6 +484,13 @@ void BlockRows::reload(std::span<const BlockBody> bodies) {
                                              0.0F};
     }
     for (std::size_t i = 0; i < taken_.size(); ++i) taken_[i] = impulses_of(i);
+    for (std::size_t i = 0; i < pin_taken_.size(); ++i) pin_taken_[i] = pin_impulse(i);
+}
+
+V2 BlockRows::pin_impulse(std::size_t i) const {
+    const PinBlock& block = pin_blocks_[pin_lane_of_[i] / width];
+    const unsigned l = pin_lane_of_[i] % width;
+    return V2(block.px[l], block.py[l]) * mass_unit_;
 }
 
 std::array<double, 4> BlockRows::impulses_of(std::size_t i) const {
@@ -356,7 +500,21 @@ std::array<double, 4> BlockRows::impulses_of(std::size_t i) const {
             block.tangent[0][l] * mass_unit_, block.tangent[1][l] * mass_unit_};
 }
 
-void BlockRows::finish(std::span<const RowRef> rows, std::span<BlockBody> bodies) const {
+void BlockRows::finish(std::span<const RowRef> rows, std::span<const PinRef> pins,
+                       std::span<BlockBody> bodies) const {
+    BlockBody world{};
+    for (std::size_t i = 0; i < pins.size(); ++i) {
+        const PinRef& p = pins[i];
+        const V2 now = pin_impulse(i);
+        BlockBody& a = p.a < bodies.size() ? bodies[p.a] : world;
+        BlockBody& b = p.b < bodies.size() ? bodies[p.b] : world;
+        const V2 change = now - pin_taken_[i];
+        a.v -= a.inv_mass * change;
+        a.omega -= a.inv_inertia * cross(p.ra, change);
+        b.v += b.inv_mass * change;
+        b.omega += b.inv_inertia * cross(p.rb, change);
+        if (p.impulse != nullptr) *p.impulse += now;
+    }
     for (std::size_t i = 0; i < rows.size(); ++i) {
         BlockContact& c = *rows[i].contact;
         const V2 tangent(c.normal.y(), -c.normal.x());

@@ -7,6 +7,12 @@
 // CPU. The block's four cases are all computed and the first that holds is selected, as the
 // scalar solve tries them in order, without a branch.
 //
+// Pins (revolute joints without motor or limits, joint.hpp) are rows here too: each keeps B's
+// anchor on A's with both components solved together (a 2x2 block by its inverse), coloured
+// on their own and solved after the contacts in each pass, on the same corrections. The same
+// rows solve the joints' position stage, where the corrections are displacements (m) and
+// turns (rad) instead of velocities.
+//
 // As in the disc solver's rows (contact_solver.hpp), the iterations run in single precision on
 // corrections only: each row is built in doubles with its bodies' velocities at build() folded
 // into its bounds, and floats carry each body's change of velocity, added to its double
@@ -33,14 +39,29 @@ struct RowRef {
     bool unchanged = false;
 };
 
+// A pin's point row: its anchors' relative velocity brought to `target`.
+struct PinRef {
+    std::uint32_t a = 0, b = 0;   // body indices; at or past the bodies' count: the world
+    V2 ra = V2::Zero(), rb = V2::Zero();   // offsets from the centroids, metres
+    double k11 = 0, k12 = 0, k22 = 0;      // how an impulse moves the relative velocity, 1/kg
+    V2 target = V2::Zero();                // m/s
+    V2* impulse = nullptr;   // accumulated, N s: finish() adds the rows' impulses (if set)
+};
+
 class BlockRows {
 public:
     // Lays out `rows` by colour, prepares their contacts (prepare_block), builds them from the
     // bodies' velocities now and applies the contacts' impulses (the warm start) to the
     // corrections.
-    void build(std::span<const RowRef> rows, std::span<const BlockBody> bodies);
-    // One pass over every row, colour by colour, in the order build() was given within one.
-    void solve();
+    // Pins start from no impulse: their warm start is the caller's.
+    void build(std::span<const RowRef> rows, std::span<const PinRef> pins,
+               std::span<const BlockBody> bodies);
+    void build(std::span<const RowRef> rows, std::span<const BlockBody> bodies) {
+        build(rows, {}, bodies);
+    }
+    // One pass over every contact row, colour by colour, in the order build() was given within
+    // one, then `pin_passes` over the pins.
+    void solve(int pin_passes = 1);
     // Before a solve in doubles between two passes: the bodies the rows move get their
     // velocities at build() plus the corrections so far.
     void flush(std::span<BlockBody> bodies) const;
@@ -48,8 +69,12 @@ public:
     void reload(std::span<const BlockBody> bodies);
     // The end: each row's impulses (since the last reload, if any) applied to its bodies in
     // doubles, pairwise, so that momentum is kept to double rounding; and the accumulated
-    // impulses back into the rows' contacts.
-    void finish(std::span<const RowRef> rows, std::span<BlockBody> bodies) const;
+    // impulses back into the rows' contacts and the pins' impulses.
+    void finish(std::span<const RowRef> rows, std::span<const PinRef> pins,
+                std::span<BlockBody> bodies) const;
+    void finish(std::span<const RowRef> rows, std::span<BlockBody> bodies) const {
+        finish(rows, {}, bodies);
+    }
 
     using Floats = simd::Float8;
     static constexpr unsigned width = 8;
@@ -83,7 +108,32 @@ public:
         Floats normal[2]{}, tangent[2]{};         // accumulated impulses, mass units m/s
     };
 
+    struct alignas(32) PinBlock {
+        std::uint32_t a[width] = {}, b[width] = {};   // indices into the velocity records
+        Floats a_inv_mass{}, a_inv_inertia{}, b_inv_mass{}, b_inv_inertia{};
+        Floats ra_x{}, ra_y{}, rb_x{}, rb_y{};   // metres
+        Floats i11{}, i12{}, i22{};   // the inverse of the 2x2 block, mass units
+        // m/s: the target less the anchors' relative velocity at build().
+        Floats bias_x{}, bias_y{};
+        Floats px{}, py{};            // accumulated since build(), mass units m/s
+    };
+
 private:
+    // A pin's ends and whether each moves.
+    using PinKey = std::array<std::uint32_t, 3>;
+    static PinKey pin_key(const PinRef& p, std::span<const BlockBody> bodies);
+    void lay_out_pins(std::span<const PinRef> pins, std::span<const BlockBody> bodies);
+    void fill_pin(const PinRef& p, std::span<const BlockBody> bodies, PinBlock& block,
+                  unsigned l) const;
+    V2 pin_impulse(std::size_t i) const;   // N s
+    // The bodies either kind of row moves, ascending.
+    void merge_moved();
+    // A greedy colouring of rows with the ends `ends(i)` (moving ones only, index or -1),
+    // into colour_of_ and colour_start_ (the counts per colour, then their starts in lanes,
+    // each colour starting on a block).
+    template <class Ends>
+    void colour(std::size_t count, std::size_t bodies, Ends&& ends);
+
     static std::uint64_t key_of(const RowRef& r, std::span<const BlockBody> bodies);
     bool same_layout(std::span<const RowRef> rows, std::span<const BlockBody> bodies) const;
     void lay_out(std::span<const RowRef> rows, std::span<const BlockBody> bodies);
@@ -98,10 +148,18 @@ private:
     // Per row: its points' impulses (normal, normal, tangent, tangent; N s) that the bodies'
     // double velocities already hold: none after build(), all at the last reload().
     std::vector<std::array<double, 4>> taken_;
-    // Per body, then one per row end on an immovable body (all zeros: it never changes, its
-    // velocity is folded into the row), then the empty lanes' scratch one.
+    // Per body, then the pins' immovable ends' (one for all), then one per contact row end on
+    // an immovable body (all zeros: it never changes, its velocity is folded into the row),
+    // then the empty lanes' scratch one.
     std::vector<Velocity> velocities_;
-    std::vector<std::uint32_t> moved_;         // the bodies the rows move, ascending
+    std::vector<std::uint32_t> moved_;         // the bodies the rows and pins move, ascending
+    std::vector<std::uint32_t> rows_moved_;    // those the contact rows move
+    std::vector<std::uint32_t> pins_moved_;    // those the pins move
+    std::vector<PinBlock> pin_blocks_;
+    std::vector<PinKey> pin_layout_;           // per pin at the last layout
+    std::size_t bodies_at_pin_layout_ = 0;
+    std::vector<std::uint32_t> pin_lane_of_;   // per pin: block * width + lane
+    std::vector<V2> pin_taken_;                // per pin: what the double velocities hold, N s
     std::vector<BlockBody> start_;             // per body: its velocities at build()
     double mass_unit_ = 1;                     // kg, a power of two
     std::vector<std::uint64_t> layout_;        // per row at the last layout: bodies, movable

@@ -247,6 +247,8 @@ private:
     // The joints' position passes (body_joints.cpp): before the contacts' push-out, and at
     // the step's end.
     void correct_joints(std::vector<Body>& bodies);
+    // Its first part: the pins', in the coloured rows.
+    void correct_pins(std::vector<Body>& bodies);
     // Its parts: point k's separation now from its anchors (and its offsets now, into ra and
     // rb); a body's turn in the step grown by `by` radians; a positional impulse of `amount`
     // (kg m) along the normal at ra, rb; an island's or block's points pushed together; one
@@ -438,6 +440,10 @@ private:
     std::vector<std::uint8_t> grounded_;   // fall_asleep's: the island rests on a fixed body
     std::vector<unsigned char> jointed_;    // find_islands': per root, a joint holds a body
     std::vector<Joints::Moved> joint_moves_;   // scratch of correct_joints, per body
+    std::vector<PinRef> pins_;              // the pins' velocity rows of the step
+    std::vector<PinRef> pin_gaps_;          // scratch of correct_pins: its position rows
+    std::vector<BlockBody> pin_moves_;      // scratch of correct_pins: per body, its move
+    BlockRows pin_positions_;               // the pins' position rows
     bool far_islands_ = false;              // some island's masses are direct_mass_ratio apart
     std::vector<int> points_;
     std::vector<unsigned char> direct_;

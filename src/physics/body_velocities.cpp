@@ -51,24 +51,32 @@ void BodySolver::solve_velocities(std::vector<Body>& bodies) {
         const PairContact& pc = fresh_[i];
         rows_.push_back(RowRef{pc.a, pc.b, &fresh_[i].contact, pc.as_solved});
     }
-    // The joints' warm start goes into the velocities the rows are built from.
-    if (!joints_.empty()) joints_.prepare(bodies, state_, dt_);
-    block_rows_.build(rows_, state_);
+    // The joints' warm start goes into the velocities the rows are built from; pins are rows
+    // of the coloured solve, after the contacts in each pass.
+    pins_.clear();
+    if (!joints_.empty()) {
+        joints_.prepare(bodies, state_, dt_);
+        joints_.pins(pins_);
+    }
+    block_rows_.build(rows_, pins_, state_);
     for (int it = 0; it < def_.iterations; ++it) {
-        block_rows_.solve();
-        if (blocks_.empty() && joints_.empty()) continue;
+        block_rows_.solve(def_.joint_passes);
+        if (blocks_.empty() && !joints_.narrow()) continue;
         // A block's impulses are taken back out and solved again, together, in doubles; the
-        // joints' rows are solved in doubles too, after the contacts of the pass.
+        // other joints' rows are solved in doubles too, after the contacts and pins of the
+        // pass.
         block_rows_.flush(state_);
         for_each_group(blocks_, block_start_, [&](std::span<const IslandContact> block) {
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), -1);
             if (direct_solver_.velocities(block, state_)) return;
             for (const IslandContact& ic : block) apply_totals(*pair_of(ic), 1);
         });
-        for (int pass = 0; pass < def_.joint_passes; ++pass) joints_.solve(state_);
+        for (int pass = 0; joints_.narrow() && pass < def_.joint_passes; ++pass) {
+            joints_.solve(state_);
+        }
         block_rows_.reload(state_);
     }
-    block_rows_.finish(rows_, state_);
+    block_rows_.finish(rows_, pins_, state_);
     for (std::size_t i = 0; i < fresh_.size(); ++i) {
         fresh_[i].as_solved = direct_[i] == 0 && blocked_[i] == 0;
     }

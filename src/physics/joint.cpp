@@ -120,6 +120,8 @@ Joints::Joints(std::span<const JointDef> defs, const std::vector<Body>& bodies) 
             j.speed = def.motor->speed;
             j.max_force = def.motor->max_force;
         }
+        j.pin = j.kind == JointDef::Kind::revolute && !j.motor && !j.limited;
+        narrow_ = narrow_ || !j.pin;
         for (const std::uint32_t i : {j.a, j.b}) {
             if (i != world && i < held_.size()) held_[i] = 1;
         }
@@ -141,18 +143,14 @@ bool Joints::keeps_apart(std::uint32_t i, std::uint32_t j) const {
            std::binary_search(apart_.begin(), apart_.end(), std::uint64_t{i} << 32 | j);
 }
 
-void Joints::for_each_pair(const std::function<void(std::uint32_t, std::uint32_t)>& f) const {
-    for (const Joint& j : joints_) {
-        if (j.a != world && j.b != world) f(j.a, j.b);
+void Joints::turn_all(const std::vector<Body>& bodies) {
+    for (const std::uint32_t i : held_list_) {
+        if (i < bodies.size()) turn_[i] = {std::cos(bodies[i].angle), std::sin(bodies[i].angle)};
     }
 }
 
-void Joints::for_each_joint(
-    const std::function<void(std::uint32_t, std::uint32_t, bool)>& f) const {
-    for (const Joint& j : joints_) f(j.a, j.b, j.motor || j.spring);
-}
-
 void Joints::prepare(const std::vector<Body>& bodies, std::span<BlockBody> state, double dt) {
+    turn_all(bodies);
     for (Joint& j : joints_) {
         j.dt = dt;
         prepare_joint(j, bodies, state);
@@ -162,12 +160,12 @@ void Joints::prepare(const std::vector<Body>& bodies, std::span<BlockBody> state
 void Joints::prepare_joint(Joint& j, const std::vector<Body>& bodies,
                            std::span<BlockBody> state) {
     using Kind = JointDef::Kind;
-    const Pose pa = pose_of(bodies, j.a), pb = pose_of(bodies, j.b);
+    const Placed pa = placed(bodies, j.a), pb = placed(bodies, j.b);
     BlockBody& a = at(state, j.a);
     BlockBody& b = at(state, j.b);
     const double ma = a.inv_mass, ia = a.inv_inertia, mb = b.inv_mass, ib = b.inv_inertia;
-    j.ra = rotated(pa.angle, j.local_a);
-    j.rb = rotated(pb.angle, j.local_b);
+    j.ra = turned(pa, j.local_a);
+    j.rb = turned(pb, j.local_b);
     const V2 d = (pb.x + j.rb) - (pa.x + j.ra);
     const double h = j.dt;
     const double angle = pb.angle - pa.angle - j.reference;
@@ -211,7 +209,7 @@ void Joints::prepare_joint(Joint& j, const std::vector<Body>& bodies,
     case Kind::prismatic: {
         // A's row offset is to B's anchor: the axis turns with A about A's centroid.
         j.ra += d;
-        j.u = rotated(pa.angle, j.axis);
+        j.u = turned(pa, j.axis);
         j.n = perp(j.u);
         j.error = j.u.dot(d);
         const double s1 = cross(j.ra, j.n), s2 = cross(j.rb, j.n);
@@ -231,8 +229,18 @@ void Joints::prepare_joint(Joint& j, const std::vector<Body>& bodies,
     }
 }
 
+void Joints::pins(std::vector<PinRef>& out) {
+    out.clear();
+    for (Joint& j : joints_) {
+        if (j.pin) out.push_back({j.a, j.b, j.ra, j.rb, j.k[0], j.k[1], j.k[3], V2::Zero(),
+                                  &j.linear});
+    }
+}
+
 void Joints::solve(std::span<BlockBody> state) {
-    for (Joint& j : joints_) solve_joint(j, state);
+    for (Joint& j : joints_) {
+        if (!j.pin) solve_joint(j, state);
+    }
 }
 
 template <class Apply>
@@ -338,12 +346,34 @@ void Joints::solve_joint(Joint& j, std::span<BlockBody> state) {
 }
 
 double Joints::correct(std::vector<Body>& bodies, std::span<Moved> moved) {
-    for (const std::uint32_t i : held_list_) {
-        if (i < bodies.size()) turn_[i] = {std::cos(bodies[i].angle), std::sin(bodies[i].angle)};
-    }
+    turn_all(bodies);
     double worst = 0;
-    for (const Joint& j : joints_) worst = std::max(worst, correct_joint(j, bodies, moved));
+    for (const Joint& j : joints_) {
+        if (!j.pin) worst = std::max(worst, correct_joint(j, bodies, moved));
+    }
     return worst;
+}
+
+double Joints::pin_gaps(const std::vector<Body>& bodies, std::vector<PinRef>& out) {
+    out.clear();
+    turn_all(bodies);
+    double widest = 0;
+    for (Joint& j : joints_) {
+        if (!j.pin) continue;
+        const Placed pa = placed(bodies, j.a), pb = placed(bodies, j.b);
+        const V2 ra = turned(pa, j.local_a), rb = turned(pb, j.local_b);
+        const V2 d = (pb.x + rb) - (pa.x + ra);
+        const double gap = d.norm();
+        widest = std::max(widest, gap);
+        // Every pin, closed or not: one left out would open freely as its bodies move.
+        const auto k = point_matrix(pa.inv_mass, pa.inv_inertia, ra, pb.inv_mass,
+                                    pb.inv_inertia, rb);
+        // As the one-by-one pass: at most max_shift at a time (a pin pulled far apart is
+        // brought back over steps, not flung).
+        const V2 step = gap > max_shift ? V2(d * (max_shift / gap)) : d;
+        out.push_back({j.a, j.b, ra, rb, k[0], k[1], k[3], -step, nullptr});
+    }
+    return widest;
 }
 
 Joints::Placed Joints::placed(const std::vector<Body>& bodies, std::uint32_t i) const {
@@ -366,9 +396,6 @@ double Joints::correct_joint(const Joint& j, std::vector<Body>& bodies, std::spa
     const Placed pa = placed(bodies, j.a), pb = placed(bodies, j.b);
     const double ma = pa.inv_mass, ia = pa.inv_inertia, mb = pb.inv_mass, ib = pb.inv_inertia;
     if (ma + mb + ia + ib <= 0) return 0;
-    const auto turned = [](const Placed& p, const V2& v) {
-        return V2(p.cos * v.x() - p.sin * v.y(), p.sin * v.x() + p.cos * v.y());
-    };
     V2 ra = turned(pa, j.local_a);
     const V2 rb = turned(pb, j.local_b);
     // A pass corrects at most max_shift metres and max_turn radians (Box2D's 0.2 m and 8

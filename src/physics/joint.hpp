@@ -14,14 +14,17 @@
 // - prismatic: the velocity across the axis and the relative turning (a 2x2 block), a motor
 //   and limits along the axis;
 // - weld: the anchors' velocity and the turning (a 3x3 block), or the turning by a spring.
+// A pin (a revolute joint without motor or limits) is solved as a row of the contacts'
+// coloured, eight-wide solve (block_rows.hpp), in both stages; the other joints here, one by
+// one in doubles.
 // A row that would need a fast spring (2 pi f h above 1/2) is solved soft instead (Box2D's
 // soft constraint), which stays stable for any frequency.
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <span>
 #include <vector>
 
+#include "block_rows.hpp"
 #include "block_solver.hpp"
 #include "discreel/physics.hpp"
 
@@ -40,16 +43,29 @@ public:
     // `collide`.
     bool keeps_apart(std::uint32_t i, std::uint32_t j) const;
     // Calls f(a, b) for each joint between two bodies.
-    void for_each_pair(const std::function<void(std::uint32_t, std::uint32_t)>& f) const;
+    template <class F>
+    void for_each_pair(F&& f) const {
+        for (const Joint& j : joints_) {
+            if (j.a != world && j.b != world) f(j.a, j.b);
+        }
+    }
     // Calls f(a, b, works) for each joint, an end fixed to the world being `world`; `works`:
     // it has a motor or a spring, which may add energy (the rigid rows never do).
-    void for_each_joint(const std::function<void(std::uint32_t, std::uint32_t, bool)>& f) const;
+    template <class F>
+    void for_each_joint(F&& f) const {
+        for (const Joint& j : joints_) f(j.a, j.b, j.motor || j.spring);
+    }
     static constexpr std::uint32_t world = 0xffffffffu;
 
     // The velocity stage: offsets and masses from the bodies' poses now, springs' pushes and
     // last step's impulses applied to `state` (the bodies' velocities, in their order).
     void prepare(const std::vector<Body>& bodies, std::span<BlockBody> state, double dt);
-    // One pass over every joint's rows.
+    // The pins' rows after prepare(), their warm start applied: into `out`, whose impulses
+    // point at the joints' (valid until the joints change).
+    void pins(std::vector<PinRef>& out);
+    // Whether any joint is not a pin: solved by solve() and correct().
+    bool narrow() const { return narrow_; }
+    // One pass over the rows of every joint but the pins.
     void solve(std::span<BlockBody> state);
 
     // The position stage: one pass over every joint, each moved back to its geometry by moving
@@ -60,6 +76,10 @@ public:
         double turn = 0;
     };
     double correct(std::vector<Body>& bodies, std::span<Moved> moved);
+    // The pins' position rows: each pin with the displacement that closes it (at most
+    // max_shift) as its target, into `out`.
+    // Returns the widest gap, metres.
+    double pin_gaps(const std::vector<Body>& bodies, std::vector<PinRef>& out);
     // The bodies a joint holds, ascending.
     std::span<const std::uint32_t> held_bodies() const { return held_list_; }
 
@@ -86,6 +106,7 @@ private:
         double lower = 0, upper = 0;
         bool motor = false;
         double speed = 0, max_force = 0;
+        bool pin = false;          // revolute without motor or limits: solved wide
 
         // The step's, from prepare():
         V2 ra = V2::Zero(), rb = V2::Zero();   // offsets from the centroids, metres
@@ -114,14 +135,20 @@ private:
     template <class Apply>
     static void solve_axis(Joint& j, double w, double mass, Apply&& apply);
     double correct_joint(const Joint& j, std::vector<Body>& bodies, std::span<Moved> moved);
-    // A body's pose for the position stage: the world's end at the origin, and the cosine and
-    // sine of its angle, kept in turn_ through the pass (one libm call per body, not per joint).
+    // Each held body's cosine and sine of its angle now, into turn_.
+    void turn_all(const std::vector<Body>& bodies);
+    // A body's pose: the world's end at the origin, and the cosine and sine of its angle, kept
+    // in turn_ (one libm call per body, not per joint).
     struct Placed {
         V2 x = V2::Zero();
         double angle = 0, cos = 1, sin = 0;
         double inv_mass = 0, inv_inertia = 0;
     };
     Placed placed(const std::vector<Body>& bodies, std::uint32_t i) const;
+    // v, in a body's frame, turned to the world's.
+    static V2 turned(const Placed& p, const V2& v) {
+        return {p.cos * v.x() - p.sin * v.y(), p.sin * v.x() + p.cos * v.y()};
+    }
     // Moves body i by `by` and turns it by `turn` (its cached cosine and sine with it).
     void move(std::vector<Body>& bodies, std::span<Moved> moved, std::uint32_t i, const V2& by,
               double turn);
@@ -129,7 +156,8 @@ private:
     std::vector<Joint> joints_;
     std::vector<unsigned char> held_;          // per body
     std::vector<std::uint32_t> held_list_;     // the bodies held, ascending
-    std::vector<std::pair<double, double>> turn_;   // per body: cos, sin of its angle (correct)
+    std::vector<std::pair<double, double>> turn_;   // per body: cos, sin of its angle
+    bool narrow_ = false;                      // a joint is not a pin
     std::vector<std::uint64_t> apart_;         // sorted a << 32 | b of joints without collide
     BlockBody ground_;                         // the world's end: never moves
 };
