@@ -32,6 +32,20 @@ void BodySolver::correct_joints(std::vector<Body>& bodies) {
         record_moves();
         if (worst <= Joints::tolerance) break;
     }
+    joint_poses_.clear();
+    for (const std::uint32_t i : joints_.held_bodies()) {
+        joint_poses_.push_back({bodies[i].x, bodies[i].angle});
+    }
+}
+
+bool BodySolver::joints_moved(const std::vector<Body>& bodies) const {
+    const std::span<const std::uint32_t> held = joints_.held_bodies();
+    if (joint_poses_.size() != held.size()) return true;
+    for (std::size_t k = 0; k < held.size(); ++k) {
+        const Body& b = bodies[held[k]];
+        if (b.x != joint_poses_[k].first || b.angle != joint_poses_[k].second) return true;
+    }
+    return false;
 }
 
 void BodySolver::correct_pins(std::vector<Body>& bodies) {
@@ -44,7 +58,7 @@ void BodySolver::correct_pins(std::vector<Body>& bodies) {
         pin_moves_[i] = {V2::Zero(), 0, bodies[i].inv_mass, bodies[i].inv_inertia};
     }
     pin_positions_.build({}, pin_gaps_, pin_moves_);
-    pin_positions_.solve(def_.joint_position_passes);
+    pin_positions_.solve(def_.pin_position_passes);
     pin_positions_.finish({}, pin_gaps_, pin_moves_);
     for (const std::uint32_t i : joints_.held_bodies()) {
         const BlockBody& m = pin_moves_[i];

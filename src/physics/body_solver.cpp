@@ -176,9 +176,9 @@ void BodySolver::step(std::vector<Body>& bodies, std::span<const Polygon> shapes
         mark_sunk(bodies);
         time_impacts(bodies, dt, settle);
     }
-    if (!joints_.empty()) {
+    if (!joints_.empty() && joints_moved(bodies)) {
         // The impacts moved bodies to where they met, and the push-out's last word is the
-        // walls': the joints are corrected again (nothing to do where nothing moved them).
+        // walls': the joints are corrected again where either moved a body a joint holds.
         const StageTimer timer(profile_, &StepProfile::positions);
         correct_joints(bodies);
     }

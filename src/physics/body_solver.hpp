@@ -48,13 +48,18 @@ struct BodySolverDef {
     int iterations = 6;            // velocity iterations per step (docs/physics.md)
     int position_iterations = 8;   // overlap-removal sweeps per step
     // Passes over the joints' rows after each velocity iteration's pass over the contacts:
-    // the tail of a 20-link chain whipping round gains energy and parts by 4 mm at one, holds
-    // 0.35 mm at four (docs/tried.md); a joint costs little next to a contact.
+    // the tail of a 20-link chain whipping round gains energy and parts its pins at one or
+    // two, holds them within 0.7 mm at four (docs/tried.md).
     int joint_passes = 4;
-    // The joints' position passes (body_joints.cpp), each time they run (twice a step), at
-    // most: Box2D v2.4's three. At eight, a sagging 50 x 50 grid of pins cost 1.8 times as
-    // much for 0.1 of its 1.7 mm widest gap; a 20-link chain holds its pins within 0.35 mm.
+    // The position passes of the joints other than pins (body_joints.cpp), each time they
+    // run, at most: Box2D v2.4's three. At eight, a sagging 50 x 50 grid of pins cost 1.8 times
+    // as much for 0.1 of its 1.7 mm widest gap.
     int joint_position_passes = 3;
+    // The pins' position passes in the coloured rows, each time they run (once a step, twice
+    // where the push-out or an impact moved a jointed body): a colour passes a correction one
+    // link on, so a chain needs more than one by one; at three a 20-link chain's pins opened
+    // 1.2 mm, at six 0.7 mm, for a tenth of the grid's time.
+    int pin_position_passes = 6;
     double speculative = 0.02;     // metres: points this far apart are already contacts
     double slop = 5e-4;            // metres of overlap left alone (resting contact jitters less)
     // Metres of overlap a push-out leaves: under the slop, so that a point just pushed is not
@@ -249,6 +254,8 @@ private:
     void correct_joints(std::vector<Body>& bodies);
     // Its first part: the pins', in the coloured rows.
     void correct_pins(std::vector<Body>& bodies);
+    // Whether a body a joint holds has moved since correct_joints last ran.
+    bool joints_moved(const std::vector<Body>& bodies) const;
     // Its parts: point k's separation now from its anchors (and its offsets now, into ra and
     // rb); a body's turn in the step grown by `by` radians; a positional impulse of `amount`
     // (kg m) along the normal at ra, rb; an island's or block's points pushed together; one
@@ -444,6 +451,8 @@ private:
     std::vector<PinRef> pin_gaps_;          // scratch of correct_pins: its position rows
     std::vector<BlockBody> pin_moves_;      // scratch of correct_pins: per body, its move
     BlockRows pin_positions_;               // the pins' position rows
+    // The held bodies' centroids and angles as correct_joints left them, in held_bodies order.
+    std::vector<std::pair<V2, double>> joint_poses_;
     bool far_islands_ = false;              // some island's masses are direct_mass_ratio apart
     std::vector<int> points_;
     std::vector<unsigned char> direct_;

@@ -165,7 +165,7 @@ inline std::uint64_t run_resting_scene() {
 }
 
 // What run_joint_scene() gives, pinned like busy_scene_hash.
-inline constexpr std::uint64_t joint_scene_hash = 16763398222978949926ull;
+inline constexpr std::uint64_t joint_scene_hash = 465108837284810233ull;
 
 // Every kind of joint at work beside falling boxes: a chain of capsules from a pin, a bob on a
 // rope, a box on a damped spring, a motor driving a slider into its limit, a turning paddle
