@@ -34,7 +34,7 @@ void BodySolver::correct_joints(std::vector<Body>& bodies) {
     }
     joint_poses_.clear();
     for (const std::uint32_t i : joints_.held_bodies()) {
-        joint_poses_.push_back({bodies[i].x, bodies[i].angle});
+        joint_poses_.emplace_back(bodies[i].x, bodies[i].angle);
     }
 }
 

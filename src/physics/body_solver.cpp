@@ -338,10 +338,10 @@ void BodySolver::sense(const std::vector<Body>& bodies) {
     // The broad phase's pairs hold every pair whose boxes can overlap in the step: a sensor's
     // that overlap now are measured at the step's end.
     sensing_now_.clear();
-    for (const std::uint64_t key : fat_list_) {
+    const auto watch = [&](std::uint64_t key) {
         const auto i = static_cast<std::uint32_t>(key >> 32);
         const auto j = static_cast<std::uint32_t>(key & 0xffffffffu);
-        if (!filter_.senses(i, j) || !boxes_overlap(boxes_[i], boxes_[j])) continue;
+        if (!filter_.senses(i, j) || !boxes_overlap(boxes_[i], boxes_[j])) return;
         const Body& a = bodies[i];
         const Body& b = bodies[j];
         const Manifold m = collide(shapes_[i], Transform::of(a.x, a.angle), shapes_[j],
@@ -349,8 +349,12 @@ void BodySolver::sense(const std::vector<Body>& bodies) {
         bool overlapping = false;
         for (int k = 0; k < m.count; ++k) overlapping = overlapping || m.points[k].separation < 0;
         if (overlapping) sensing_now_.push_back(key);
-    }
+    };
+    for (const std::uint64_t key : fat_list_) watch(key);
+    watch_unpushable(bodies, watch);
     std::sort(sensing_now_.begin(), sensing_now_.end());
+    sensing_now_.erase(std::unique(sensing_now_.begin(), sensing_now_.end()),
+                       sensing_now_.end());
     // Began: now, not before; ended: before, not now (both lists ascending).
     const auto event = [&](std::uint64_t key, PairTouch::Kind kind) {
         PairTouch t;
@@ -372,6 +376,29 @@ void BodySolver::sense(const std::vector<Body>& bodies) {
         }
     }
     std::swap(sensing_, sensing_now_);
+}
+
+template <class Watch>
+void BodySolver::watch_unpushable(const std::vector<Body>& bodies, Watch&& watch) {
+    // The fat list pairs only bodies a contact can move. A sensor no contact moves (a static
+    // gate, a kinematic one) and another such body of which one of the two moves as told (a
+    // kinematic platform through a static gate) are paired here, each such sensor with each
+    // such body: sensors are counted in ones.
+    unpushed_sensors_.clear();
+    unpushed_.clear();
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+        if (bodies[i].inv_mass > 0) continue;
+        unpushed_.push_back(i);
+        if (filter_.sensor(i)) unpushed_sensors_.push_back(i);
+    }
+    for (const std::uint32_t s : unpushed_sensors_) {
+        for (const std::uint32_t o : unpushed_) {
+            if (o == s || (bodies[s].motion != Motion::held && bodies[o].motion != Motion::held)) {
+                continue;
+            }
+            watch(std::uint64_t{std::min(s, o)} << 32 | std::max(s, o));
+        }
+    }
 }
 
 BodySolver::Overlap BodySolver::max_overlap(const std::vector<Body>& bodies,

@@ -363,7 +363,12 @@ private:
     // (body_solver.cpp) The sensors' overlaps now against the
     // last step's: sensing_ (a << 32 | b, ascending) and the events in sensed_.
     void sense(const std::vector<Body>& bodies);
+    // Calls watch(key) for each pair of a sensor and a body, neither of which a contact moves
+    // and one of which moves as told: pairs the fat list leaves out.
+    template <class Watch>
+    void watch_unpushable(const std::vector<Body>& bodies, Watch&& watch);
     std::vector<std::uint64_t> sensing_, sensing_now_;
+    std::vector<std::uint32_t> unpushed_, unpushed_sensors_;   // scratch of watch_unpushable
     std::vector<PairTouch> sensed_;
     double dt_ = 0;                         // s: this step's
     std::span<const Polygon> shapes_;       // each body's shape: set by step(), read within it

@@ -11,8 +11,9 @@ namespace {
 
 double length(Vec2 v) { return std::hypot(v.x, v.y); }
 
-// Four significant digits, an exponent as people write it: 1e-9, 3.142e13, 5000.
-std::string number(double value) {
+}  // namespace
+
+std::string format_bound(double value) {
     std::string text = format_short(value);
     const auto e = text.find('e');
     if (e == std::string::npos) return text;
@@ -22,6 +23,10 @@ std::string number(double value) {
     exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
     return text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
 }
+
+namespace {
+
+std::string number(double value) { return format_bound(value); }
 
 // One message per entry: a generator's bodies share their entry, and its first offender
 // speaks for all.

@@ -509,7 +509,11 @@ static void check_radii_against_reach(Loader& loader) {
     const auto& discs = loader.scene.bodies;
     double reach = 0;   // metres from the origin to the farthest coordinate
     const auto extend = [&](Vec2 p) { reach = std::max({reach, std::abs(p.x), std::abs(p.y)}); };
-    for (const Body& disc : discs) extend(disc.position);
+    for (const Body& disc : discs) {
+        extend(disc.position);
+        if (!disc.kinematic) continue;
+        for (const physics::KinematicDef::Pose& pose : disc.kinematic->path) extend(pose.position);
+    }
     for (const Wall& wall : loader.scene.walls) {
         extend(wall.a);
         extend(wall.b);

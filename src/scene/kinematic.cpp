@@ -1,5 +1,7 @@
 // `kinematic:` on a disc or body — a moving platform, a windmill's sails: moved as told.
 #include <array>
+#include <cmath>
+#include <string>
 #include <string_view>
 
 #include "entries.hpp"
@@ -11,43 +13,37 @@ namespace {
 constexpr std::array<std::string_view, 4> kinematic_keys{"velocity", "angular_velocity", "path",
                                                          "loop"};
 
-// [t, x, y, angle] waypoints, at least one, times at least 0 and strictly increasing.
+// A speed (m/s) or spin (rad/s) beyond scene::ranges, refused at `where` as a body's is.
+bool within(double value, double most, const char* what, const char* unit,
+            const Location& where, const std::string& path, Diagnostics& d) {
+    if (std::abs(value) <= most) return true;
+    d.error(where, path + ": a " + what + " of " + format_bound(std::abs(value)) + " " + unit +
+                       " is beyond any scene's; " + what + "s are at most " + format_bound(most) +
+                       " " + unit);
+    return false;
+}
+
+// [t, x, y, angle] poses, at least one; the speed and turning rate between each two within
+// scene::ranges.
 bool read_poses(const Value& value, std::vector<physics::KinematicDef::Pose>& poses,
                 Diagnostics& d) {
-    const auto items = read_list(value, d);
-    if (!items) return false;
-    if (items->empty()) {
-        d.error(value.where, value.path + ": a path needs at least 1 pose [t, x, y, angle]");
-        return false;
-    }
-    if (items->size() > max_waypoints) {
-        d.error(value.where, value.path + ": too many poses (" + std::to_string(items->size()) +
-                                 "); the limit is " + std::to_string(max_waypoints));
-        return false;
-    }
+    const auto points =
+        read_timed_points(value, {4, "[t, x, y, angle]", "pose", "a path", 1}, d);
+    if (!points) return false;
     bool ok = true;
-    for (const Value& item : *items) {
-        const auto numbers = read_tuple(item, 4, "[t, x, y, angle]", d);
-        if (!numbers) {
-            ok = false;
-            continue;
+    for (const TimedPoint& p : *points) {
+        const auto [t, x, y, angle] = p.numbers;
+        if (!poses.empty()) {
+            const physics::KinematicDef::Pose& from = poses.back();
+            const double dt = t - from.t;
+            const double speed = std::hypot(x - from.position.x, y - from.position.y) / dt;
+            const std::string path = p.item.path + " (from the pose before)";
+            ok = within(speed, ranges.max_speed, "speed", "m/s", p.item.where, path, d) && ok;
+            ok = within((angle - from.angle) / dt, ranges.max_spin, "spin", "rad/s",
+                        p.item.where, path, d) &&
+                 ok;
         }
-        std::array<std::optional<double>, 4> v;
-        for (std::size_t k = 0; k < 4; ++k) v[k] = read_number((*numbers)[k], d);
-        if (!v[0] || !v[1] || !v[2] || !v[3]) {
-            ok = false;
-            continue;
-        }
-        if (*v[0] < 0 || (!poses.empty() && *v[0] <= poses.back().t)) {
-            d.error((*numbers)[0].where,
-                    item.path + ": pose times must be at least 0 and increase strictly, but " +
-                        format_number(*v[0]) +
-                        (poses.empty() ? std::string(" is below 0")
-                                       : " comes after " + format_number(poses.back().t)));
-            ok = false;
-            continue;
-        }
-        poses.push_back({*v[0], {*v[1], *v[2]}, *v[3]});
+        poses.push_back({t, {x, y}, angle});
     }
     return ok;
 }
@@ -70,13 +66,19 @@ std::optional<physics::KinematicDef> read_kinematic(const Value& value, Diagnost
         const auto velocity = read_vec2(*v, "[x, y]", d);
         ok = ok && velocity;
         k.velocity = velocity.value_or(Vec2{});
+        ok = within(std::hypot(k.velocity.x, k.velocity.y), ranges.max_speed, "speed", "m/s",
+                    v->where, v->path, d) && ok;
     }
     if (const auto v = fields->get("angular_velocity")) {
         const auto omega = read_number(*v, d);
         ok = ok && omega;
         k.angular_velocity = omega.value_or(0);
+        ok = within(k.angular_velocity, ranges.max_spin, "spin", "rad/s", v->where, v->path, d) &&
+             ok;
     }
-    if (const auto v = fields->get("path")) ok = read_poses(*v, k.path, d) && ok;
+    if (const auto v = fields->get("path")) {
+        ok = read_poses(*v, k.path, d) && ok;
+    }
     if (const auto v = fields->get("loop")) {
         if (!fields->has("path")) {
             d.error(fields->key_location("loop"), value.path + ": 'loop' needs a 'path'");

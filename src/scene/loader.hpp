@@ -2,10 +2,12 @@
 // State shared by the section readers while one scene file is loaded. Each section reads its
 // part of the YAML into Scene and reports problems; load.cpp calls them in dependency order
 // (physics before discs: discs take their defaults from it; discs before throws).
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "diagnostics.hpp"
@@ -63,6 +65,27 @@ void read_throws(Loader& loader, const Value& value);
 void read_joints(Loader& loader, const Value& value);   // after the bodies, before check_discs
 void read_golden(Loader& loader, const std::optional<Value>& value);
 void check_ranges(Loader& loader);     // masses, speeds and spins no scene needs (refused)
+// Four significant digits, an exponent as people write it: 1e-9, 3.142e13, 5000 (bounds.cpp).
+std::string format_bound(double value);
+
+// A list of timed points (timed_points.cpp): a grab's waypoints, a kinematic path's poses.
+struct TimedPointsForm {
+    std::size_t width = 3;          // numbers in each, the time first
+    std::string_view shape;         // "[t, x, y]"
+    std::string_view noun;          // "waypoint"
+    std::string_view owner;         // "a grab": what needs them, in messages
+    std::size_t least = 1;          // the fewest there may be
+};
+struct TimedPoint {
+    Value item;                     // where it was written
+    std::array<double, 4> numbers{};   // the first `width` of them
+};
+// The points of `value`, at least form.least and at most max_waypoints, each a tuple of
+// form.width numbers, the times at least 0 and increasing strictly; nothing if any is wrong
+// (each mistake reported at its place).
+std::optional<std::vector<TimedPoint>> read_timed_points(const Value& value,
+                                                         const TimedPointsForm& form,
+                                                         Diagnostics& d);
 void check_envelope(Loader& loader);   // mass ratios and speeds the solver is known to handle
 
 }  // namespace discreel::scene::detail

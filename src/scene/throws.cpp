@@ -13,50 +13,14 @@ constexpr std::array<std::string_view, 6> throw_keys{"disc", "body", "at", "velo
                                                      "release"};
 
 bool read_path(Loader& loader, const Value& value, Throw& t) {
-    auto& d = loader.diagnostics;
-    const auto items = read_list(value, d);
-    if (!items) return false;
-    if (items->size() < 2) {
-        d.error(value.where, value.path + ": a grab needs at least 2 waypoints [t, x, y], got " +
-                                 std::to_string(items->size()));
-        return false;
+    const auto points = read_timed_points(value, {3, "[t, x, y]", "waypoint", "a grab", 2},
+                                          loader.diagnostics);
+    if (!points) return false;
+    for (const TimedPoint& p : *points) {
+        t.path.push_back({p.numbers[0], {p.numbers[1], p.numbers[2]}});
     }
-    if (items->size() > max_waypoints) {
-        d.error(value.where, value.path + ": too many waypoints (" +
-                                 std::to_string(items->size()) + "); the limit is " +
-                                 std::to_string(max_waypoints));
-        return false;
-    }
-    bool ok = true;
-    // Strictly increasing times are checked between neighbours that both read fine.
-    double previous_t = 0;
-    bool has_previous = false;
-    for (const Value& item : *items) {
-        const auto numbers = read_tuple(item, 3, "[t, x, y]", d);
-        if (!numbers) {
-            ok = false;
-            has_previous = false;
-            continue;
-        }
-        const auto time = read_number((*numbers)[0], d);
-        const auto x = read_number((*numbers)[1], d);
-        const auto y = read_number((*numbers)[2], d);
-        bool point_ok = time && x && y;
-        if (time && !has_previous)
-            point_ok = check_non_negative((*numbers)[0], *time, d) && point_ok;
-        if (time && has_previous && *time <= previous_t) {
-            d.error((*numbers)[0].where,
-                    item.path + ": waypoint times must increase strictly, but " +
-                        format_number(*time) + " comes after " + format_number(previous_t));
-            point_ok = false;
-        }
-        has_previous = time.has_value();
-        previous_t = time.value_or(0);
-        ok = ok && point_ok;
-        if (point_ok) t.path.push_back({*time, {*x, *y}});
-    }
-    if (ok) t.at = t.path.front().t;
-    return ok;
+    t.at = t.path.front().t;
+    return true;
 }
 
 }  // namespace

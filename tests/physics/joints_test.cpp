@@ -556,5 +556,37 @@ TEST(Sensors, ADiscFallingThroughASensorBeginsAndEndsWithinAStep) {
     EXPECT_NEAR(world.bodies()[1].velocity.y, -g * world.time(), 1e-9);
 }
 
+TEST(Sensors, AStaticSensorSeesAKinematicBodyPassThrough) {
+    // A 0.4 m box carried at 2 m/s along y = 2.5 from x = -3 through a static sensor 2 m wide
+    // at the origin: it overlaps from x = -1.2 to x = 1.2, t = 0.9 s to 2.1 s.
+    WorldDef def = empty_world();
+    BodyDef gate = testing::body(box_shape(2, 1).value(), {0, 2.5});
+    gate.is_static = true;
+    gate.sensor = true;
+    def.bodies.push_back(gate);
+    BodyDef carried = testing::body(box_shape(0.4, 0.4).value(), {-3, 2.5});
+    KinematicDef motion;
+    motion.velocity = {2, 0};
+    carried.kinematic = motion;
+    def.bodies.push_back(carried);
+    World world(def);
+    std::vector<ContactEvent> events;
+    while (world.time() < 3) {
+        world.step();
+        for (const ContactEvent& e : world.take_events()) events.push_back(e);
+    }
+    ASSERT_EQ(events.size(), 2u);
+    EXPECT_EQ(events[0].kind, ContactEvent::Kind::begin);
+    EXPECT_EQ(events[0].a, 0u);
+    EXPECT_EQ(events[0].other, 1u);
+    EXPECT_GE(events[0].t, 0.9);
+    EXPECT_NEAR(events[0].t, 0.9, 1.0 / world.rate());
+    EXPECT_EQ(events[1].kind, ContactEvent::Kind::end);
+    EXPECT_GE(events[1].t, 2.1);
+    EXPECT_NEAR(events[1].t, 2.1, 1.0 / world.rate());
+    // Carried exactly: the sensor pushed nothing.
+    EXPECT_NEAR(world.bodies()[1].position.x, -3 + 2 * world.time(), 1e-9);
+}
+
 }  // namespace
 }  // namespace discreel::physics
