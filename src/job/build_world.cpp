@@ -32,6 +32,7 @@ physics::WorldDef build_world(const scene::Scene& scene) {
     def.substeps = scene.physics.substeps;
     def.iterations = scene.physics.iterations;
     def.sleep = scene.physics.sleep;
+    def.mixing = scene.physics.mix;
     def.bodies.reserve(scene.bodies.size());
     for (const scene::Body& d : scene.bodies) def.bodies.push_back(body_of(d));
     for (const scene::Respawn& r : scene.respawns) {

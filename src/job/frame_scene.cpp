@@ -130,8 +130,11 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
         }
     }
     slots_.resize(scene.bodies.size());
-    trail_radius_.resize(scene.bodies.size());
+    outline_.resize(scene.bodies.size());
+    rounding_.resize(scene.bodies.size());
+    radius_.resize(scene.bodies.size());
     fill_.resize(scene.bodies.size());
+    born_.assign(scene.bodies.size(), -HUGE_VAL);
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
         const bool polygon = scene.bodies[i].shape.has_value();
         std::size_t& count = polygon ? polygon_count_ : disc_count_;
@@ -164,13 +167,20 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
         const std::size_t affordable = max_trail_points / trailed_.size();
         trail_capacity_ = std::max<std::size_t>(2, std::min(wanted, affordable));
         trail_points_.resize(trail_capacity_ * trailed_.size());
+        trail_since_.assign(trailed_.size(), 0);
     }
 }
 
 void FrameSceneBuilder::set_look(std::size_t body, const scene::Body& d) {
     const Slot slot = slots_[body];
     fill_[body] = to_rgba(d.color);
-    trail_radius_[body] = static_cast<float>(scene_.style.trails.width * d.radius);
+    radius_[body] = static_cast<float>(d.radius);
+    outline_[body].clear();
+    rounding_[body] = 0;
+    if (d.shape) {
+        outline_[body] = d.shape->vertices;
+        rounding_[body] = static_cast<float>(d.shape->radius);
+    }
     if (!slot.polygon) {
         render::DiscGeom& g = frame_.discs[slot.slot];
         g.radius = static_cast<float>(d.radius);
@@ -201,6 +211,12 @@ void FrameSceneBuilder::respawned(std::size_t applied) {
         const scene::Respawn& r = scene_.respawns[respawns_applied_];
         for (std::size_t k = 0; k < r.bodies.size() && r.first + k < slots_.size(); ++k) {
             set_look(r.first + k, r.bodies[k]);
+            // Put in after the frame observed last: its contacts are from then on.
+            born_[r.first + k] = static_cast<double>(observed_frame_) / scene_.video.fps;
+            const auto at = std::lower_bound(trailed_.begin(), trailed_.end(), r.first + k);
+            if (at != trailed_.end() && *at == r.first + k) {
+                trail_since_[static_cast<std::size_t>(at - trailed_.begin())] = trail_rows_seen_;
+            }
         }
     }
 }
@@ -223,17 +239,21 @@ void FrameSceneBuilder::observe(int frame, std::span<const physics::BodyState> d
     if (!trailed_.empty()) {
         trail_newest_ = trail_rows_filled_ == 0 ? 0 : (trail_newest_ + 1) % trail_capacity_;
         trail_rows_filled_ = std::min(trail_rows_filled_ + 1, trail_capacity_);
+        ++trail_rows_seen_;
         Point* row = &trail_points_[trail_newest_ * trailed_.size()];
         for (std::size_t j = 0; j < trailed_.size(); ++j) {
-            const Vec2 p = discs[trailed_[j]].position;
-            row[j] = {static_cast<float>(p.x), static_cast<float>(p.y)};
+            const physics::BodyState& b = discs[trailed_[j]];
+            row[j] = {static_cast<float>(b.position.x), static_cast<float>(b.position.y),
+                      static_cast<float>(b.angle)};
         }
     }
     last_frame_ = frame;
+    observed_frame_ = frame;
 }
 
 const render::FrameScene& FrameSceneBuilder::build(int frame,
-                                                   std::span<const physics::BodyState> discs) {
+                                                   std::span<const physics::BodyState> discs,
+                                                   std::span<const double> last_contacts) {
     observe(frame, discs);
     for (std::size_t i = 0; i < discs.size(); ++i) {
         const auto x = static_cast<float>(discs[i].position.x);
@@ -257,7 +277,7 @@ const render::FrameScene& FrameSceneBuilder::build(int frame,
     }
     add_trails();
     add_joints(discs);
-    add_arrows(discs);
+    add_arrows(frame, discs, last_contacts);
     add_clock(frame);
     return frame_;
 }
@@ -350,6 +370,23 @@ void FrameSceneBuilder::add_zigzag(Vec2 a, Vec2 b, float half, const render::Rgb
     push(end, b);
 }
 
+float FrameSceneBuilder::trail_half_width(std::size_t body, float angle, float dx,
+                                           float dy) const {
+    const std::vector<Vec2>& outline = outline_[body];
+    if (outline.empty()) return radius_[body];
+    // The outline's extent across the motion: its vertices turned by the angle, projected on
+    // the motion's normal (-dy, dx).
+    const double c = std::cos(angle), s = std::sin(angle);
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const Vec2& v : outline) {
+        const double x = c * v.x - s * v.y, y = s * v.x + c * v.y;
+        const double across = -dy * x + dx * y;
+        lo = std::min(lo, across);
+        hi = std::max(hi, across);
+    }
+    return static_cast<float>(0.5 * (hi - lo)) + rounding_[body];
+}
+
 void FrameSceneBuilder::add_trails() {
     frame_.trails.clear();
     if (trail_rows_filled_ < 2) return;
@@ -357,20 +394,29 @@ void FrameSceneBuilder::add_trails() {
     const std::size_t n = trailed_.size();
     const std::size_t segments = trail_rows_filled_ - 1;
     const float oldest_age = static_cast<float>(trail_capacity_ - 1);
+    const auto width = static_cast<float>(style.width);
     for (std::size_t j = 0; j < n; ++j) {
-        const float full_radius = trail_radius_[trailed_[j]];
-        const render::Rgba& fill = fill_[trailed_[j]];
+        const std::size_t body = trailed_[j];
+        const render::Rgba& fill = fill_[body];
+        // Segments whose older end was seen before the body's trail began are not drawn (a
+        // respawned body's first segment would join it to the body it replaced).
+        const std::size_t newest_seen = trail_rows_seen_ - 1;
         // Oldest first, so newer stretches lie on top where a trail crosses itself.
         for (std::size_t k = segments; k-- > 0;) {
+            if (newest_seen < k + 1 + trail_since_[j]) continue;
             const std::size_t newer = (trail_newest_ + trail_capacity_ - k) % trail_capacity_;
             const std::size_t older = (newer + trail_capacity_ - 1) % trail_capacity_;
             const Point a = trail_points_[older * n + j];
             const Point b = trail_points_[newer * n + j];
-            if (a == b) continue;
+            const float dx = b.x - a.x, dy = b.y - a.y;
+            const float length = std::hypot(dx, dy);
+            if (!(length > 0)) continue;
             // The colour is mixed with the background here, not blended in GL: neighbouring
             // segments overlap at their round caps, and opaque colours keep the joints even.
             const float age = (static_cast<float>(k) + 0.5f) / oldest_age;   // 0 new .. 1 old
             const float fresh = style.fade ? 1.0f - age : 1.0f;
+            const float full_radius = width * trail_half_width(body, b.angle, dx / length,
+                                                               dy / length);
             const float radius =
                 full_radius * (style.fade ? kTrailThinnest + (1 - kTrailThinnest) * fresh : 1.0f);
             frame_.trails.push_back({a.x, a.y, b.x, b.y, radius,
@@ -379,18 +425,32 @@ void FrameSceneBuilder::add_trails() {
     }
 }
 
-void FrameSceneBuilder::add_arrows(std::span<const physics::BodyState> discs) {
+void FrameSceneBuilder::add_arrows(int frame, std::span<const physics::BodyState> discs,
+                                   std::span<const double> last_contacts) {
     frame_.arrows.clear();
     const scene::VelocityArrows& style = scene_.style.velocity_arrows;
     if (!style.enabled) return;
+    const double now = static_cast<double>(frame) / scene_.video.fps;
+    const render::Rgba color = to_rgba(style.color);
     for (std::size_t i = 0; i < discs.size(); ++i) {
         if (scene_.bodies[i].is_static) continue;
+        float shown = 1;
+        if (style.after_contact) {
+            // Full at the contact, fading linearly to nothing over after_contact seconds; a
+            // respawned body's contacts count from when it was put in.
+            const double touched = i < last_contacts.size() ? last_contacts[i] : -HUGE_VAL;
+            if (!(touched >= born_[i])) continue;
+            const double since = now - touched;
+            if (since >= *style.after_contact) continue;
+            shown = static_cast<float>(1 - std::max(since, 0.0) / *style.after_contact);
+        }
         const Vec2 tail = discs[i].position;
         const Vec2 v = discs[i].velocity;
         frame_.arrows.push_back({static_cast<float>(tail.x), static_cast<float>(tail.y),
                                  static_cast<float>(tail.x + v.x * style.scale),
                                  static_cast<float>(tail.y + v.y * style.scale),
-                                 static_cast<float>(style.width), to_rgba(style.color)});
+                                 static_cast<float>(style.width),
+                                 {color.r, color.g, color.b, color.a * shown}});
     }
 }
 

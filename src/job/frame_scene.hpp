@@ -16,8 +16,8 @@ namespace discreel::job {
 // are no walls) with a 5 % margin on every side, widened to the frame's aspect ratio.
 render::Camera fit_camera(const scene::Scene& scene);
 
-// Trails keep at most this many points over all discs (8 bytes each): with very many discs
-// the trails get shorter rather than the memory larger.
+// Trails keep at most this many points over all bodies (12 bytes each): with very many
+// bodies the trails get shorter rather than the memory larger.
 inline constexpr std::size_t max_trail_points = 4'000'000;
 
 class FrameSceneBuilder {
@@ -28,9 +28,11 @@ public:
     // still observed, so that trails and the follow camera see it. Frame n is at t = n / fps.
     void observe(int frame, std::span<const physics::BodyState> discs);
 
-    // observe() and the frame description of that state. The returned reference stays valid
-    // until the next call.
-    const render::FrameScene& build(int frame, std::span<const physics::BodyState> discs);
+    // observe() and the frame description of that state; `last_contacts`: per body, the time
+    // of its latest contact (seconds, -infinity for none; may be short), for the arrows shown
+    // after contacts. The returned reference stays valid until the next call.
+    const render::FrameScene& build(int frame, std::span<const physics::BodyState> discs,
+                                    std::span<const double> last_contacts = {});
 
     // The world has carried out the first `applied` of the scene's respawns: later frames
     // draw the new bodies' shapes and colours.
@@ -44,7 +46,8 @@ private:
     };
     void set_look(std::size_t body, const scene::Body& d);
     void add_trails();
-    void add_arrows(std::span<const physics::BodyState> discs);
+    void add_arrows(int frame, std::span<const physics::BodyState> discs,
+                    std::span<const double> last_contacts);
     void add_clock(int frame);
     void add_joints(std::span<const physics::BodyState> discs);
     void add_zigzag(Vec2 a, Vec2 b, float half, const render::Rgba& color);
@@ -58,9 +61,17 @@ private:
     const scene::Scene& scene_;
     render::FrameScene frame_;
     std::vector<Slot> slots_;            // per body, in the scene's numbering
-    std::vector<float> trail_radius_;    // per body: the trail's full width is this, metres
+    // Half a trail's width across its motion, metres, at the body's `angle` (radians) for a
+    // motion along `direction` (unit): a disc's radius, a shape's outline's half extent.
+    float trail_half_width(std::size_t body, float angle, float dx, float dy) const;
+    // Per body: its outline's vertices in its frame (none for a disc) and rounding, metres.
+    std::vector<std::vector<Vec2>> outline_;
+    std::vector<float> rounding_;
+    std::vector<float> radius_;           // per body: a disc's radius, metres
     std::vector<render::Rgba> fill_;     // per body
     std::size_t respawns_applied_ = 0;
+    std::vector<double> born_;            // per body: when it was put in, seconds
+    int observed_frame_ = -1;             // the frame observe() saw last
     std::size_t disc_count_ = 0, polygon_count_ = 0;
     render::Camera fitted_camera_;
 
@@ -71,14 +82,17 @@ private:
     // Trail history: a ring of the last `trail_capacity_` positions of every moving body.
     // Row k holds one frame's positions of all trailed discs.
     struct Point {
-        float x, y;
-        friend bool operator==(const Point&, const Point&) = default;
+        float x, y, angle;
     };
-    std::vector<std::size_t> trailed_;   // indices of the discs that get trails
+    std::vector<std::size_t> trailed_;   // indices of the bodies that get trails, ascending
     std::vector<Point> trail_points_;    // trail_capacity_ rows of trailed_.size() points
     std::size_t trail_capacity_ = 0;     // rows
     std::size_t trail_newest_ = 0;       // row of the latest frame
     std::size_t trail_rows_filled_ = 0;
+    std::size_t trail_rows_seen_ = 0;    // rows ever observed
+    // Per trailed body: the first row (counted as trail_rows_seen_) of its trail. A respawned
+    // body's trail starts with it, not at the body it replaced.
+    std::vector<std::size_t> trail_since_;
 };
 
 }  // namespace discreel::job

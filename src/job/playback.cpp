@@ -30,11 +30,14 @@ Status Playback::advance_to(int frame, const std::function<bool()>& should_stop)
     return impl_->stepper.advance_to(frame, should_stop);
 }
 
-void Playback::observe(int frame) { impl_->builder.observe(frame, impl_->world.bodies()); }
+void Playback::observe(int frame) {
+    impl_->builder.respawned(impl_->world.respawns_applied());
+    impl_->builder.observe(frame, impl_->world.bodies());
+}
 
 const render::FrameScene& Playback::frame_scene(int frame) {
     impl_->builder.respawned(impl_->world.respawns_applied());
-    return impl_->builder.build(frame, impl_->world.bodies());
+    return impl_->builder.build(frame, impl_->world.bodies(), impl_->stepper.last_contacts());
 }
 
 std::span<const physics::BodyState> Playback::bodies() const { return impl_->world.bodies(); }

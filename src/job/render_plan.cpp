@@ -149,10 +149,6 @@ std::optional<std::string> apply_overrides(scene::Scene& scene, const VideoOverr
         if (*o.width < 16 || *o.width > 7680 || *o.height < 16 || *o.height > 4320) {
             return "--size must be between 16x16 and 7680x4320";
         }
-        if (*o.width % 2 != 0 || *o.height % 2 != 0) {
-            return "--size must have an even width and height (H.264 in yuv420p halves "
-                   "the colour resolution in both directions)";
-        }
         scene.video.width = *o.width;
         scene.video.height = *o.height;
     }
@@ -192,6 +188,18 @@ Expected<RenderPlan> plan_render(scene::Scene scene, const RenderRequest& o,
     if (!output) return output.error();
     const Settings settings = settings_for(o, scene, *output);
     if (auto problem = apply_overrides(scene, settings.video, limits)) return Error{*problem};
+    // Video in yuv420p stores colour at half resolution both ways: its sides must be even.
+    // PNG, GIF and yuv444p take any size.
+    const bool video = output->format == "mp4" || output->format == "mkv" ||
+                       output->format == "webm";
+    if (video && o.pixel_format != "yuv444p" &&
+        (scene.video.width % 2 != 0 || scene.video.height % 2 != 0)) {
+        return Error{(o.video.width ? "--size " : "video.size ") +
+                     std::to_string(scene.video.width) + "x" + std::to_string(scene.video.height) +
+                     ": " + output->format +
+                     " video (yuv420p) stores colour at half resolution, so its width and "
+                     "height must be even; PNG, GIF and --pix-fmt yuv444p take any size"};
+    }
     RenderPlan plan;
     // A GIF plays at the scene's speed only at a frame rate its delays can express.
     if (output->format == "gif" && !gif_can_show(scene.video.fps)) {

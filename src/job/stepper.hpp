@@ -1,7 +1,9 @@
 #pragma once
 // Drives a physics world frame by frame along a Timeline, collecting the contact events that
 // happened on the way. Shared by `render` and `simulate` so both see identical trajectories.
+#include <cmath>
 #include <functional>
+#include <span>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -38,7 +40,10 @@ public:
         while (world_.step_count() < target && !world_.failure()) {
             if (should_stop && should_stop()) return Error{stopped_message};
             world_.step();
-            for (const physics::ContactEvent& e : world_.take_events()) events_.push_back(e);
+            for (const physics::ContactEvent& e : world_.take_events()) {
+                touched(e);
+                events_.push_back(e);
+            }
         }
         if (const auto failure = world_.failure()) return describe(*failure);
         check_kept();
@@ -54,7 +59,22 @@ public:
     // Events since the last call, in the order the world reported them.
     std::vector<physics::ContactEvent> take_events() { return std::exchange(events_, {}); }
 
+    // Per body: the time of its latest contact so far (a sensor's overlaps are not contacts),
+    // seconds; -infinity for none. Kept whatever takes the events.
+    std::span<const double> last_contacts() const { return last_contact_; }
+
 private:
+    void touched(const physics::ContactEvent& e) {
+        if (e.kind != physics::ContactEvent::Kind::contact) return;
+        if (last_contact_.size() < world_.bodies().size()) {
+            last_contact_.resize(world_.bodies().size(), -HUGE_VAL);
+        }
+        if (e.a < last_contact_.size()) last_contact_[e.a] = e.t;
+        if (e.other_kind == physics::ContactEvent::Other::body && e.other < last_contact_.size()) {
+            last_contact_[e.other] = e.t;
+        }
+    }
+
     Error describe(const physics::NonFiniteState& failure) const {
         std::ostringstream text;
         // A body of `bodies:` (a shape) is a body to its author, not a disc.
@@ -95,6 +115,7 @@ private:
     Timeline timeline_;
     const scene::Scene& scene_;
     std::vector<physics::ContactEvent> events_;
+    std::vector<double> last_contact_;   // per body, seconds
     std::vector<Kept> kept_;
     std::vector<std::string> warnings_;
 };

@@ -300,7 +300,7 @@ void BodySolver::take_impact(std::vector<Body>& bodies, const PredictedImpact& p
     BlockContact c;
     c.normal = m.normal;
     c.count = m.count;
-    c.friction = mix_friction(a.friction, b.friction);
+    c.friction = def_.mixing.friction_of(a.friction, b.friction);
     BlockBody va = velocity_of(a), vb = velocity_of(b);
     // Closing now, and closing along the sweeps (the motion that brought them here: the
     // step's contacts may have turned them apart only after they had moved into each other).
@@ -320,7 +320,7 @@ void BodySolver::take_impact(std::vector<Body>& bodies, const PredictedImpact& p
         return;
     }
     // Poisson's rule, as a direct island bounces (body_solver.cpp).
-    if (closing) collide_poisson(c, va, vb, mix_restitution(a.restitution, b.restitution));
+    if (closing) collide_poisson(c, va, vb, def_.mixing.restitution_of(a.restitution, b.restitution));
 
     double impulse = 0;
     for (int k = 0; k < c.count; ++k) impulse += c.points[k].normal_impulse;

@@ -267,8 +267,8 @@ void BodySolver::make_contacts(const std::vector<Body>& bodies, double dt) {
         c = BlockContact{};
         c.normal = m.normal;
         c.count = m.count;
-        c.friction = mix_friction(a.friction, b.friction);
-        pc.restitution = mix_restitution(a.restitution, b.restitution);
+        c.friction = def_.mixing.friction_of(a.friction, b.friction);
+        pc.restitution = def_.mixing.restitution_of(a.restitution, b.restitution);
         // Warm start: the impulses of the same features last step.
         pc.touched = had && previous->touched;   // until this step's impulses say otherwise
         const BlockBody va = velocity_of(a), vb = velocity_of(b);

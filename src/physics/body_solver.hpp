@@ -46,6 +46,7 @@ inline BlockBody velocity_of(const Body& b) {
 
 struct BodySolverDef {
     int iterations = 6;            // velocity iterations per step (docs/physics.md)
+    Mixing mixing;                 // how two materials make a contact's
     int position_iterations = 8;   // overlap-removal sweeps per step
     // Passes over the joints' rows after each velocity iteration's pass over the contacts:
     // the tail of a 20-link chain whipping round gains energy and parts its pins at one or

@@ -143,8 +143,8 @@ void BroadPhase::rebuild(const std::vector<Body>& bodies, std::size_t disc_count
         Contact& c = merged_.emplace_back();
         c.a = a;
         c.b = b;
-        c.restitution = mix_restitution(bodies[a].restitution, bodies[b].restitution);
-        c.friction = mix_friction(bodies[a].friction, bodies[b].friction);
+        c.restitution = mixing_.restitution_of(bodies[a].restitution, bodies[b].restitution);
+        c.friction = mixing_.friction_of(bodies[a].friction, bodies[b].friction);
     }
     listed_.swap(pairs_);
     contacts.swap(merged_);

@@ -27,6 +27,8 @@ public:
                 std::vector<Contact>& contacts, std::optional<bool> known_valid);
 
     bool built() const { return built_; }
+    // How the contacts it makes mix their bodies' materials.
+    void set_mixing(const Mixing& mixing) { mixing_ = mixing; }
     // Bodies [first, last) were replaced: their pairs leave `contacts` (the others keep their
     // history), and the next update() builds the list afresh.
     void forget(std::size_t first, std::size_t last, std::vector<Contact>& contacts);
@@ -52,6 +54,7 @@ public:
     }
 
 private:
+    Mixing mixing_;
     bool still_valid(const std::vector<Body>& bodies, std::size_t disc_count, double dt,
                      double gravity) const;
     // The pairs of discs whose fattened discs (radius + margin_) overlap, into pairs_.

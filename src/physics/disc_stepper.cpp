@@ -29,6 +29,8 @@ DiscStepper::DiscStepper(const WorldDef& def, int substeps, std::vector<Body>& b
       iterations_(def.iterations == 0 ? disc_iterations : std::max(1, def.iterations)),
       disc_count_(def.bodies.size()),
       features_(features_of(def.walls)) {
+    broad_phase_.set_mixing(def.mixing);
+    projector_.set_mixing(def.mixing);
     for (const Feature& f : features_) {
         Body b;
         b.restitution = def.walls[f.wall].restitution;
@@ -133,7 +135,7 @@ void DiscStepper::substep(std::vector<Body>& bodies, double h, bool last) {
     const StageTimer timer(profile_, &StepProfile::positions);
     projector_.project(s, projection_iterations);
     // The last substep's runaways are left to end_step's pass over the discs.
-    if (!last) PositionProjector::contain_runaways(s, start_, reach_);
+    if (!last) projector_.contain_runaways(s, start_, reach_);
 }
 
 void DiscStepper::collect_touches(std::vector<PairTouch>& began) {
@@ -164,7 +166,7 @@ std::optional<std::size_t> DiscStepper::end_step(std::vector<Body>& bodies, doub
     V2 all_finite_zero = V2::Zero();
     for (std::size_t i = 0; i < disc_count_; ++i) {
         if (runaways) {
-            PositionProjector::contain_runaway(bodies, disc_count_, features_, i, start_[i],
+            projector_.contain_runaway(bodies, disc_count_, features_, i, start_[i],
                                                reach_[i]);
         }
         const Body& b = bodies[i];

@@ -8,8 +8,18 @@
 
 namespace discreel::physics {
 
-double mix_restitution(double a, double b) { return std::max(a, b); }
+double mix(MixRule rule, double a, double b) {
+    switch (rule) {
+    case MixRule::max: return std::max(a, b);
+    case MixRule::min: return std::min(a, b);
+    case MixRule::mean: return std::sqrt(a * b);
+    case MixRule::product: return a * b;
+    }
+    return std::max(a, b);
+}
 
-double mix_friction(double a, double b) { return std::sqrt(a * b); }
+double mix_restitution(double a, double b) { return Mixing{}.restitution_of(a, b); }
+
+double mix_friction(double a, double b) { return Mixing{}.friction_of(a, b); }
 
 }  // namespace discreel::physics

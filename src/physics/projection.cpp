@@ -94,7 +94,7 @@ void PositionProjector::project(Substep& s, int iterations) {
 
 void PositionProjector::stop_at_wall(std::vector<Body>& bodies, std::size_t disc_count,
                                      const std::vector<Feature>& features, std::size_t i,
-                                     const V2& start) {
+                                     const V2& start) const {
     // The impacts and resting stages only see the walls within a disc's reach at the start of
     // the substep, and the broad phase only those within its margin; a disc sent off much
     // faster (struck by a heavy one) can cross others unseen. Such a disc moved farther than
@@ -127,7 +127,7 @@ void PositionProjector::stop_at_wall(std::vector<Body>& bodies, std::size_t disc
         const double vn = hit->normal.dot(a.v);
         if (vn < 0.0) {
             const Body& wall = bodies[disc_count + k];
-            a.v -= hit->normal * ((1.0 + mix_restitution(a.restitution, wall.restitution)) * vn);
+            a.v -= hit->normal * ((1.0 + mixing_.restitution_of(a.restitution, wall.restitution)) * vn);
         }
     }
 }

@@ -25,6 +25,7 @@ BodySolverDef solver_def(const WorldDef& def) {
     BodySolverDef s;
     if (def.iterations != 0) s.iterations = std::max(1, def.iterations);
     s.sleep = def.sleep;
+    s.mixing = def.mixing;
     return s;
 }
 

@@ -15,6 +15,8 @@ struct ToPixels {
 };
 
 constexpr float kBarbAngle = 0.5f;   // radians between shaft and barb, about 29 degrees
+constexpr float kArrowHalo = 1.0f;   // pixels of dark outline on each side of an arrow
+constexpr float kArrowHaloColor[3] = {0.04f, 0.05f, 0.07f};
 
 }  // namespace
 
@@ -160,17 +162,24 @@ void make_arrow_instances(const FrameScene& frame, double pixels_per_metre,
         // stay arrows rather than chevrons.
         const float barb = std::min(3.0f * a.width + 4.0f, 0.4f * length);
         const float c = std::cos(kBarbAngle), s = std::sin(kBarbAngle);
-        const float radius = a.width / 2;
-        const float color[4] = {a.color.r, a.color.g, a.color.b, a.color.a};
-        const auto line = [&](float x0, float y0, float x1, float y1) {
-            out.push_back({.a = {x0, y0}, .b = {x1, y1}, .radius = radius,
-                           .color = {color[0], color[1], color[2], color[3]},
-                           .flags = kCapsuleFlat});
-        };
-        line(tx, ty, hx, hy);
-        // The barbs point back from the head, turned by +-kBarbAngle from the shaft.
-        line(hx, hy, hx - barb * (c * ux - s * uy), hy - barb * (s * ux + c * uy));
-        line(hx, hy, hx - barb * (c * ux + s * uy), hy - barb * (-s * ux + c * uy));
+        // A dark halo first, kArrowHalo pixels wider on each side, then the arrow: it reads on
+        // light bodies and on dark ones alike. The halo's pieces overlap at the head, so it is
+        // as opaque as the arrow (translucent, the overlaps would show darker).
+        for (const bool halo : {true, false}) {
+            const float radius = a.width / 2 + (halo ? kArrowHalo : 0.0f);
+            const float color[4] = {halo ? kArrowHaloColor[0] : a.color.r,
+                                    halo ? kArrowHaloColor[1] : a.color.g,
+                                    halo ? kArrowHaloColor[2] : a.color.b, a.color.a};
+            const auto line = [&](float x0, float y0, float x1, float y1) {
+                out.push_back({.a = {x0, y0}, .b = {x1, y1}, .radius = radius,
+                               .color = {color[0], color[1], color[2], color[3]},
+                               .flags = kCapsuleFlat});
+            };
+            line(tx, ty, hx, hy);
+            // The barbs point back from the head, turned by +-kBarbAngle from the shaft.
+            line(hx, hy, hx - barb * (c * ux - s * uy), hy - barb * (s * ux + c * uy));
+            line(hx, hy, hx - barb * (c * ux + s * uy), hy - barb * (-s * ux + c * uy));
+        }
     }
 }
 

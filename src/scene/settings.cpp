@@ -60,13 +60,7 @@ std::optional<int> read_side(const Value& value, std::string_view name, int max,
                                            std::to_string(max) + ", got " + std::to_string(*side));
         return std::nullopt;
     }
-    if (*side % 2 != 0) {
-        diagnostics.error(value.where,
-                          "video.size: " + n + " " + std::to_string(*side) +
-                              " is odd; H.264 video (yuv420p) stores colour at half resolution, "
-                              "so width and height must both be even");
-        return std::nullopt;
-    }
+    // Odd sides are for stills and GIFs: a video output refuses them (render_plan.cpp).
     return static_cast<int>(*side);
 }
 
@@ -163,9 +157,26 @@ void resolve_camera_follow(Loader& loader) {
     loader.scene.camera.follow = resolve_disc(loader, *loader.camera_follow, ids);
 }
 
+namespace {
+
+// `mix: {restitution: max, friction: mean}`: each one of the rules, in MixRule's order.
+void read_mix(const Value& value, physics::Mixing& mix, Diagnostics& d) {
+    static constexpr std::array<std::string_view, 2> known{"restitution", "friction"};
+    static constexpr std::array<std::string_view, 4> rules{"max", "min", "mean", "product"};
+    const auto fields = Fields::open(value, known, d);
+    if (!fields) return;
+    if (const auto v = fields->get("restitution"))
+        if (const auto i = read_choice(*v, rules, d)) mix.restitution = static_cast<physics::MixRule>(*i);
+    if (const auto v = fields->get("friction"))
+        if (const auto i = read_choice(*v, rules, d)) mix.friction = static_cast<physics::MixRule>(*i);
+}
+
+}  // namespace
+
 void read_physics(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 8> known{
-        "gravity", "rate", "substeps", "iterations", "sleep", "restitution", "friction", "seed"};
+    static constexpr std::array<std::string_view, 9> known{
+        "gravity", "rate",     "substeps", "iterations", "sleep",
+        "restitution", "friction", "seed", "mix"};
     auto& d = loader.diagnostics;
     Physics& physics = loader.scene.physics;
     const auto fields = Fields::open(value, known, d);
@@ -204,6 +215,7 @@ void read_physics(Loader& loader, const Value& value) {
         if (const auto v = read_non_negative(*friction, d)) physics.friction = *v;
     if (const auto seed = fields->get("seed"))
         if (const auto v = read_unsigned(*seed, d)) physics.seed = *v;
+    if (const auto mix = fields->get("mix")) read_mix(*mix, physics.mix, d);
 }
 
 void read_golden(Loader& loader, const std::optional<Value>& value) {

@@ -10,6 +10,7 @@ namespace {
 constexpr double max_arrow_scale = 100;   // seconds
 constexpr double min_arrow_width = 0.5, max_arrow_width = 20;   // pixels
 constexpr double max_trail_length = 10;   // seconds
+constexpr double max_arrow_fade = 10;     // seconds
 
 // In (0, max]: lengths and scales that must be something, within reason.
 std::optional<double> read_up_to(const Value& value, double max, Diagnostics& d) {
@@ -48,9 +49,12 @@ std::optional<Fields> open_overlay(const Value& value, std::span<const std::stri
 }
 
 void read_arrows(const Value& value, VelocityArrows& arrows, Diagnostics& d) {
-    static constexpr std::array<std::string_view, 4> known{"enabled", "scale", "color", "width"};
+    static constexpr std::array<std::string_view, 5> known{"enabled", "scale", "color", "width",
+                                                           "after_contact"};
     const auto fields = open_overlay(value, known, arrows.enabled, d);
     if (!fields) return;
+    if (const auto after = fields->get("after_contact"))
+        if (const auto v = read_up_to(*after, max_arrow_fade, d)) arrows.after_contact = *v;
     if (const auto scale = fields->get("scale"))
         if (const auto v = read_up_to(*scale, max_arrow_scale, d)) arrows.scale = *v;
     if (const auto color = fields->get("color"))

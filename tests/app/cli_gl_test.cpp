@@ -249,12 +249,31 @@ TEST(CliGLTest, FormatOptionsThatDoNotFitAreABadCommandLine) {
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 
-TEST(CliGLTest, OddSizeIsRejected) {
+// Only video in yuv420p needs even sides: a still, a GIF and yuv444p take any size.
+TEST(CliGLTest, OddSizesAreForStillsGifsAndFullColourVideo) {
     TempDir dir;
-    const auto run = run_command({bin, "render", short_scene, "-o", dir / "c.mp4", "--size", "161x120"});
+    auto run = run_command({bin, "render", short_scene, "-o", dir / "c.mp4", "--size", "161x120"});
     EXPECT_EQ(run.exit_code, 2);
-    EXPECT_EQ(run.err, "discreel: --size must have an even width and height (H.264 in yuv420p "
-                       "halves the colour resolution in both directions)\n");
+    EXPECT_EQ(run.err, "discreel: --size 161x120: mp4 video (yuv420p) stores colour at half "
+                       "resolution, so its width and height must be even; PNG, GIF and "
+                       "--pix-fmt yuv444p take any size\n");
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+    testing::write_file(dir / "odd.yaml", "version: 1\nvideo: {size: [161, 121], duration: 0.2}\n");
+    run = run_command({bin, "render", dir / "odd.yaml", "-o", dir / "c.webm"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: video.size 161x121: webm video (yuv420p) stores colour at half "
+                       "resolution, so its width and height must be even; PNG, GIF and "
+                       "--pix-fmt yuv444p take any size\n");
+    for (const std::string name : {"s.png", "c.gif", "f.mp4"}) {
+        std::vector<std::string> argv{bin, "render", dir / "odd.yaml", "-o", dir / name};
+        if (name == "f.mp4") argv.insert(argv.end(), {"--pix-fmt", "yuv444p"});
+        run = run_command(argv);
+        ASSERT_EQ(run.exit_code, 0) << name << run.err;
+        const auto probe = run_command({"ffprobe", "-v", "error", "-select_streams", "v:0",
+                                        "-show_entries", "stream=width,height", "-of", "csv=p=0",
+                                        dir / name});
+        EXPECT_EQ(probe.out, "161,121\n") << name;
+    }
 }
 
 TEST(CliGLTest, BadSceneLeavesAnExistingOutputUntouched) {

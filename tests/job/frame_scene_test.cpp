@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../render/golden_check.hpp"
+#include "discreel/shapes.hpp"
 
 namespace discreel::job {
 namespace {
@@ -232,11 +233,81 @@ TEST(TrailsTest, MemoryIsBoundedByShorteningTrails) {
     EXPECT_EQ(builder.build(10, still).trails.size(), 3u);
 }
 
+TEST(TrailsTest, ARespawnedBodyStartsANewTrail) {
+    // Disc 0 runs right along y = 0; at frame 10 a respawn puts a new disc 0 at (0, 5): its
+    // trail starts there, never a segment from the old disc's last point.
+    scene::Scene s = discs_scene(1);
+    s.style.trails = {.enabled = true, .length = 1, .fade = false, .width = 0.4};
+    s.respawns.push_back({.at = 10.0 / 60, .first = 0, .bodies = {s.bodies[0]}});
+    FrameSceneBuilder builder(s);
+    const render::FrameScene* f = nullptr;
+    for (int frame = 0; frame < 10; ++frame) f = &builder.build(frame, std::vector{at(frame, 0)});
+    EXPECT_EQ(f->trails.size(), 9u);
+    builder.respawned(1);
+    for (int frame = 10; frame < 14; ++frame) {
+        f = &builder.build(frame, std::vector{at(frame - 10, 5)});
+    }
+    // The old trail's nine segments stay behind (they fade as usual); the new disc has three,
+    // all at y = 5.
+    std::size_t new_trail = 0;
+    for (const render::LineGeom& l : f->trails) {
+        EXPECT_FALSE(l.ay != l.by) << "a segment joins the old disc to the new: " << l.ay;
+        new_trail += l.ay == 5.0f ? 1 : 0;
+    }
+    EXPECT_EQ(new_trail, 3u);
+}
+
+TEST(TrailsTest, AShapesTrailIsAsWideAsItsOutlineAcrossItsMotion) {
+    // A 1.2 x 0.3 m plank: moving lengthwise its trail is 0.3 m wide (times the style's
+    // width), broadside 1.2 m, whatever its bounding circle.
+    for (const auto& [angle, across] : {std::pair{0.0, 0.3}, std::pair{std::numbers::pi / 2, 1.2}}) {
+        scene::Scene s = discs_scene(1);
+        s.bodies[0].shape = physics::box_shape(1.2, 0.3).value();
+        s.bodies[0].radius = physics::bounding_radius(*s.bodies[0].shape);
+        s.style.trails = {.enabled = true, .length = 0.1, .fade = false, .width = 0.5};
+        FrameSceneBuilder builder(s);
+        const render::FrameScene* f = nullptr;
+        for (int frame = 0; frame < 5; ++frame) {
+            physics::BodyState b = at(0.1 * frame, 0);
+            b.angle = angle;
+            f = &builder.build(frame, std::vector{b});
+        }
+        ASSERT_FALSE(f->trails.empty());
+        for (const render::LineGeom& l : f->trails) {
+            EXPECT_NEAR(l.radius, 0.5 * across / 2, 1e-6) << angle;
+        }
+    }
+}
+
+TEST(VelocityArrowsTest, AfterContactShowFromEachContactAndFadeOut) {
+    // Arrows for 0.5 s after a contact: disc 0 touched at t = 0.1, disc 1 never, disc 2 at
+    // t = 0.5. At frame 30 (t = 0.5) disc 0's arrow is at (1 - 0.4 / 0.5) of its alpha, disc
+    // 2's whole.
+    scene::Scene s = discs_scene(3);
+    s.style.velocity_arrows = {.enabled = true, .scale = 0.5, .color = {255, 255, 255, 255},
+                               .width = 2, .after_contact = 0.5};
+    FrameSceneBuilder builder(s);
+    const std::vector<double> contacts{0.1, -HUGE_VAL, 0.5};
+    const std::vector states{at(0, 0, 1, 0), at(2, 0, 1, 0), at(4, 0, 1, 0)};
+    for (int frame = 0; frame < 30; ++frame) builder.observe(frame, states);
+    const render::FrameScene& f = builder.build(30, states, contacts);
+    ASSERT_EQ(f.arrows.size(), 2u);
+    EXPECT_EQ(f.arrows[0].tail_x, 0.0f);
+    EXPECT_NEAR(f.arrows[0].color.a, 0.2, 1e-6);
+    EXPECT_EQ(f.arrows[1].tail_x, 4.0f);
+    EXPECT_EQ(f.arrows[1].color.a, 1.0f);
+    // Disc 0's is gone once 0.5 s have passed.
+    for (int frame = 31; frame < 36; ++frame) builder.observe(frame, states);
+    const render::FrameScene& later = builder.build(36, states, contacts);
+    ASSERT_EQ(later.arrows.size(), 1u);
+    EXPECT_EQ(later.arrows[0].tail_x, 4.0f);
+}
+
 TEST(VelocityArrowsTest, PointAlongTheVelocityScaledByTheStyle) {
     scene::Scene s = discs_scene(2);
     s.bodies[1].is_static = true;
     s.style.velocity_arrows = {.enabled = true, .scale = 0.5, .color = {0, 255, 0, 255},
-                               .width = 3};
+                               .width = 3, .after_contact = {}};
     FrameSceneBuilder builder(s);
     const render::FrameScene& f = builder.build(0, std::vector{at(1, 2, 4, -2), at(5, 5)});
     ASSERT_EQ(f.arrows.size(), 1u);   // pegs never move
@@ -311,7 +382,7 @@ TEST(FrameSceneGoldenGLTest, FollowCameraWithTrailsArrowsAndClock) {
     s.camera.follow_lag = 0.15;
     s.style.trails = {.enabled = true, .length = 0.6, .fade = true, .width = 0.4};
     s.style.velocity_arrows = {.enabled = true, .scale = 0.15, .color = {255, 255, 255, 255},
-                               .width = 1.5};
+                               .width = 1.5, .after_contact = {}};
     s.style.clock = {.enabled = true, .corner = scene::Corner::top_left,
                      .format = scene::ClockFormat::both, .color = {255, 255, 255, 255}};
 

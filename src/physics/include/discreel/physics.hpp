@@ -84,7 +84,17 @@ struct WallDef {
     std::uint32_t collides = all_categories;
 };
 
-// Mixing rule for a contact between two materials (documented in docs/physics.md).
+// How a contact's restitution and friction come from its two materials' (docs/physics.md,
+// "Materials"): the larger, the smaller, the geometric mean sqrt(a b), or the product.
+enum class MixRule { max, min, mean, product };
+double mix(MixRule rule, double a, double b);
+struct Mixing {
+    MixRule restitution = MixRule::max;   // the bouncier material wins
+    MixRule friction = MixRule::mean;     // as Box2D: ice on anything slides
+    double restitution_of(double a, double b) const { return mix(restitution, a, b); }
+    double friction_of(double a, double b) const { return mix(friction, a, b); }
+};
+// The default rules.
 double mix_restitution(double a, double b);
 double mix_friction(double a, double b);
 
@@ -199,6 +209,7 @@ struct WorldDef {
     // Islands of bodies at rest fall asleep (stop, and cost nothing) until something reaches
     // them (docs/physics.md, "Sleeping"). Scenes with a shape only, for now.
     bool sleep = true;
+    Mixing mixing;                 // how two materials make a contact's
     // Time the stages of every step (World::profile): for benches and for finding where a
     // scene's time goes. It changes nothing the steps compute.
     bool profile = false;

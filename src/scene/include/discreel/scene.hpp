@@ -102,6 +102,9 @@ struct VelocityArrows {
     double scale = 0.25;           // seconds: an arrow is speed * scale metres long, (0, 100]
     Color color{0xff, 0xff, 0xff, 0xff};
     double width = 2.0;            // pixels, line width, 0.5..20
+    // Seconds: when set, a body's arrow shows only at its contacts and fades out over this
+    // long after each, (0, 10]; unset, every arrow shows always.
+    std::optional<double> after_contact;
 };
 
 struct Trails {
@@ -147,6 +150,7 @@ struct Physics {
     double restitution = 0.8;      // default coefficient of restitution, 0..1
     double friction = 0.2;         // default Coulomb friction coefficient, >= 0
     std::uint64_t seed = 1;        // for generated discs
+    physics::Mixing mix;           // how a contact's restitution and friction come from its two
 };
 
 struct Wall {
