@@ -44,7 +44,7 @@ void add_size_option(CLI::App& cmd, VideoOverrides& video, const std::string& de
 }
 
 void add_output_files(CLI::App& cmd, OutputFiles& files) {
-    cmd.add_option("--trace", files.trace, "Write one CSV row per disc per frame to FILE")
+    cmd.add_option("--trace", files.trace, "Write one CSV row per body per frame to FILE")
         ->option_text("FILE");
     cmd.add_option("--events", files.events, "Write one CSV row per new contact to FILE")
         ->option_text("FILE");
@@ -262,7 +262,7 @@ static int run_batch(const BatchOptions& b) {
 // Runs one command line (the words after the program's name). A mistake in it is printed after
 // `where`: "discreel: " for the process's own, "MANIFEST:LINE: " for a line of a batch.
 static int run_words(const std::vector<std::string>& words, const std::string& where) {
-    CLI::App app{"discreel: renders 2-D disc physics scenes to video, headless and deterministic",
+    CLI::App app{"discreel: renders 2-D rigid-body physics scenes to video, headless and deterministic",
                  "discreel"};
     app.set_version_flag("--version", std::string("discreel ") + DISCREEL_VERSION);
     app.require_subcommand(1);

@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <algorithm>
 #include <filesystem>
 #include <mutex>
 #include <iomanip>
@@ -160,7 +161,12 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     if (o.verbose) {
         err << "discreel: " << scene.video.width << 'x' << scene.video.height << ", "
             << scene.video.fps << " fps, frames " << frames.first << ".." << frames.last
-            << ", " << scene.bodies.size() << " discs; " << output.format << ", "
+            << ", " << scene.bodies.size()
+            << (std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                            [](const scene::Body& b) { return b.shape.has_value(); })
+                    ? " bodies; "
+                    : " discs; ")
+            << output.format << ", "
             << describe_encoder(sink_def, job::segmented(output)) << "; "
             << (o.sequential ? "one thread" : "simulate, render and encode threads");
         if (job::segmented(output)) {

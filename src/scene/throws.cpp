@@ -49,7 +49,8 @@ void read_throws(Loader& loader, const Value& value) {
         } else if (const auto disc = fields->get(fields->has("body") ? "body" : "disc")) {
             const auto index = resolve_disc(loader, *disc, ids);
             if (index && loader.scene.bodies[*index].is_static) {
-                d.error(disc->where, disc->path + ": disc '" + loader.scene.bodies[*index].id +
+                const Body& body = loader.scene.bodies[*index];
+                d.error(disc->where, disc->path + (body.shape ? ": body '" : ": disc '") + body.id +
                                          "' is static and cannot be thrown");
                 ok = false;
             } else if (index && loader.scene.bodies[*index].kinematic) {

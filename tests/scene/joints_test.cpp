@@ -86,7 +86,7 @@ TEST(Joints, MistakesAreReportedAtTheirPlace) {
               Lines{"s.yaml:6:48: joints[0].revolute.limits: limits are [lower, upper], but 1 is "
                     "above -1"});
     EXPECT_EQ(problems(std::string(bodies) + "  - distance: {b: bobb, anchor_a: [1, 1], anchor_b: [2, 3]}\n"),
-              Lines{"s.yaml:6:19: joints[0].distance.b: no disc has id 'bobb'; did you mean 'bob'?"});
+              Lines{"s.yaml:6:19: joints[0].distance.b: no body has id 'bobb'; did you mean 'bob'?"});
     EXPECT_EQ(problems(std::string(bodies) + "  - distance: {b: bob, anchor_a: [1, 1]}\n"),
               Lines{"s.yaml:6:15: joints[0].distance: missing required key 'anchor_b'"});
     EXPECT_EQ(problems(std::string(bodies) + "  - weld: {b: bob, anchor: [1, 1], lenght: 2}\n"),
