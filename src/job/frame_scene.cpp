@@ -88,13 +88,28 @@ std::string time_text(double seconds) {
 
 render::Camera fit_camera(const scene::Scene& scene) {
     const double aspect = static_cast<double>(scene.video.width) / scene.video.height;
+    // What the scene holds at t = 0 (and each respawned set where it appears): every wall and
+    // every body, so that a stack standing on a ground segment is not cut off at its top.
     Bounds box;
     for (const scene::Wall& w : scene.walls) {
         box.add(w.a, w.thickness);
         box.add(w.b, w.thickness);
     }
-    if (box.empty()) {
-        for (const scene::Body& d : scene.bodies) box.add(d.position, d.radius);
+    // A shape by its outline at its angle, not its bounding circle (a wide flat gate would
+    // reach far below the floor).
+    const auto add_body = [&](const scene::Body& d) {
+        if (!d.shape) {
+            box.add(d.position, d.radius);
+            return;
+        }
+        for (const Vec2& v : d.shape->vertices) {
+            const Vec2 r = rotated(v, d.angle);
+            box.add({d.position.x + r.x, d.position.y + r.y}, d.shape->radius);
+        }
+    };
+    for (const scene::Body& d : scene.bodies) add_body(d);
+    for (const scene::Respawn& r : scene.respawns) {
+        for (const scene::Body& d : r.bodies) add_body(d);
     }
     render::Camera camera;
     if (box.empty()) {

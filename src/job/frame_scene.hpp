@@ -12,8 +12,9 @@
 
 namespace discreel::job {
 
-// The scene's camera, or, when it gives none, the bounding box of all walls (discs when there
-// are no walls) with a 5 % margin on every side, widened to the frame's aspect ratio.
+// The scene's camera, or, when it gives none, the bounding box of its walls and its bodies at
+// t = 0 (and of each respawned set where it appears) with a 5 % margin on every side, widened
+// to the frame's aspect ratio.
 render::Camera fit_camera(const scene::Scene& scene);
 
 // Trails keep at most this many points over all bodies (12 bytes each): with very many

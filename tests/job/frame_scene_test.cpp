@@ -64,6 +64,30 @@ TEST(FitCameraTest, WithoutWallsFramesTheDiscs) {
     EXPECT_NEAR(camera.height, 2 * 1.1, 1e-12);
 }
 
+TEST(FitCameraTest, AStackOnAGroundSegmentIsNotCutOff) {
+    // A ground segment 10 m wide at y = 0 and a tower of 1 m boxes up to y = 8, turned a
+    // quarter: the view holds the tower's top (its outline, not its bounding circle).
+    scene::Scene s;
+    s.video.width = 1280;
+    s.video.height = 720;
+    scene::Wall ground;
+    ground.a = {-5, 0};
+    ground.b = {5, 0};
+    ground.thickness = 0.1;
+    s.walls.push_back(ground);
+    for (int k = 0; k < 8; ++k) {
+        scene::Body b;
+        b.shape = physics::box_shape(1, 1).value();
+        b.radius = physics::bounding_radius(*b.shape);
+        b.position = {0, 0.5 + k};
+        b.angle = std::numbers::pi / 2;
+        s.bodies.push_back(b);
+    }
+    const render::Camera camera = fit_camera(s);
+    EXPECT_NEAR(camera.center_y, (8 - 0.1) / 2, 1e-9);
+    EXPECT_NEAR(camera.height, 8.1 * 1.1, 1e-9);
+}
+
 TEST(FrameSceneBuilderTest, BoxBecomesFourCapsulesOutsideTheCorners) {
     scene::Scene s = boxed_scene();
     s.walls[0].thickness = 0.2;
