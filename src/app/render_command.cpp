@@ -87,7 +87,7 @@ void report_details(const job::RenderSummary& run, int frames, std::ostream& err
 int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = Clock::now();
     scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits, o.request.video.duration);
-    if (!report_diagnostics(loaded, err)) return exit_bad_input;
+    if (!report_diagnostics(loaded, err, !o.quiet)) return exit_bad_input;
     auto plan = job::plan_render(std::move(loaded.scene), o.request, o.limits);
     if (!plan) {
         report_error(err, plan.error().message);

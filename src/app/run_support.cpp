@@ -20,9 +20,11 @@ void report_error(std::ostream& err, std::string_view message) {
     err << "discreel: " << printable(message) << '\n';
 }
 
-bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err) {
+bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err, bool warnings) {
     for (const scene::Diagnostic& d : loaded.diagnostics) err << d.to_string() << '\n';
-    for (const scene::Diagnostic& d : loaded.warnings) err << d.to_string() << '\n';
+    if (warnings) {
+        for (const scene::Diagnostic& d : loaded.warnings) err << d.to_string() << '\n';
+    }
     return loaded.ok();
 }
 

@@ -21,9 +21,10 @@ std::optional<std::int64_t> peak_resident_bytes();
 // may quote file names and ids, which come from users).
 void report_error(std::ostream& err, std::string_view message);
 
-// Prints every diagnostic as `file:line:column: message`, then a loaded scene's warnings as
-// `file:line:column: warning: message`; returns whether the scene loaded.
-bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err);
+// Prints every diagnostic as `file:line:column: message`, then (unless `warnings` is false: -q)
+// a loaded scene's warnings as `file:line:column: warning: message`; returns whether the scene
+// loaded.
+bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err, bool warnings = true);
 
 // Refuses (prints why, returns false) a run that would write one of its inputs, or write two
 // of its outputs to the same file. Paths are compared by file identity, through links.

@@ -83,6 +83,7 @@ public:
         speeds_.erase(from);
     }
     bool empty() const { return masses_.empty(); }
+    std::size_t size() const { return masses_.size(); }
     double mass_ratio() const { return *masses_.rbegin() / *masses_.begin(); }
     double smallest_radius() const { return *radii_.begin(); }
     std::pair<double, std::size_t> fastest() const { return *speeds_.rbegin(); }
@@ -128,7 +129,7 @@ void check_respawns(Loader& loader, bool manifold) {
             ratio, manifold);
         const double limit = radii_per_step * alive.smallest_radius() * scene.physics.rate;
         const auto [speed, slot] = alive.fastest();
-        if (speed > limit) {
+        if (speed > limit && alive.size() >= physics::envelope.crowd_bodies) {
             const BodySource& fast = loader.sources[slot];
             loader.diagnostics.warn(
                 fast.velocity_where,
@@ -147,6 +148,11 @@ void check_envelope(Loader& loader) {
     const Scene& scene = loader.scene;
     const auto extremes = dynamic_extremes(scene.bodies);
     if (!extremes) return;
+    // Too few moving bodies to make a crowd: their speeds are not judged (three bullets fired at
+    // a wall). A respawned set is judged with those alive beside it.
+    const auto moving = static_cast<std::size_t>(std::count_if(
+        scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return !b.is_static; }));
+
     const Body& light = scene.bodies[extremes->lightest];
     const Body& heavy = scene.bodies[extremes->heaviest];
     const double ratio = heavy.mass / light.mass;
@@ -179,6 +185,10 @@ void check_envelope(Loader& loader) {
         return;
     }
 
+    if (moving < physics::envelope.crowd_bodies) {
+        check_respawns(loader, manifold);
+        return;
+    }
     const Body& smallest = scene.bodies[extremes->smallest];
     const double radii_per_step = physics::envelope.radii_per_step(ratio, manifold);
     const double rate = scene.physics.rate;

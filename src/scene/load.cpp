@@ -23,9 +23,9 @@ using detail::Fields;
 using detail::Location;
 using detail::Value;
 
-constexpr std::array<std::string_view, 12> top_level_keys{
+constexpr std::array<std::string_view, 13> top_level_keys{
     "version", "video", "audio", "camera", "style", "physics", "walls", "discs", "bodies",
-    "throws", "joints", "golden"};
+    "throws", "joints", "golden", "warnings"};
 constexpr int supported_version = 1;
 // Values under unknown top-level keys beyond which a file is refused before it is parsed into
 // nodes: a misspelt section of an ordinary scene holds fewer, and is reported with the file's
@@ -309,6 +309,10 @@ void read_scene(const Value& root, detail::Loader& loader) {
     detail::check_ranges(loader);
     if (d.empty()) detail::check_envelope(loader);
     detail::read_golden(loader, fields->get("golden"));
+    // `warnings: false`: the author has read them; errors are never silenced.
+    if (const auto v = fields->get("warnings")) {
+        if (const auto on = detail::read_bool(*v, d); on && !*on) loader.scene.warnings = false;
+    }
 }
 
 // yaml-cpp breaks lines at "\n" and "\r\n" only; a file with old Mac line ends ("\r" alone)
@@ -451,6 +455,7 @@ LoadResult load_scene_text(std::string_view original_text, std::string_view disp
                        "color: \"#rrggbb\"");
     }
     if (d.empty()) result.warnings = d.take_warnings(display_name);
+    if (!result.scene.warnings) result.warnings.clear();
     result.diagnostics = std::move(d).finish(display_name);
     // What the stand-ins caused (a colour that is no colour) is said already.
     std::erase_if(result.diagnostics, [&](const Diagnostic& x) {

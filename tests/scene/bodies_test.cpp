@@ -278,6 +278,43 @@ bodies:
     }
 }
 
+// Speeds are judged where a crowd can form: three bullets fired at a wall are not one; the same
+// bullets among eight resting discs are. `warnings: false` silences what remains.
+TEST(Bodies, FastBodiesAreJudgedOnlyAmongACrowd) {
+    const std::string bullets = R"(
+version: 1
+walls:
+  - box: [[0, 0], [20, 10]]
+discs:
+  - {id: a, position: [2, 2], radius: 0.05, velocity: [400, 0]}
+  - {id: b, position: [2, 5], radius: 0.05, velocity: [400, 0]}
+  - {id: c, position: [2, 8], radius: 0.05, velocity: [400, 0]}
+)";
+    EXPECT_EQ(warnings(bullets), std::vector<std::string>{});
+    const std::string crowd =
+        bullets + "  - grid: {origin: [10, 1], count: [8, 1], spacing: [1, 1], radius: 0.05}\n";
+    EXPECT_EQ(warnings(crowd),
+              (std::vector<std::string>{
+                  "s.yaml:6:55: warning: discs[0].velocity: 400 m/s: crowds of this scene's "
+                  "bodies are measured to stay apart up to 240 m/s at 480 Hz (10 radii of the "
+                  "smallest moving body, 'a', 0.05 m, per physics step); where several bodies "
+                  "this fast meet at once they may overlap; physics.rate 800 or more keeps them "
+                  "apart (docs/physics.md, Limits)",
+                  "s.yaml:7:55: warning: discs[1].velocity: 400 m/s: crowds of this scene's "
+                  "bodies are measured to stay apart up to 240 m/s at 480 Hz (10 radii of the "
+                  "smallest moving body, 'a', 0.05 m, per physics step); where several bodies "
+                  "this fast meet at once they may overlap; physics.rate 800 or more keeps them "
+                  "apart (docs/physics.md, Limits)",
+                  "s.yaml:8:55: warning: discs[2].velocity: 400 m/s: crowds of this scene's "
+                  "bodies are measured to stay apart up to 240 m/s at 480 Hz (10 radii of the "
+                  "smallest moving body, 'a', 0.05 m, per physics step); where several bodies "
+                  "this fast meet at once they may overlap; physics.rate 800 or more keeps them "
+                  "apart (docs/physics.md, Limits)"}));
+    EXPECT_EQ(warnings(crowd + "warnings: false\n"), std::vector<std::string>{});
+    EXPECT_EQ(problems(bullets + "warnings: maybe\n"),
+              std::vector<std::string>{"s.yaml:9:11: warnings: expected true or false, got 'maybe'"});
+}
+
 // A respawned set is judged with the bodies alive beside it: one polygon's successors may
 // differ from it in mass without a warning, but not from a body they meet. (The seeds pick
 // draws whose first sets are within the crowd's range and a later respawn is not.)
@@ -313,15 +350,15 @@ version: 1
 video: {duration: 12}
 physics: {seed: 20}
 bodies:
-  - random_polygons: {count: 1, region: [[0, 0], [10, 10]], size: [0.01, 1], speed: 20, respawn_every: 1}
+  - random_polygons: {count: 8, region: [[0, 0], [10, 10]], size: [0.01, 1], speed: 20, respawn_every: 1}
 )"),
               (std::vector<std::string>{
-                  "s.yaml:6:85: warning: bodies[0].random_polygons.speed: after the respawn at "
-                  "t = 6 s, 20 m/s: crowds of this scene's bodies are measured to stay apart up "
-                  "to 9.935 m/s at 480 Hz (2 radii of the smallest moving body, "
-                  "0.010349239269430727 m, per physics step); where several bodies this fast "
-                  "meet at once they may overlap; physics.rate 967 or more keeps them apart "
-                  "(docs/physics.md, Limits)"}));
+                  "s.yaml:6:85: warning: bodies[0].random_polygons.speed: after the respawn at t "
+                  "= 1 s, 20 m/s: crowds of this scene's bodies are measured to stay apart up to "
+                  "6.042 m/s at 480 Hz (0.1333 radii of the smallest moving body, 0.0944630364734"
+                  "9878 m, per physics step for masses differing by a factor of 225.3); where sev"
+                  "eral bodies this fast meet at once they may overlap; physics.rate 1589 or more"
+                  " keeps them apart (docs/physics.md, Limits)"}));
 }
 
 // A clip the caller makes longer than video.duration (--duration) gets its respawns to the

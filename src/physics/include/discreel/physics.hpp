@@ -120,6 +120,9 @@ struct ThrowDef {
 struct Envelope {
     // Heaviest / lightest moving body of a crowd that stays apart.
     double crowd_mass_ratio = 1000;
+    // A crowd is at least this many moving bodies: fewer meet in small groups, which both
+    // solvers' direct stages hold at any mass ratio and speed (docs/physics.md, "Limits").
+    std::size_t crowd_bodies = 8;
     // Radii of the smallest moving body per step at equal masses: the disc solver times every
     // impact between moving discs; the manifold solver (any body with a shape) times those of
     // fast bodies too, but a crowd of them still sinks in where the iterations share out

@@ -228,6 +228,7 @@ struct Scene {
     std::vector<physics::JointDef> joints;
     std::vector<std::string> joint_ids;   // per joint: its `id`, or its index
     std::vector<int> golden_frames;  // default: first, middle, last
+    bool warnings = true;          // `warnings: false`: the scene's warnings are not reported
 };
 
 struct Diagnostic {
