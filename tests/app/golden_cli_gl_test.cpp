@@ -307,33 +307,47 @@ TEST_F(GoldenCliGLTest, BadOptionsAndScenesAreExit2BeforeAnyWork) {
                            "/ball\n");
 }
 
-// The project's own rendering regressions: every shipped scene, at 320x180 to keep the goldens
-// small. Tolerance: the defaults (colour distance 0.1, no differing pixel beyond anti-aliasing),
-// since llvmpipe renders bit-identically run to run; the anti-aliasing allowance absorbs edge
-// shading of another Mesa/LLVM. Refresh with the command in docs/golden.md.
-TEST(GoldenConfigsGLTest, EveryShippedSceneMatchesItsGoldens) {
+// Every .yaml of `scenes` (a directory of the source tree) against its goldens in `goldens`, at
+// 320x180 to keep them small. Tolerance: the defaults (colour distance 0.1, no differing pixel
+// beyond anti-aliasing), since llvmpipe renders bit-identically run to run; the anti-aliasing
+// allowance absorbs edge shading of another Mesa/LLVM. Refresh with the command in
+// docs/golden.md.
+void expect_scenes_match_goldens(const fs::path& scenes, const fs::path& goldens,
+                                 std::size_t at_least) {
     std::vector<std::string> argv{bin, "golden"};
-    for (const auto& entry : fs::directory_iterator(source_dir / "configs"))
+    for (const auto& entry : fs::directory_iterator(source_dir / scenes))
         if (entry.path().extension() == ".yaml") argv.push_back(entry.path().string());
     std::sort(argv.begin() + 2, argv.end());
-    ASSERT_GE(argv.size(), 8u);   // the demo and the gallery
+    ASSERT_GE(argv.size(), at_least + 2);
     TempDir dir;
     // The goldens are copied so that a failure's .actual.png and .diff.png land in the build's
     // temporary directory, not in the source tree; the output names them.
-    fs::copy(source_dir / "tests/golden/configs", dir.path() / "configs",
-             fs::copy_options::recursive);
-    const std::string goldens = dir / "configs";
-    argv.insert(argv.end(), {"--dir", goldens, "--size", "320x180"});
+    fs::copy(source_dir / goldens, dir.path() / "goldens", fs::copy_options::recursive);
+    const std::string copied = dir / "goldens";
+    argv.insert(argv.end(), {"--dir", copied, "--size", "320x180"});
     const auto run = run_command(argv);
     EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
     EXPECT_EQ(run.err, "");
     if (run.exit_code != 0) {
         // Keep the evidence: the temporary directory is removed when the test ends.
-        const fs::path keep = fs::path(DISCREEL_BINARY_DIR) / "golden-configs-mismatch";
+        const fs::path keep = fs::path(DISCREEL_BINARY_DIR) /
+                              ("golden-" + goldens.filename().string() + "-mismatch");
         fs::remove_all(keep);
-        fs::copy(goldens, keep, fs::copy_options::recursive);
+        fs::copy(copied, keep, fs::copy_options::recursive);
         ADD_FAILURE() << "goldens, .actual.png and .diff.png kept in " << keep;
     }
+}
+
+// The project's own rendering regressions: every shipped scene.
+TEST(GoldenConfigsGLTest, EveryShippedSceneMatchesItsGoldens) {
+    expect_scenes_match_goldens("configs", "tests/golden/configs", 8);   // the demo and gallery
+}
+
+// One small scene per look a frame must have (tests/data/looks: trails across respawns and of
+// shapes, arrows after contacts and on light bodies, the fitted camera), each against goldens
+// looked at before they were pinned.
+TEST(GoldenLooksGLTest, EveryLookMatchesItsGoldens) {
+    expect_scenes_match_goldens("tests/data/looks", "tests/golden/looks", 4);
 }
 
 // The <testcase classname=... name=...> opening tags of a JUnit file, sorted.
