@@ -309,7 +309,8 @@ std::optional<std::size_t> read_choice(const Value& value,
 }
 
 std::optional<Color> read_color(const Value& value, Diagnostics& diagnostics) {
-    constexpr std::string_view what = "a colour like \"#rrggbb\" or \"#rrggbbaa\"";
+    constexpr std::string_view what =
+        "a colour like \"#rrggbb\", \"#rrggbbaa\", \"#rgb\" or a CSS name (\"steelblue\")";
     if (value.is_null()) {
         // `color: #8899aa` without quotes: YAML reads everything from '#' on as a comment.
         diagnostics.error(value.where,
@@ -318,8 +319,19 @@ std::optional<Color> read_color(const Value& value, Diagnostics& diagnostics) {
                               "'#' as the start of a comment)");
         return std::nullopt;
     }
-    if (value.node.IsScalar())
-        if (const auto color = parse_color(value.node.Scalar())) return color;
+    if (value.node.IsScalar()) {
+        const std::string& text = value.node.Scalar();
+        if (const auto color = parse_color(text)) return color;
+        // A word that is no colour name: the closest name, if it looks like a typo.
+        if (!text.empty() && text[0] != '#') {
+            if (const auto name = closest_match(text, color_names())) {
+                diagnostics.error(value.where, value.path + ": '" + text +
+                                                   "' is not a colour name; did you mean '" +
+                                                   *name + "'?");
+                return std::nullopt;
+            }
+        }
+    }
     expected(value, what, diagnostics);
     return std::nullopt;
 }

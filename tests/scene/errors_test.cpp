@@ -40,14 +40,28 @@ TEST(Errors, WrongTypesSayWhatWasExpectedAndWhatWasFound) {
               Lines{"s.yaml:3:3: physics.rate: expected a whole number, got nothing"});
 }
 
-TEST(Errors, ColoursMustBeHexAndAnUnquotedHashIsExplained) {
-    EXPECT_EQ(problems("version: 1\nvideo:\n  background: navy\n"),
-              Lines{"s.yaml:3:15: video.background: expected a colour like \"#rrggbb\" or "
-                    "\"#rrggbbaa\", got 'navy'"});
+TEST(Errors, ColoursAreHexOrCssNamesAndAnUnquotedHashIsExplained) {
+    // CSS names in any case and the short hex form are colours.
+    EXPECT_EQ(problems("version: 1\nvideo:\n  background: navy\ndiscs:\n"
+                       "  - {position: [1, 1], radius: 0.2, color: SteelBlue}\n"
+                       "  - {position: [3, 1], radius: 0.2, color: \"#f80\"}\n"),
+              Lines{});
+    const Scene named = testing::load_ok("version: 1\ndiscs:\n"
+                                "  - {position: [1, 1], radius: 0.2, color: SteelBlue}\n"
+                                "  - {position: [3, 1], radius: 0.2, color: \"#f80\"}\n");
+    EXPECT_EQ(named.bodies[0].color, (Color{0x46, 0x82, 0xb4, 0xff}));
+    EXPECT_EQ(named.bodies[1].color, (Color{0xff, 0x88, 0x00, 0xff}));
+    EXPECT_EQ(problems("version: 1\nvideo:\n  background: nvy\n"),
+              Lines{"s.yaml:3:15: video.background: 'nvy' is not a colour name; did you mean "
+                    "'navy'?"});
+    EXPECT_EQ(problems("version: 1\nvideo:\n  background: nothing-like-a-colour\n"),
+              Lines{"s.yaml:3:15: video.background: expected a colour like \"#rrggbb\", "
+                    "\"#rrggbbaa\", \"#rgb\" or a CSS name (\"steelblue\"), got "
+                    "'nothing-like-a-colour'"});
     EXPECT_EQ(problems("version: 1\nvideo:\n  background: #000000\n"),
-              Lines{"s.yaml:3:3: video.background: expected a colour like \"#rrggbb\" or "
-                    "\"#rrggbbaa\", got nothing (put the colour in quotes: YAML reads an "
-                    "unquoted '#' as the start of a comment)"});
+              Lines{"s.yaml:3:3: video.background: expected a colour like \"#rrggbb\", "
+                    "\"#rrggbbaa\", \"#rgb\" or a CSS name (\"steelblue\"), got nothing (put the "
+                    "colour in quotes: YAML reads an unquoted '#' as the start of a comment)"});
 }
 
 // In flow style the comment also swallows the closing bracket; the colour is pointed at and the
