@@ -290,11 +290,41 @@ const render::FrameScene& FrameSceneBuilder::build(int frame,
         frame_.camera.center_x = follow_center_.x;
         frame_.camera.center_y = follow_center_.y;
     }
+    flash(frame, last_contacts);
     add_trails();
     add_joints(discs);
     add_arrows(frame, discs, last_contacts);
     add_clock(frame);
     return frame_;
+}
+
+// How much of the way to white a flash takes a body at its contact.
+constexpr float kFlashStrength = 0.7f;
+
+void FrameSceneBuilder::flash(int frame, std::span<const double> last_contacts) {
+    if (!scene_.style.flash) return;
+    const double now = static_cast<double>(frame) / scene_.video.fps;
+    const render::Rgba white{1, 1, 1, 1};
+    for (std::size_t i = 0; i < slots_.size(); ++i) {
+        // Full at the contact, back to the body's colour over `flash` seconds (linearly); a
+        // respawned body's contacts count from when it was put in.
+        const double touched = i < last_contacts.size() ? last_contacts[i] : -HUGE_VAL;
+        const double since = now - touched;
+        const bool lit = touched >= born_[i] && since < *scene_.style.flash;
+        const auto amount = lit ? static_cast<float>(1 - std::max(since, 0.0) /
+                                                             *scene_.style.flash)
+                                : 0.0f;
+        render::Rgba fill = fill_[i];
+        if (amount > 0) {
+            const render::Rgba bright = toward(fill, white, kFlashStrength * amount);
+            fill = {bright.r, bright.g, bright.b, fill.a};
+        }
+        if (slots_[i].polygon) {
+            frame_.polygons[slots_[i].slot].fill = fill;
+        } else {
+            frame_.discs[slots_[i].slot].fill = fill;
+        }
+    }
 }
 
 void FrameSceneBuilder::add_joints(std::span<const physics::BodyState> discs) {

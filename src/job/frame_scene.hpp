@@ -46,6 +46,8 @@ private:
         std::size_t slot = 0;
     };
     void set_look(std::size_t body, const scene::Body& d);
+    // style.flash: each body's fill brightened after its contacts (its own colour otherwise).
+    void flash(int frame, std::span<const double> last_contacts);
     void add_trails();
     void add_arrows(int frame, std::span<const physics::BodyState> discs,
                     std::span<const double> last_contacts);

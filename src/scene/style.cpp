@@ -107,8 +107,8 @@ void read_joint_lines(const Value& value, JointLines& lines, Diagnostics& d) {
 }  // namespace
 
 void read_style(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 6> known{
-        "outline", "spin_marker", "velocity_arrows", "trails", "clock", "joints"};
+    static constexpr std::array<std::string_view, 7> known{
+        "outline", "spin_marker", "velocity_arrows", "trails", "clock", "joints", "flash"};
     auto& d = loader.diagnostics;
     Style& style = loader.scene.style;
     const auto fields = Fields::open(value, known, d);
@@ -122,6 +122,8 @@ void read_style(Loader& loader, const Value& value) {
     if (const auto trails = fields->get("trails")) read_trails(*trails, style.trails, d);
     if (const auto clock = fields->get("clock")) read_clock(*clock, style.clock, d);
     if (const auto joints = fields->get("joints")) read_joint_lines(*joints, style.joints, d);
+    if (const auto flash = fields->get("flash"))
+        if (const auto v = read_up_to(*flash, max_arrow_fade, d)) style.flash = *v;
 }
 
 }  // namespace discreel::scene::detail

@@ -327,6 +327,26 @@ TEST(VelocityArrowsTest, AfterContactShowFromEachContactAndFadeOut) {
     EXPECT_EQ(later.arrows[0].tail_x, 4.0f);
 }
 
+TEST(FlashTest, ABodyBrightensAtItsContactAndFadesBack) {
+    // style.flash 0.2 s: disc 0 touched at t = 0.5 is 70 % of the way to white then, half of
+    // that 0.1 s later, and its own colour from 0.2 s on; disc 1, never touched, keeps its own.
+    scene::Scene s = discs_scene(2);
+    s.style.flash = 0.2;
+    FrameSceneBuilder builder(s);
+    const std::vector<double> contacts{0.5, -HUGE_VAL};
+    const std::vector states{at(0, 0), at(2, 0)};
+    const float own = 200 / 255.0f;
+    for (int frame = 0; frame < 30; ++frame) builder.observe(frame, states);
+    const render::FrameScene* f = &builder.build(30, states, contacts);
+    EXPECT_NEAR(f->discs[0].fill.r, own + (1 - own) * 0.7f, 1e-6);
+    EXPECT_EQ(f->discs[1].fill.r, own);
+    for (int frame = 31; frame < 36; ++frame) builder.observe(frame, states);
+    f = &builder.build(36, states, contacts);
+    EXPECT_NEAR(f->discs[0].fill.g, 100 / 255.0f + (1 - 100 / 255.0f) * 0.35f, 1e-6);
+    for (int frame = 37; frame < 42; ++frame) builder.observe(frame, states);
+    EXPECT_EQ(builder.build(42, states, contacts).discs[0].fill.r, own);
+}
+
 TEST(VelocityArrowsTest, PointAlongTheVelocityScaledByTheStyle) {
     scene::Scene s = discs_scene(2);
     s.bodies[1].is_static = true;

@@ -138,6 +138,9 @@ struct Style {
     Trails trails;
     Clock clock;
     JointLines joints;
+    // Seconds: a body brightens at each of its contacts and fades back over this long, (0, 10];
+    // unset, never.
+    std::optional<double> flash;
 };
 
 struct Physics {
