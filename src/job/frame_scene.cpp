@@ -290,12 +290,51 @@ const render::FrameScene& FrameSceneBuilder::build(int frame,
         frame_.camera.center_x = follow_center_.x;
         frame_.camera.center_y = follow_center_.y;
     }
+    if (!scene_.camera.keys.empty()) {
+        frame_.camera = keyed_camera(static_cast<double>(frame) / scene_.video.fps, discs);
+    }
     flash(frame, last_contacts);
     add_trails();
     add_joints(discs);
     add_arrows(frame, discs, last_contacts);
     add_clock(frame);
     return frame_;
+}
+
+render::Camera FrameSceneBuilder::keyed_camera(double now,
+                                               std::span<const physics::BodyState> bodies) const {
+    struct Aim {
+        double t;
+        Vec2 center;
+        double height;
+    };
+    // Each key's aim and height up to the first at or after `now`; a key that gives none keeps
+    // the one before (the first key, the fitted view's).
+    Aim before{0, {fitted_camera_.center_x, fitted_camera_.center_y}, fitted_camera_.height};
+    Aim after = before;
+    for (std::size_t k = 0; k < scene_.camera.keys.size(); ++k) {
+        const scene::CameraKey& key = scene_.camera.keys[k];
+        before = k == 0 ? Aim{key.t, before.center, before.height} : after;
+        after.t = key.t;
+        if (key.follow && *key.follow < bodies.size()) {
+            after.center = bodies[*key.follow].position;
+        } else if (key.center) {
+            after.center = *key.center;
+        }
+        if (key.height) after.height = *key.height;
+        if (k == 0) before = after;
+        if (now < key.t) break;
+        before = after;   // past this key: it holds unless a later one moves on
+    }
+    // Between the two keys around `now` (holding before the first and after the last), eased.
+    double s = after.t > before.t ? std::clamp((now - before.t) / (after.t - before.t), 0.0, 1.0)
+                                  : 1.0;
+    if (scene_.camera.ease == scene::Ease::in_out) s = s * s * (3 - 2 * s);
+    render::Camera camera = fitted_camera_;
+    camera.center_x = before.center.x + (after.center.x - before.center.x) * s;
+    camera.center_y = before.center.y + (after.center.y - before.center.y) * s;
+    camera.height = before.height + (after.height - before.height) * s;
+    return camera;
 }
 
 // How much of the way to white a flash takes a body at its contact.

@@ -46,6 +46,8 @@ private:
         std::size_t slot = 0;
     };
     void set_look(std::size_t body, const scene::Body& d);
+    // The camera of a camera move (scene::Camera::keys) at time `now`, seconds.
+    render::Camera keyed_camera(double now, std::span<const physics::BodyState> bodies) const;
     // style.flash: each body's fill brightened after its contacts (its own colour otherwise).
     void flash(int frame, std::span<const double> last_contacts);
     void add_trails();

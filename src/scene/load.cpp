@@ -444,7 +444,7 @@ LoadResult load_scene_text(std::string_view original_text, std::string_view disp
                                     "got " + detail::describe(root.node));
             } else {
                 detail::Loader loader{d, result.scene, {}, true, false, true, {}, {}, limits,
-                                      clip_duration, {}};
+                                      clip_duration, {}, {}};
                 read_scene(root, loader);
             }
         }

@@ -49,6 +49,8 @@ struct Loader {
     // Category names (`category`, `collides`) and their bits, in the order first named after
     // "default" (1) and "walls" (2).
     std::map<std::string, std::uint32_t> category_bits;
+    std::vector<std::pair<std::size_t, Value>> key_follows;   // camera.keys[k].follow, resolved
+                                                              // with camera_follow
 };
 
 void read_video(Loader& loader, const Value& value);

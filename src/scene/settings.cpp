@@ -135,12 +135,88 @@ void read_audio(Loader& loader, const Value& value) {
     }
 }
 
+namespace {
+
+// `keys: [{t, center | follow, height}, ...]`: at least one, at most max_waypoints, times at
+// least 0 and increasing strictly; follows are resolved once the bodies are known.
+void read_camera_keys(Loader& loader, const Value& value) {
+    static constexpr std::array<std::string_view, 4> known{"t", "center", "follow", "height"};
+    auto& d = loader.diagnostics;
+    const auto items = read_list(value, d);
+    if (!items) return;
+    if (items->empty() || items->size() > max_waypoints) {
+        d.error(value.where, value.path + ": a camera move needs 1 to " +
+                                 std::to_string(max_waypoints) + " keys, got " +
+                                 std::to_string(items->size()));
+        return;
+    }
+    std::vector<CameraKey>& keys = loader.scene.camera.keys;
+    for (const Value& item : *items) {
+        const auto fields = Fields::open(item, known, d);
+        if (!fields) continue;
+        CameraKey key;
+        bool ok = true;
+        if (const auto t = fields->get("t")) {
+            const auto v = read_non_negative(*t, d);
+            ok = ok && v;
+            key.t = v.value_or(0);
+            if (v && !keys.empty() && key.t <= keys.back().t) {
+                d.error(t->where, t->path + ": key times must increase strictly, but " +
+                                      format_number(key.t) + " comes after " +
+                                      format_number(keys.back().t));
+                ok = false;
+            }
+        } else {
+            d.error(item.where, item.path + ": missing required key 't'");
+            ok = false;
+        }
+        if (fields->has("center") && fields->has("follow")) {
+            d.error(fields->key_location(fields->later_of("center", "follow")),
+                    item.path + ": give a key 'center' or 'follow', not both");
+            ok = false;
+        }
+        if (const auto center = fields->get("center")) {
+            key.center = read_vec2(*center, "[x, y]", d);
+            ok = ok && key.center;
+        }
+        if (const auto height = fields->get("height")) {
+            key.height = read_positive(*height, d);
+            ok = ok && key.height;
+        }
+        if (!ok) continue;
+        if (const auto follow = fields->get("follow")) {
+            loader.key_follows.emplace_back(keys.size(), *follow);
+        }
+        keys.push_back(key);
+    }
+}
+
+}  // namespace
+
 void read_camera(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 4> known{"center", "height", "follow",
-                                                           "follow_lag"};
+    static constexpr std::array<std::string_view, 6> known{"center", "height",     "follow",
+                                                           "follow_lag", "keys", "ease"};
+    static constexpr std::array<std::string_view, 2> eases{"linear", "in-out"};
     auto& d = loader.diagnostics;
     const auto fields = Fields::open(value, known, d);
     if (!fields) return;
+    if (fields->has("keys")) {
+        for (const std::string_view other : {"center", "height", "follow", "follow_lag"}) {
+            if (!fields->has(other)) continue;
+            d.error(fields->key_location(fields->later_of("keys", other)),
+                    value.path + ": give 'keys' (a camera move) or '" + std::string(other) +
+                        "', not both; a key has its own center, follow and height");
+            break;
+        }
+        read_camera_keys(loader, *fields->get("keys"));
+    }
+    if (const auto ease = fields->get("ease")) {
+        if (!fields->has("keys")) {
+            d.error(fields->key_location("ease"), value.path + ": 'ease' needs 'keys'");
+        } else if (const auto i = read_choice(*ease, eases, d)) {
+            loader.scene.camera.ease = static_cast<Ease>(*i);
+        }
+    }
     if (const auto center = fields->get("center"))
         loader.scene.camera.center = read_vec2(*center, "[x, y]", d);
     if (const auto height = fields->get("height"))
@@ -152,9 +228,15 @@ void read_camera(Loader& loader, const Value& value) {
 }
 
 void resolve_camera_follow(Loader& loader) {
-    if (!loader.camera_follow) return;
+    if (!loader.camera_follow && loader.key_follows.empty()) return;
     const DiscIds ids(loader.scene.bodies);
-    loader.scene.camera.follow = resolve_disc(loader, *loader.camera_follow, ids);
+    if (loader.camera_follow) {
+        loader.scene.camera.follow = resolve_disc(loader, *loader.camera_follow, ids);
+    }
+    for (const auto& [k, value] : loader.key_follows) {
+        const auto body = resolve_disc(loader, value, ids);
+        if (k < loader.scene.camera.keys.size()) loader.scene.camera.keys[k].follow = body;
+    }
 }
 
 namespace {

@@ -145,6 +145,38 @@ physics::BodyState at(double x, double y, double vx = 0, double vy = 0) {
     return d;
 }
 
+TEST(CameraMoveTest, KeysAreEasedBetweenAndHeldBeyond) {
+    // At 60 fps: from (0, 0), 10 m tall at t = 1 to (10, 0), 4 m at t = 3, then following
+    // disc 1 (at (20, 6)) from t = 4, the height kept.
+    scene::Scene s = discs_scene(2);
+    s.camera.keys = {{.t = 1, .center = Vec2{0, 0}, .follow = {}, .height = 10},
+                     {.t = 3, .center = Vec2{10, 0}, .follow = {}, .height = 4},
+                     {.t = 4, .center = {}, .follow = 1, .height = {}}};
+    s.camera.ease = scene::Ease::linear;
+    const std::vector states{at(0, 0), at(20, 6)};
+    const auto camera_at = [&](int frame) {
+        FrameSceneBuilder builder(s);
+        for (int f = 0; f < frame; ++f) builder.observe(f, states);
+        return builder.build(frame, states).camera;
+    };
+    render::Camera c = camera_at(30);   // before the first key: held
+    EXPECT_DOUBLE_EQ(c.center_x, 0);
+    EXPECT_DOUBLE_EQ(c.height, 10);
+    c = camera_at(120);                 // t = 2, halfway
+    EXPECT_NEAR(c.center_x, 5, 1e-12);
+    EXPECT_NEAR(c.height, 7, 1e-12);
+    c = camera_at(210);                 // t = 3.5, halfway to the follow
+    EXPECT_NEAR(c.center_x, 15, 1e-12);
+    EXPECT_NEAR(c.center_y, 3, 1e-12);
+    EXPECT_NEAR(c.height, 4, 1e-12);
+    c = camera_at(300);                 // after the last key: following
+    EXPECT_NEAR(c.center_x, 20, 1e-12);
+    EXPECT_NEAR(c.center_y, 6, 1e-12);
+    // Eased in and out: a quarter of the way in time is 5/32 of the way in space.
+    s.camera.ease = scene::Ease::in_out;
+    EXPECT_NEAR(camera_at(90).center_x, 10 * 5.0 / 32, 1e-12);
+}
+
 TEST(FollowCameraTest, WithoutLagTheDiscIsAlwaysCentred) {
     scene::Scene s = discs_scene(2);
     s.camera.follow = 1;

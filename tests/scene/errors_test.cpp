@@ -25,7 +25,7 @@ TEST(Errors, UnknownKeysSuggestTheClosestKnownKey) {
 TEST(Errors, UnknownKeysWithNothingCloseListTheKnownOnes) {
     EXPECT_EQ(problems("version: 1\ncamera:\n  zoom: 2\n"),
               Lines{"s.yaml:3:3: camera: unknown key 'zoom'; expected one of: center, height, "
-                    "follow, follow_lag"});
+                    "follow, follow_lag, keys, ease"});
 }
 
 TEST(Errors, WrongTypesSayWhatWasExpectedAndWhatWasFound) {

@@ -86,14 +86,29 @@ struct Audio {
     double volume = 0.8;           // 0..1 of full scale: the loudest a sample may be
 };
 
+// A keyframe of a camera move: where the view is at time t. A key without `center` or
+// `follow` keeps the previous key's aim, without `height` its height (the first key's come from
+// the fitted view).
+struct CameraKey {
+    double t = 0.0;                    // seconds, increasing strictly from key to key
+    std::optional<Vec2> center;        // metres
+    std::optional<std::size_t> follow; // a body whose centre is the aim (index into bodies)
+    std::optional<double> height;      // metres visible vertically
+};
+
+enum class Ease { linear, in_out };
+
 struct Camera {
-    // Absent: the app frames the walls (or, without walls, the discs at t = 0) with a 5 % margin
-    // (app::fit_camera).
+    // Absent: the app frames the walls and bodies at t = 0 with a 5 % margin (fit_camera).
     std::optional<Vec2> center;    // metres
     std::optional<double> height;  // metres visible vertically
-    // A disc the view tracks (index into Scene::discs); its centre replaces `center`.
+    // A body the view tracks (index into Scene::bodies); its centre replaces `center`.
     std::optional<std::size_t> follow;
     double follow_lag = 0.25;      // seconds, time constant of the smoothing, 0..10; 0: rigid
+    // A camera move instead of center/height/follow: between two keys the aim and the height
+    // go from one to the other, eased; before the first and after the last they hold.
+    std::vector<CameraKey> keys;
+    Ease ease = Ease::in_out;
 };
 
 // How frames look beyond the scene's colours. Every overlay is off unless the file asks.
