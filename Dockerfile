@@ -22,7 +22,7 @@ FROM debian:bookworm-slim
 RUN apt-get update \
  && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
       libosmesa6 libavcodec59 libavformat59 libswscale6 libavutil57 libyaml-cpp0.7 \
-      libsqlite3-0 \
+      libsqlite3-0 libfreetype6 fonts-dejavu-core \
  && rm -rf /var/lib/apt/lists/*
 COPY --from=build /src/build/bin/discreel /usr/local/bin/discreel
 # Fail the image build, not the first user, if a library is missing from the list above.

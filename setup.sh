@@ -24,7 +24,7 @@ readonly JOBS="${JOBS:-$(nproc)}"
 # What the top-level CMakeLists.txt finds, plus ffprobe/ffmpeg, which the tests call.
 readonly BUILD_PACKAGES=(
   g++ cmake make pkg-config
-  libosmesa6-dev libeigen3-dev libyaml-cpp-dev libcli11-dev
+  libosmesa6-dev libeigen3-dev libyaml-cpp-dev libcli11-dev libfreetype-dev fonts-dejavu-core
   libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libboost-dev libcpp-httplib-dev nlohmann-json3-dev libsqlite3-dev

@@ -226,8 +226,8 @@ void FrameSceneBuilder::respawned(std::size_t applied) {
         const scene::Respawn& r = scene_.respawns[respawns_applied_];
         for (std::size_t k = 0; k < r.bodies.size() && r.first + k < slots_.size(); ++k) {
             set_look(r.first + k, r.bodies[k]);
-            // Put in after the frame observed last: its contacts are from then on.
-            born_[r.first + k] = static_cast<double>(observed_frame_) / scene_.video.fps;
+            // Its contacts are those after the respawn (the body it replaced had the earlier).
+            born_[r.first + k] = r.at;
             const auto at = std::lower_bound(trailed_.begin(), trailed_.end(), r.first + k);
             if (at != trailed_.end() && *at == r.first + k) {
                 trail_since_[static_cast<std::size_t>(at - trailed_.begin())] = trail_rows_seen_;
@@ -255,15 +255,29 @@ void FrameSceneBuilder::observe(int frame, std::span<const physics::BodyState> d
         trail_newest_ = trail_rows_filled_ == 0 ? 0 : (trail_newest_ + 1) % trail_capacity_;
         trail_rows_filled_ = std::min(trail_rows_filled_ + 1, trail_capacity_);
         ++trail_rows_seen_;
-        Point* row = &trail_points_[trail_newest_ * trailed_.size()];
-        for (std::size_t j = 0; j < trailed_.size(); ++j) {
+        const std::size_t n = trailed_.size();
+        Point* row = &trail_points_[trail_newest_ * n];
+        const Point* before = trail_rows_filled_ >= 2
+                                  ? &trail_points_[(trail_newest_ + trail_capacity_ - 1) %
+                                                   trail_capacity_ * n]
+                                  : nullptr;
+        for (std::size_t j = 0; j < n; ++j) {
             const physics::BodyState& b = discs[trailed_[j]];
-            row[j] = {static_cast<float>(b.position.x), static_cast<float>(b.position.y),
-                      static_cast<float>(b.angle)};
+            Point p{static_cast<float>(b.position.x), static_cast<float>(b.position.y),
+                    radius_[trailed_[j]]};
+            // A shape's width across the motion that brought it here, once per point.
+            if (before != nullptr && !outline_[trailed_[j]].empty()) {
+                const float dx = p.x - before[j].x, dy = p.y - before[j].y;
+                const float length = std::hypot(dx, dy);
+                if (length > 0) {
+                    p.half = trail_half_width(trailed_[j], static_cast<float>(b.angle),
+                                              dx / length, dy / length);
+                }
+            }
+            row[j] = p;
         }
     }
     last_frame_ = frame;
-    observed_frame_ = frame;
 }
 
 const render::FrameScene& FrameSceneBuilder::build(int frame,
@@ -298,6 +312,7 @@ const render::FrameScene& FrameSceneBuilder::build(int frame,
     add_joints(discs);
     add_arrows(frame, discs, last_contacts);
     add_clock(frame);
+    add_text(frame, discs);
     return frame_;
 }
 
@@ -349,7 +364,7 @@ void FrameSceneBuilder::flash(int frame, std::span<const double> last_contacts) 
         // respawned body's contacts count from when it was put in.
         const double touched = i < last_contacts.size() ? last_contacts[i] : -HUGE_VAL;
         const double since = now - touched;
-        const bool lit = touched >= born_[i] && since < *scene_.style.flash;
+        const bool lit = touched > born_[i] && since < *scene_.style.flash;
         const auto amount = lit ? static_cast<float>(1 - std::max(since, 0.0) /
                                                              *scene_.style.flash)
                                 : 0.0f;
@@ -499,8 +514,7 @@ void FrameSceneBuilder::add_trails() {
             // segments overlap at their round caps, and opaque colours keep the joints even.
             const float age = (static_cast<float>(k) + 0.5f) / oldest_age;   // 0 new .. 1 old
             const float fresh = style.fade ? 1.0f - age : 1.0f;
-            const float full_radius = width * trail_half_width(body, b.angle, dx / length,
-                                                               dy / length);
+            const float full_radius = width * b.half;
             const float radius =
                 full_radius * (style.fade ? kTrailThinnest + (1 - kTrailThinnest) * fresh : 1.0f);
             frame_.trails.push_back({a.x, a.y, b.x, b.y, radius,
@@ -523,7 +537,7 @@ void FrameSceneBuilder::add_arrows(int frame, std::span<const physics::BodyState
             // Full at the contact, fading linearly to nothing over after_contact seconds; a
             // respawned body's contacts count from when it was put in.
             const double touched = i < last_contacts.size() ? last_contacts[i] : -HUGE_VAL;
-            if (!(touched >= born_[i])) continue;
+            if (!(touched > born_[i])) continue;
             const double since = now - touched;
             if (since >= *style.after_contact) continue;
             shown = static_cast<float>(1 - std::max(since, 0.0) / *style.after_contact);
@@ -535,6 +549,142 @@ void FrameSceneBuilder::add_arrows(int frame, std::span<const physics::BodyState
                                  static_cast<float>(tail.y + v.y * style.scale),
                                  static_cast<float>(style.width),
                                  {color.r, color.g, color.b, color.a * shown}});
+    }
+}
+
+namespace {
+
+// `value` with `digits` after the point, independent of the C locale.
+std::string fixed(double value, int digits) {
+    std::array<char, 64> text{};
+    const auto end = std::to_chars(text.data(), text.data() + text.size(), value,
+                                   std::chars_format::fixed, digits).ptr;
+    return {text.data(), end};
+}
+
+// Text on a body of this fill: near-black on a light one, white on a dark one.
+render::Rgba label_color(const render::Rgba& fill) {
+    const float luminance = 0.2126f * fill.r + 0.7152f * fill.g + 0.0722f * fill.b;
+    return luminance > 0.5f ? render::Rgba{0.08f, 0.08f, 0.1f, 1} : render::Rgba{1, 1, 1, 1};
+}
+
+// How far a body's outline is from its centre at the nearest: a disc's radius, a shape's
+// distance to its nearest side (plus its rounding).
+double inner_radius(const scene::Body& b) {
+    if (!b.shape || b.shape->vertices.size() < 2) return b.radius;
+    const std::vector<Vec2>& v = b.shape->vertices;
+    double nearest = HUGE_VAL;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        const Vec2 p = v[k], q = v[(k + 1) % v.size()];
+        const double length = std::hypot(q.x - p.x, q.y - p.y);
+        if (length > 0) nearest = std::min(nearest, std::abs(p.x * q.y - p.y * q.x) / length);
+    }
+    return (std::isfinite(nearest) ? nearest : 0.0) + b.shape->radius;
+}
+
+// A label's em height: a fraction of its body's inner radius, so a short label fits across it.
+constexpr double kLabelSize = 0.35;
+// An anchored overlay's distance from the frame's edges, a fraction of its height.
+constexpr double kOverlayMargin = 0.04;
+
+}  // namespace
+
+std::string FrameSceneBuilder::filled(const std::vector<scene::TextPart>& text, int frame,
+                                      std::span<const physics::BodyState> discs) const {
+    using Kind = scene::Readout::Kind;
+    std::string out;
+    for (const scene::TextPart& part : text) {
+        out += part.literal;
+        if (!part.readout) continue;
+        const scene::Readout& r = *part.readout;
+        double value = 0;
+        switch (r.kind) {
+        case Kind::time: value = static_cast<double>(frame) / scene_.video.fps; break;
+        case Kind::frame: out += std::to_string(frame); continue;
+        case Kind::energy:
+        case Kind::kinetic:
+        case Kind::momentum: {
+            // Over the moving bodies, as the physics' own measures.
+            double kinetic = 0, potential = 0;
+            Vec2 momentum{};
+            const Vec2 g = scene_.physics.gravity;
+            for (std::size_t i = 0; i < discs.size() && i < scene_.bodies.size(); ++i) {
+                const scene::Body& b = scene_.bodies[i];
+                if (b.is_static) continue;
+                const physics::BodyState& s = discs[i];
+                kinetic += 0.5 * b.mass * (s.velocity.x * s.velocity.x + s.velocity.y * s.velocity.y) +
+                           0.5 * b.inertia * s.angular_velocity * s.angular_velocity;
+                potential -= b.mass * (g.x * s.position.x + g.y * s.position.y);
+                momentum.x += b.mass * s.velocity.x;
+                momentum.y += b.mass * s.velocity.y;
+            }
+            value = r.kind == Kind::kinetic  ? kinetic
+                    : r.kind == Kind::energy ? kinetic + potential
+                                             : std::hypot(momentum.x, momentum.y);
+            break;
+        }
+        case Kind::speed:
+        case Kind::x:
+        case Kind::y:
+        case Kind::angle: {
+            if (r.body >= discs.size()) continue;
+            const physics::BodyState& s = discs[r.body];
+            value = r.kind == Kind::speed ? std::hypot(s.velocity.x, s.velocity.y)
+                    : r.kind == Kind::x   ? s.position.x
+                    : r.kind == Kind::y   ? s.position.y
+                                          : s.angle;
+            break;
+        }
+        }
+        out += fixed(value, r.precision);
+    }
+    return out;
+}
+
+void FrameSceneBuilder::add_text(int frame, std::span<const physics::BodyState> discs) {
+    frame_.labels.clear();
+    for (std::size_t i = 0; i < discs.size() && i < scene_.bodies.size(); ++i) {
+        const scene::Body& b = scene_.bodies[i];
+        if (b.label.empty()) continue;
+        render::TextLabel label;
+        label.text = filled(b.label, frame, discs);
+        label.world = true;
+        label.x = discs[i].position.x;
+        label.y = discs[i].position.y;
+        label.size = kLabelSize * inner_radius(b);
+        label.anchor = render::Anchor::center;
+        label.color = label_color(fill_[i]);
+        label.outline = fill_[i];
+        frame_.labels.push_back(std::move(label));
+    }
+    const double now = static_cast<double>(frame) / scene_.video.fps;
+    const double end = static_cast<double>(scene_.video.frame_count()) / scene_.video.fps;
+    for (const scene::Overlay& o : scene_.overlays) {
+        const double to = o.to.value_or(end);
+        if (now < o.from || now >= to) continue;
+        // Faded in over `fade` after `from` and out over `fade` before `to`.
+        double shown = 1;
+        if (o.fade > 0) shown = std::clamp(std::min(now - o.from, to - now) / o.fade, 0.0, 1.0);
+        render::TextLabel label;
+        label.text = filled(o.text, frame, discs);
+        label.anchor = static_cast<render::Anchor>(o.anchor);
+        label.size = o.size;
+        const render::Rgba color = to_rgba(o.color);
+        label.color = {color.r, color.g, color.b, color.a * static_cast<float>(shown)};
+        if (o.at) {
+            label.world = true;
+            label.x = o.at->x;
+            label.y = o.at->y;
+        } else {
+            // The frame's point named by the anchor, kOverlayMargin of its height inside.
+            const int column = static_cast<int>(o.anchor) % 3, row = static_cast<int>(o.anchor) / 3;
+            const double aspect =
+                static_cast<double>(scene_.video.height) / scene_.video.width;
+            const double mx = kOverlayMargin * aspect, my = kOverlayMargin;
+            label.x = column == 0 ? mx : column == 1 ? 0.5 : 1 - mx;
+            label.y = row == 0 ? my : row == 1 ? 0.5 : 1 - my;
+        }
+        frame_.labels.push_back(std::move(label));
     }
 }
 

@@ -54,6 +54,10 @@ private:
     void add_arrows(int frame, std::span<const physics::BodyState> discs,
                     std::span<const double> last_contacts);
     void add_clock(int frame);
+    // overlays and bodies' labels, their readouts filled in for this frame.
+    void add_text(int frame, std::span<const physics::BodyState> discs);
+    std::string filled(const std::vector<scene::TextPart>& text, int frame,
+                       std::span<const physics::BodyState> discs) const;
     void add_joints(std::span<const physics::BodyState> discs);
     void add_zigzag(Vec2 a, Vec2 b, float half, const render::Rgba& color);
 
@@ -75,8 +79,7 @@ private:
     std::vector<float> radius_;           // per body: a disc's radius, metres
     std::vector<render::Rgba> fill_;     // per body
     std::size_t respawns_applied_ = 0;
-    std::vector<double> born_;            // per body: when it was put in, seconds
-    int observed_frame_ = -1;             // the frame observe() saw last
+    std::vector<double> born_;            // per body: when a respawn put it in (s), or -inf
     std::size_t disc_count_ = 0, polygon_count_ = 0;
     render::Camera fitted_camera_;
 
@@ -87,7 +90,8 @@ private:
     // Trail history: a ring of the last `trail_capacity_` positions of every moving body.
     // Row k holds one frame's positions of all trailed discs.
     struct Point {
-        float x, y, angle;
+        float x, y;
+        float half;   // the trail's half width on the segment ending here, metres
     };
     std::vector<std::size_t> trailed_;   // indices of the bodies that get trails, ascending
     std::vector<Point> trail_points_;    // trail_capacity_ rows of trailed_.size() points

@@ -189,10 +189,12 @@ Expected<RenderPlan> plan_render(scene::Scene scene, const RenderRequest& o,
     const Settings settings = settings_for(o, scene, *output);
     if (auto problem = apply_overrides(scene, settings.video, limits)) return Error{*problem};
     // Video in yuv420p stores colour at half resolution both ways: its sides must be even.
-    // PNG, GIF and yuv444p take any size.
-    const bool video = output->format == "mp4" || output->format == "mkv" ||
-                       output->format == "webm";
-    if (video && o.pixel_format != "yuv444p" &&
+    // PNG, GIF, yuv444p and lossless video (FFV1 or H.264 in full colour) take any size; the
+    // encoder checks what it is given in any case.
+    const bool halved = (output->format == "mp4" || output->format == "mkv" ||
+                         output->format == "webm") &&
+                        !o.lossless && o.codec != "ffv1" && o.pixel_format != "yuv444p";
+    if (halved &&
         (scene.video.width % 2 != 0 || scene.video.height % 2 != 0)) {
         return Error{(o.video.width ? "--size " : "video.size ") +
                      std::to_string(scene.video.width) + "x" + std::to_string(scene.video.height) +

@@ -25,9 +25,10 @@ struct Ends {
 };
 
 // One end of a block's rows gathered into lanes, and scattered back (simd.hpp). The lanes of a
-// block share no record but the scratch one: a colour shares no moving body, immovable ends
-// have private records, and empty lanes all point at the scratch record and all store back the
-// zeros it holds.
+// block share no record but the scratch one: a colour shares no moving body, a contact row's
+// immovable ends have private records, and empty lanes all point at the scratch record and all
+// store back the zeros it holds (a pin's immovable ends and empty lanes likewise share the
+// pins' still record, whose inverse masses of zero leave it zero).
 [[gnu::always_inline]] inline Ends gather(const Velocity* v, const std::uint32_t (&at)[8],
                                           const Floats& inv_mass, const Floats& inv_inertia) {
     Ends e;

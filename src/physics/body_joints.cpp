@@ -10,9 +10,10 @@
 namespace discreel::physics::detail {
 
 void BodySolver::correct_joints(std::vector<Body>& bodies) {
-    // Positions only, as the contacts' push-out: each pass moves every joint back to its
-    // geometry with its bodies' true masses, until the worst is within tolerance. The moves
-    // are the step's motion too (the contacts' separations follow them), and count as pushes.
+    // Positions only, as the contacts' push-out: the pins' rows (pin_position_passes of them),
+    // then passes that move every other joint back to its geometry with its bodies' true
+    // masses until the worst is within tolerance. The moves are the step's motion too (the
+    // contacts' separations follow them), and count as pushes.
     joint_moves_.resize(bodies.size());
     const auto record_moves = [&] {
         for (const std::uint32_t i : joints_.held_bodies()) {
@@ -51,7 +52,8 @@ bool BodySolver::joints_moved(const std::vector<Body>& bodies) const {
 void BodySolver::correct_pins(std::vector<Body>& bodies) {
     // The pins' gaps, closed by the coloured rows on displacements (m) and turns (rad) for
     // velocities, with the offsets of the poses now: linear in the turns, which are small
-    // (a 1 mm gap on a 0.5 m arm turns it 2 mrad: the anchor is off by 1e-6 mm).
+    // (closing a 1 mm gap turns a 0.5 m arm by 2 mrad; the anchor is then off by r turn^2 / 2,
+    // 1e-6 m, the joints' tolerance, and the next step's pass takes it up).
     if (joints_.pin_gaps(bodies, pin_gaps_) <= Joints::tolerance || pin_gaps_.empty()) return;
     pin_moves_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) {

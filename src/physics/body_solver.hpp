@@ -251,7 +251,7 @@ private:
     void limit_joint_energy(const std::vector<Body>& bodies);
     void push_out(std::vector<Body>& bodies);               // body_positions.cpp
     // The joints' position passes (body_joints.cpp): before the contacts' push-out, and at
-    // the step's end.
+    // the step's end where the impacts or the push-out moved a jointed body (joints_moved).
     void correct_joints(std::vector<Body>& bodies);
     // Its first part: the pins', in the coloured rows.
     void correct_pins(std::vector<Body>& bodies);

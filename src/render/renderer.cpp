@@ -17,6 +17,7 @@
 #include "osmesa_context.hpp"
 #include "shader_program.hpp"
 #include "text_instances.hpp"
+#include "text_raster.hpp"
 
 namespace discreel::render {
 namespace {
@@ -49,6 +50,8 @@ struct Renderer::Impl {
     int width = 0;
     int height = 0;
     std::string info;
+    std::string font_path;
+    std::optional<FontRaster> font;   // opened at the first frame with text
 
     std::optional<OffscreenTarget> target;
     GlProgram disc_program;
@@ -123,6 +126,7 @@ Status Renderer::Impl::init(const RendererDef& def) {
         return Error{"renderer size " + size + " exceeds the GL limit of " +
                      std::to_string(max_size) + " pixels"};
     }
+    font_path = def.font;
     width = def.width;
     height = def.height;
     info = gl_string(GL_RENDERER) + ", " + gl_string(GL_VERSION);
@@ -245,6 +249,16 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     target->read(out);
     if (Status ok = check_gl("drawing a frame"); !ok) return ok.error();
     if (alpha < 1.0f) unpremultiply(out.first(frame_bytes()));
+    if (!frame.labels.empty()) {
+        if (!font) {
+            auto opened = FontRaster::open(font_path);
+            if (!opened) return opened.error();
+            font.emplace(std::move(opened.value()));
+        }
+        for (const TextLabel& label : frame.labels) {
+            font->draw(label, frame.camera, out.first(frame_bytes()), width, height);
+        }
+    }
     return ImageView{width, height, out.first(frame_bytes())};
 }
 
@@ -272,6 +286,8 @@ Expected<ImageView> Renderer::draw_into(const FrameScene& frame, std::span<std::
 
 std::string Renderer::renderer_info() const { return impl_->info; }
 
-RendererDef Renderer::def() const { return {.width = impl_->width, .height = impl_->height}; }
+RendererDef Renderer::def() const {
+    return {.width = impl_->width, .height = impl_->height, .font = impl_->font_path};
+}
 
 }  // namespace discreel::render

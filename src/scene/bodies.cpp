@@ -21,11 +21,11 @@
 namespace discreel::scene::detail {
 namespace {
 
-constexpr std::array<std::string_view, 21> entry_keys{
+constexpr std::array<std::string_view, 22> entry_keys{
     "id",        "position", "velocity",    "angle",    "angular_velocity", "mass",
     "density",   "restitution", "friction", "color",    "static",           "rounding",
     "box",       "polygon",  "capsule",     "circle",   "random_polygons",  "kinematic",
-    "category",  "collides", "sensor"};
+    "category",  "collides", "sensor",      "label"};
 constexpr std::array<std::string_view, 5> shape_keys{"box", "polygon", "capsule", "circle",
                                                       "random_polygons"};
 constexpr std::array<std::string_view, 2> capsule_keys{"length", "radius"};
@@ -142,6 +142,7 @@ void read_single_body(Loader& loader, const Fields& fields, const Value& item,
                               index);
         const bool usable = position && radius && check_mass(disc, item, d);
         add_disc(loader, std::move(disc), item, id_value, fields.get("velocity"), usable);
+        if (const auto label = fields.get("label")) loader.labels.emplace_back(index, *label);
         return;
     }
     const auto shape = read_shape(fields, key, d);
@@ -150,6 +151,7 @@ void read_single_body(Loader& loader, const Fields& fields, const Value& item,
     if (shape) give_shape(body, *shape, p);
     const bool usable = position && shape && check_mass(body, item, d);
     add_disc(loader, std::move(body), item, id_value, fields.get("velocity"), usable);
+    if (const auto label = fields.get("label")) loader.labels.emplace_back(index, *label);
 }
 
 // A convex polygon of `sides` vertices on a circle of radius `size`: evenly spaced angles,

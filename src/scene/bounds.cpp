@@ -108,6 +108,24 @@ void check_ranges(Loader& loader) {
         }
         check_speed(fastest, source.path_where, source.path_path, d);
     }
+    // A kinematic path's way in: from where the body starts to its first pose, when that is
+    // after t = 0 (the poses' own segments are checked as they are read).
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        const Body& b = scene.bodies[i];
+        if (!b.kinematic || b.kinematic->path.empty() || !(b.kinematic->path[0].t > 0)) continue;
+        const physics::KinematicDef::Pose& first = b.kinematic->path[0];
+        const std::string path = loader.sources[i].where + ".kinematic.path[0] (from the body's "
+                                                           "position and angle)";
+        check_speed(length({first.position.x - b.position.x, first.position.y - b.position.y}) /
+                        first.t,
+                    loader.sources[i].entry, path, d);
+        const double spin = std::abs(first.angle - b.angle) / first.t;
+        if (spin > ranges.max_spin) {
+            d.error(loader.sources[i].entry, path + ": a spin of " + number(spin) +
+                                                 " rad/s is beyond any scene's; spins are at "
+                                                 "most " + number(ranges.max_spin) + " rad/s");
+        }
+    }
 }
 
 }  // namespace discreel::scene::detail

@@ -20,10 +20,10 @@
 namespace discreel::scene::detail {
 namespace {
 
-constexpr std::array<std::string_view, 18> entry_keys{
+constexpr std::array<std::string_view, 19> entry_keys{
     "id",        "position",    "velocity", "angle",  "angular_velocity", "radius", "mass",
     "density",   "restitution", "friction", "color",  "static",           "grid",   "random",
-    "kinematic", "category",    "collides", "sensor"};
+    "kinematic", "category",    "collides", "sensor", "label"};
 // A generator's own keys, followed by the per-disc keys it applies to every disc. Those may be
 // written inside `grid:` (as docs/scene-format.md shows) or beside it; `position` is recognised
 // only so that the message can say what to use instead.
@@ -208,6 +208,7 @@ void read_single_disc(Loader& loader, const Fields& fields, const Value& item) {
                           index);
     const bool usable = position && radius && check_mass(disc, item, d);
     add_disc(loader, std::move(disc), item, id_value, fields.get("velocity"), usable);
+    if (const auto label = fields.get("label")) loader.labels.emplace_back(index, *label);
 }
 
 }  // namespace

@@ -151,7 +151,8 @@ void check_envelope(Loader& loader) {
     // Too few moving bodies to make a crowd: their speeds are not judged (three bullets fired at
     // a wall). A respawned set is judged with those alive beside it.
     const auto moving = static_cast<std::size_t>(std::count_if(
-        scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return !b.is_static; }));
+        scene.bodies.begin(), scene.bodies.end(),
+        [](const Body& b) { return !b.is_static && !b.kinematic; }));
 
     const Body& light = scene.bodies[extremes->lightest];
     const Body& heavy = scene.bodies[extremes->heaviest];

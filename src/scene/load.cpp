@@ -23,9 +23,9 @@ using detail::Fields;
 using detail::Location;
 using detail::Value;
 
-constexpr std::array<std::string_view, 13> top_level_keys{
+constexpr std::array<std::string_view, 14> top_level_keys{
     "version", "video", "audio", "camera", "style", "physics", "walls", "discs", "bodies",
-    "throws", "joints", "golden", "warnings"};
+    "throws", "joints", "golden", "warnings", "overlays"};
 constexpr int supported_version = 1;
 // Values under unknown top-level keys beyond which a file is refused before it is parsed into
 // nodes: a misspelt section of an ordinary scene holds fewer, and is reported with the file's
@@ -305,6 +305,10 @@ void read_scene(const Value& root, detail::Loader& loader) {
     detail::check_discs(loader);
     detail::resolve_camera_follow(loader);
     if (const auto v = fields->get("style")) detail::read_style(loader, *v);
+    if (loader.discs_complete) {
+        detail::read_labels(loader);
+        if (const auto v = fields->get("overlays")) detail::read_overlays(loader, *v);
+    }
     if (const auto v = fields->get("throws")) detail::read_throws(loader, *v);
     detail::check_ranges(loader);
     if (d.empty()) detail::check_envelope(loader);
@@ -444,7 +448,7 @@ LoadResult load_scene_text(std::string_view original_text, std::string_view disp
                                     "got " + detail::describe(root.node));
             } else {
                 detail::Loader loader{d, result.scene, {}, true, false, true, {}, {}, limits,
-                                      clip_duration, {}, {}};
+                                      clip_duration, {}, {}, {}};
                 read_scene(root, loader);
             }
         }

@@ -51,6 +51,7 @@ struct Loader {
     std::map<std::string, std::uint32_t> category_bits;
     std::vector<std::pair<std::size_t, Value>> key_follows;   // camera.keys[k].follow, resolved
                                                               // with camera_follow
+    std::vector<std::pair<std::size_t, Value>> labels;   // bodies' `label`, read once all are
 };
 
 void read_video(Loader& loader, const Value& value);
@@ -89,5 +90,8 @@ std::optional<std::vector<TimedPoint>> read_timed_points(const Value& value,
                                                          const TimedPointsForm& form,
                                                          Diagnostics& d);
 void check_envelope(Loader& loader);   // mass ratios and speeds the solver is known to handle
+// overlays.cpp: after the bodies (readouts name them).
+void read_overlays(Loader& loader, const Value& value);
+void read_labels(Loader& loader);
 
 }  // namespace discreel::scene::detail

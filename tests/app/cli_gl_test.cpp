@@ -324,9 +324,9 @@ TEST(CliTest, ValidateReportsEachScene) {
 }
 
 // A scene beyond the range a crowd holds loads with a warning and runs: two 5 cm discs head-on
-// at 1 000 m/s each at the default rate (20 radii per step) meet at the exact time
-// t* = 1.9 m / 2 000 m/s and swap velocities, so at 0.4 s each is back at 0.05 + 1 000 (0.4 - t*) m
-// from the centre.
+// at 1 000 m/s each at the default rate (20 radii per step), among eight resting ones (a crowd,
+// which speeds are judged in), meet at the exact time t* = 1.9 m / 2 000 m/s and swap
+// velocities, so at 0.4 s each is back at 0.05 + 1 000 (0.4 - t*) m from the centre.
 TEST(CliTest, ASceneBeyondTheCrowdRangeRunsWithAWarningPerSpeed) {
     TempDir dir;
     testing::write_file(dir / "fast.yaml", R"(version: 1
@@ -335,6 +335,7 @@ physics: {gravity: [0, 0]}
 discs:
   - {id: left, position: [-1, 0], radius: 0.05, velocity: [1000, 0], restitution: 1}
   - {id: right, position: [1, 0], radius: 0.05, velocity: [-1000, 0], restitution: 1}
+  - grid: {origin: [-2, 5], count: [8, 1], spacing: [0.5, 1], radius: 0.05}
 )");
     const auto run = run_command({bin, "simulate", dir / "fast.yaml", "--trace", dir / "t.csv"});
     ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -348,7 +349,7 @@ discs:
     // validate: ok, with the warnings counted.
     const auto validated = run_command({bin, "validate", dir / "fast.yaml"});
     EXPECT_EQ(validated.exit_code, 0);
-    EXPECT_EQ(validated.out, dir / "fast.yaml" + ": ok (2 discs, 5 frames, 2 warnings)\n");
+    EXPECT_EQ(validated.out, dir / "fast.yaml" + ": ok (10 discs, 5 frames, 2 warnings)\n");
     EXPECT_EQ(validated.err, run.err);
     std::istringstream trace(read_file(dir / "t.csv"));
     std::string row, last_left, last_right;

@@ -361,7 +361,8 @@ TEST(VelocityArrowsTest, AfterContactShowFromEachContactAndFadeOut) {
 
 TEST(FlashTest, ABodyBrightensAtItsContactAndFadesBack) {
     // style.flash 0.2 s: disc 0 touched at t = 0.5 is 70 % of the way to white then, half of
-    // that 0.1 s later, and its own colour from 0.2 s on; disc 1, never touched, keeps its own.
+    // that 0.1 s later, and its own colour once 0.2 s have passed (frame 43); disc 1, never
+    // touched, keeps its own.
     scene::Scene s = discs_scene(2);
     s.style.flash = 0.2;
     FrameSceneBuilder builder(s);
@@ -375,8 +376,49 @@ TEST(FlashTest, ABodyBrightensAtItsContactAndFadesBack) {
     for (int frame = 31; frame < 36; ++frame) builder.observe(frame, states);
     f = &builder.build(36, states, contacts);
     EXPECT_NEAR(f->discs[0].fill.g, 100 / 255.0f + (1 - 100 / 255.0f) * 0.35f, 1e-6);
-    for (int frame = 37; frame < 42; ++frame) builder.observe(frame, states);
-    EXPECT_EQ(builder.build(42, states, contacts).discs[0].fill.r, own);
+    for (int frame = 37; frame < 43; ++frame) builder.observe(frame, states);
+    EXPECT_EQ(builder.build(43, states, contacts).discs[0].fill.r, own);
+}
+
+TEST(TextTest, ReadoutsAreFilledInEachFrameAndOverlaysShowInTheirTime) {
+    // Two 1 kg discs: the first at (0, 2) moving at (3, 4), the second at rest at (5, 0).
+    // g = (0, -9.81): E = 0.5 * 25 + 9.81 * 2 = 32.12 J; momentum 5 N s.
+    scene::Scene s = discs_scene(2);
+    for (scene::Body& b : s.bodies) b.mass = 1;
+    s.bodies[0].label = {{"v = ", {}},
+                         {"", scene::Readout{.kind = scene::Readout::Kind::speed, .body = 0,
+                                             .precision = 1}},
+                         {" m/s", {}}};
+    using Kind = scene::Readout::Kind;
+    const auto readout = [](Kind kind, int precision) {
+        return scene::TextPart{"", scene::Readout{.kind = kind, .body = 0, .precision = precision}};
+    };
+    s.overlays.push_back({.text = {{"t=", {}}, readout(Kind::time, 2), {" f=", {}},
+                                   readout(Kind::frame, 0), {" E=", {}}, readout(Kind::energy, 2),
+                                   {" p=", {}}, readout(Kind::momentum, 1)},
+                          .at = {},
+                          .anchor = scene::TextAnchor::bottom_right,
+                          .size = 0.05,
+                          .color = {255, 255, 255, 255},
+                          .from = 0.5,
+                          .to = 1.0,
+                          .fade = 0.25});
+    FrameSceneBuilder builder(s);
+    const std::vector states{at(0, 2, 3, 4), at(5, 0)};
+    for (int frame = 0; frame < 45; ++frame) {
+        const render::FrameScene& f = builder.build(frame, states);
+        const bool shown = frame >= 30 && frame < 60;
+        ASSERT_EQ(f.labels.size(), shown ? 2u : 1u) << frame;
+        EXPECT_EQ(f.labels[0].text, "v = 5.0 m/s");
+        EXPECT_TRUE(f.labels[0].world);
+        EXPECT_EQ(f.labels[0].x, 0);
+        if (frame == 36) {   // t = 0.6 s: 0.1 s into a 0.25 s fade
+            EXPECT_EQ(f.labels[1].text, "t=0.60 f=36 E=32.12 p=5.0");
+            EXPECT_NEAR(f.labels[1].color.a, 0.4, 1e-6);
+            EXPECT_EQ(f.labels[1].anchor, render::Anchor::bottom_right);
+            EXPECT_FALSE(f.labels[1].world);
+        }
+    }
 }
 
 TEST(VelocityArrowsTest, PointAlongTheVelocityScaledByTheStyle) {

@@ -233,3 +233,41 @@ TEST(StyleGLTest, UnknownCharactersShowAsQuestionMarks) {
 
 }  // namespace
 }  // namespace discreel::render
+
+namespace discreel::render {
+namespace {
+
+// Text: a label's glyphs land where its anchor puts them, in its colour over the frame; a
+// frame without text never needs the font, and one with text names the font it could not read.
+TEST(TextGLTest, ALabelIsDrawnAtItsAnchorAndAMissingFontIsNamed) {
+    FrameScene f;
+    f.background = {0, 0, 0, 1};
+    f.camera = {.center_x = 0, .center_y = 0, .height = 9};
+    f.labels.push_back({.text = "MMMM", .world = false, .x = 0.25, .y = 0.5, .size = 0.2,
+                        .anchor = Anchor::left, .color = {1, 1, 1, 1}, .outline = {}});
+    const Image image = draw(f);
+    int left_half = 0, right_half = 0;
+    for (int y = 0; y < kHeight; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            const std::uint8_t* p = &image.rgba[(static_cast<std::size_t>(y) * kWidth + x) * 4];
+            if (p[0] < 128) continue;
+            EXPECT_GE(x, kWidth / 4 - 2) << "text left of its anchor at " << x << ", " << y;
+            (x < kWidth / 2 ? left_half : right_half) += 1;
+        }
+    }
+    EXPECT_GT(left_half, 100);   // four 36-pixel Ms start at the anchor
+    EXPECT_GT(right_half, 100);  // and reach past the middle
+
+    auto renderer = Renderer::create({.width = kWidth, .height = kHeight, .font = "/no/such.ttf"});
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    FrameScene plain = f;
+    plain.labels.clear();
+    EXPECT_TRUE(renderer->draw(plain).ok());
+    const auto failed = renderer->draw(f);
+    ASSERT_FALSE(failed.ok());
+    EXPECT_EQ(failed.error().message, "text needs the font /no/such.ttf, which could not be read "
+                                      "(Debian package fonts-dejavu-core)");
+}
+
+}  // namespace
+}  // namespace discreel::render

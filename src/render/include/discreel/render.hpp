@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -73,6 +74,23 @@ struct TextGeom {
     Rgba color;
 };
 
+// Which point of a text's box lies at its position.
+enum class Anchor { top_left, top, top_right, left, center, right, bottom_left, bottom, bottom_right };
+
+// Text in a TrueType font (DejaVu Sans through FreeType), anti-aliased, drawn over everything:
+// a title, a caption, a live readout, a body's label. Lines break at '\n'.
+struct TextLabel {
+    std::string text;               // UTF-8
+    bool world = false;             // x, y and size in world metres, else fractions of the frame
+    double x = 0.5, y = 0.5;        // frame: fractions of the width and height from the top left
+    double size = 0.05;             // the font's em height: a fraction of the frame's height, or m
+    Anchor anchor = Anchor::center;
+    Rgba color;
+    // Drawn first around every glyph, a twelfth of the em wide (at least a pixel): a label's
+    // halo in its body's colour hides the spin marker under it.
+    std::optional<Rgba> outline;
+};
+
 struct Camera {
     double center_x = 0, center_y = 0;   // world metres at the image centre
     double height = 1;                    // world metres visible vertically; y points up
@@ -93,7 +111,11 @@ struct FrameScene {
     std::vector<LineGeom> joints;         // over the bodies: joints' lines, springs, pins
     std::vector<ArrowGeom> arrows;
     std::vector<TextGeom> texts;
+    std::vector<TextLabel> labels;        // last, over everything
 };
+
+// Where the font for TextLabel comes from: Debian's fonts-dejavu-core.
+inline constexpr const char* default_font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 // How many threads of its own llvmpipe rasterizes on (Mesa's LP_NUM_THREADS), for the whole
 // process: 0 draws on the thread that calls draw(). By default Mesa starts one per core and the
@@ -107,6 +129,7 @@ void set_rasterizer_threads(int count);
 struct RendererDef {
     int width = 1280;               // pixels
     int height = 720;               // pixels
+    std::string font = default_font;   // a TrueType file, opened at the first frame with text
 };
 
 class Renderer {

@@ -111,6 +111,34 @@ struct Camera {
     Ease ease = Ease::in_out;
 };
 
+// A live value in text, written {t}, {energy}, {speed:cue}, {x:cue:.1}: substituted per frame.
+struct Readout {
+    enum class Kind { time, frame, energy, kinetic, momentum, speed, x, y, angle };
+    Kind kind = Kind::time;        // s, frame number, J (kinetic + potential), J, N s, m/s, m, m, rad
+    std::size_t body = 0;          // speed, x, y, angle: which body (index into bodies)
+    int precision = 2;             // digits after the point (frame: none)
+};
+// A piece of text: literal characters, or a readout.
+struct TextPart {
+    std::string literal;
+    std::optional<Readout> readout;
+};
+
+enum class TextAnchor { top_left, top, top_right, left, center, right, bottom_left, bottom,
+                        bottom_right };
+
+// `overlays:` — a title, a caption, a line of readouts: drawn over everything.
+struct Overlay {
+    std::vector<TextPart> text;
+    std::optional<Vec2> at;        // a world position (metres); else placed by `anchor`
+    TextAnchor anchor = TextAnchor::top;   // the frame's point it sits at, or its own at `at`
+    double size = 0.06;            // the em height: a fraction of the frame's height, or metres
+    Color color{0xff, 0xff, 0xff, 0xff};
+    double from = 0.0;             // seconds
+    std::optional<double> to;      // seconds; default the end
+    double fade = 0.0;             // seconds in and out
+};
+
 // How frames look beyond the scene's colours. Every overlay is off unless the file asks.
 struct VelocityArrows {
     bool enabled = false;
@@ -169,6 +197,7 @@ struct Physics {
     double friction = 0.2;         // default Coulomb friction coefficient, >= 0
     std::uint64_t seed = 1;        // for generated discs
     physics::Mixing mix;           // how a contact's restitution and friction come from its two
+                                   // sides' (`physics.mix`)
 };
 
 struct Wall {
@@ -201,6 +230,7 @@ struct Body {
     Color color;                   // resolved from a palette by index when not given
     bool is_static = false;        // a fixed peg: collides, never moves
     std::optional<physics::KinematicDef> kinematic;   // moved as told (a platform, a windmill)
+    std::vector<TextPart> label;   // drawn at its centre, upright; empty: none
     // Collision filter bits (a category's bit; the bits of those it meets) and sensing.
     std::uint32_t category = physics::default_category;
     std::uint32_t collides = physics::all_categories;
@@ -247,6 +277,7 @@ struct Scene {
     std::vector<std::string> joint_ids;   // per joint: its `id`, or its index
     std::vector<int> golden_frames;  // default: first, middle, last
     bool warnings = true;          // `warnings: false`: the scene's warnings are not reported
+    std::vector<Overlay> overlays;
 };
 
 struct Diagnostic {
