@@ -655,6 +655,7 @@ void FrameSceneBuilder::add_text(int frame, std::span<const physics::BodyState> 
         label.anchor = render::Anchor::center;
         label.color = label_color(fill_[i]);
         label.outline = fill_[i];
+        if (b.label_turns) label.angle = discs[i].angle;
         frame_.labels.push_back(std::move(label));
     }
     const double now = static_cast<double>(frame) / scene_.video.fps;

@@ -124,6 +124,24 @@ void FontRaster::draw(const TextLabel& label, const Camera& camera, std::span<st
     const double box_height = (static_cast<double>(lines.size()) - 1) * line_height + ascender +
                               descender;
     const int column = static_cast<int>(label.anchor) % 3, row = static_cast<int>(label.anchor) / 3;
+    const int halo = label.outline ? std::max(1, static_cast<int>(std::lround(pixels / 12.0))) : 0;
+    if (label.angle != 0 && std::isfinite(label.angle)) {
+        // Turned: drawn level into a layer of its own, then turned onto the frame.
+        const int margin = halo + 2;
+        const int w = static_cast<int>(std::ceil(box_width)) + 2 * margin;
+        const int h = static_cast<int>(std::ceil(box_height)) + 2 * margin;
+        const double lx = margin + box_width * column / 2.0, ly = margin + box_height * row / 2.0;
+        TextLabel level = label;
+        level.angle = 0;
+        level.world = false;
+        level.x = lx / w;
+        level.y = ly / h;
+        level.size = static_cast<double>(pixels) / h;
+        std::vector<std::uint8_t> layer(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4, 0);
+        draw(level, camera, layer, w, h);
+        turn_onto(layer, w, h, lx, ly, label.angle, ax, ay, rgba, width, height);
+        return;
+    }
     const double left = ax - box_width * column / 2.0;
     const double top = ay - box_height * row / 2.0;
     std::vector<double> pens;
@@ -135,7 +153,7 @@ void FontRaster::draw(const TextLabel& label, const Camera& camera, std::span<st
             std::lround(top + ascender + static_cast<double>(l) * line_height)));
     }
     if (label.outline) {
-        const int r = std::max(1, static_cast<int>(std::lround(pixels / 12.0)));
+        const int r = halo;
         for (const auto& [dx, dy] : {std::pair{-r, 0}, std::pair{r, 0}, std::pair{0, -r},
                                      std::pair{0, r}, std::pair{-r, -r}, std::pair{r, r},
                                      std::pair{-r, r}, std::pair{r, -r}}) {
@@ -147,6 +165,51 @@ void FontRaster::draw(const TextLabel& label, const Camera& camera, std::span<st
         }
     }
     blend_lines(lines, pens, baselines, pixels, label.color, rgba, width, height);
+}
+
+void FontRaster::turn_onto(std::span<const std::uint8_t> layer, int w, int h, double lx,
+                           double ly, double angle, double ax, double ay,
+                           std::span<std::uint8_t> rgba, int width, int height) {
+    // Frame pixel centres within the layer's reach of the anchor, each mapped back into the
+    // layer (turned by -angle; on screen y points down, so a counter-clockwise turn is x' = u
+    // cos + v sin, y' = -u sin + v cos) and sampled bilinearly, premultiplied.
+    const double c = std::cos(angle), s = std::sin(angle);
+    const double reach = std::hypot(std::max(lx, w - lx), std::max(ly, h - ly)) + 1;
+    const int x0 = std::max(0, static_cast<int>(std::floor(ax - reach)));
+    const int x1 = std::min(width - 1, static_cast<int>(std::ceil(ax + reach)));
+    const int y0 = std::max(0, static_cast<int>(std::floor(ay - reach)));
+    const int y1 = std::min(height - 1, static_cast<int>(std::ceil(ay + reach)));
+    const auto texel = [&](int x, int y, int ch) -> double {
+        if (x < 0 || y < 0 || x >= w || y >= h) return 0;
+        const std::uint8_t* t = &layer[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                                        static_cast<std::size_t>(x)) * 4];
+        const double a = t[3] / 255.0;
+        return ch == 3 ? a : t[ch] / 255.0 * a;
+    };
+    for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+            const double fx = x + 0.5 - ax, fy = y + 0.5 - ay;
+            const double u = fx * c - fy * s + lx - 0.5, v = fx * s + fy * c + ly - 0.5;
+            const int iu = static_cast<int>(std::floor(u)), iv = static_cast<int>(std::floor(v));
+            if (iu < -1 || iv < -1 || iu >= w || iv >= h) continue;
+            const double du = u - iu, dv = v - iv;
+            double src[4];
+            for (int ch = 0; ch < 4; ++ch) {
+                src[ch] = (texel(iu, iv, ch) * (1 - du) + texel(iu + 1, iv, ch) * du) * (1 - dv) +
+                          (texel(iu, iv + 1, ch) * (1 - du) + texel(iu + 1, iv + 1, ch) * du) * dv;
+            }
+            if (src[3] <= 0) continue;
+            std::uint8_t* p = &rgba[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                     static_cast<std::size_t>(x)) * 4];
+            // Premultiplied "over", back to straight alpha.
+            const double under = p[3] / 255.0;
+            const double out = src[3] + under * (1 - src[3]);
+            for (int ch = 0; ch < 3; ++ch) {
+                p[ch] = to_byte((src[ch] + p[ch] / 255.0 * under * (1 - src[3])) / out);
+            }
+            p[3] = to_byte(out);
+        }
+    }
 }
 
 void FontRaster::blend_lines(const std::vector<std::u32string>& lines,

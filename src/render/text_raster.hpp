@@ -36,6 +36,11 @@ private:
     void blend_lines(const std::vector<std::u32string>& lines, const std::vector<double>& pens,
                      const std::vector<int>& baselines, int pixels, const Rgba& color,
                      std::span<std::uint8_t> rgba, int width, int height);
+    // A level `layer` (w x h, straight alpha) turned by `angle` about its point (lx, ly) and
+    // blended over the frame with that point at (ax, ay).
+    static void turn_onto(std::span<const std::uint8_t> layer, int w, int h, double lx, double ly,
+                          double angle, double ax, double ay, std::span<std::uint8_t> rgba,
+                          int width, int height);
     struct Face;
     struct Glyph {
         int left = 0, top = 0;          // pixels from the pen to the bitmap's left and top

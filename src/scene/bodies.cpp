@@ -21,11 +21,11 @@
 namespace discreel::scene::detail {
 namespace {
 
-constexpr std::array<std::string_view, 22> entry_keys{
+constexpr std::array<std::string_view, 23> entry_keys{
     "id",        "position", "velocity",    "angle",    "angular_velocity", "mass",
     "density",   "restitution", "friction", "color",    "static",           "rounding",
     "box",       "polygon",  "capsule",     "circle",   "random_polygons",  "kinematic",
-    "category",  "collides", "sensor",      "label"};
+    "category",  "collides", "sensor",      "label",    "label_turns"};
 constexpr std::array<std::string_view, 5> shape_keys{"box", "polygon", "capsule", "circle",
                                                       "random_polygons"};
 constexpr std::array<std::string_view, 2> capsule_keys{"length", "radius"};
@@ -142,7 +142,10 @@ void read_single_body(Loader& loader, const Fields& fields, const Value& item,
                               index);
         const bool usable = position && radius && check_mass(disc, item, d);
         add_disc(loader, std::move(disc), item, id_value, fields.get("velocity"), usable);
-        if (const auto label = fields.get("label")) loader.labels.emplace_back(index, *label);
+        if (fields.has("label") || fields.has("label_turns")) {
+        loader.labels.push_back({index, fields.get("label"), fields.get("label_turns"),
+                                 item.where, item.path});
+    }
         return;
     }
     const auto shape = read_shape(fields, key, d);
@@ -151,7 +154,10 @@ void read_single_body(Loader& loader, const Fields& fields, const Value& item,
     if (shape) give_shape(body, *shape, p);
     const bool usable = position && shape && check_mass(body, item, d);
     add_disc(loader, std::move(body), item, id_value, fields.get("velocity"), usable);
-    if (const auto label = fields.get("label")) loader.labels.emplace_back(index, *label);
+    if (fields.has("label") || fields.has("label_turns")) {
+        loader.labels.push_back({index, fields.get("label"), fields.get("label_turns"),
+                                 item.where, item.path});
+    }
 }
 
 // A convex polygon of `sides` vertices on a circle of radius `size`: evenly spaced angles,

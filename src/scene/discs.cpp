@@ -20,10 +20,10 @@
 namespace discreel::scene::detail {
 namespace {
 
-constexpr std::array<std::string_view, 19> entry_keys{
+constexpr std::array<std::string_view, 20> entry_keys{
     "id",        "position",    "velocity", "angle",  "angular_velocity", "radius", "mass",
     "density",   "restitution", "friction", "color",  "static",           "grid",   "random",
-    "kinematic", "category",    "collides", "sensor", "label"};
+    "kinematic", "category",    "collides", "sensor", "label", "label_turns"};
 // A generator's own keys, followed by the per-disc keys it applies to every disc. Those may be
 // written inside `grid:` (as docs/scene-format.md shows) or beside it; `position` is recognised
 // only so that the message can say what to use instead.
@@ -208,7 +208,10 @@ void read_single_disc(Loader& loader, const Fields& fields, const Value& item) {
                           index);
     const bool usable = position && radius && check_mass(disc, item, d);
     add_disc(loader, std::move(disc), item, id_value, fields.get("velocity"), usable);
-    if (const auto label = fields.get("label")) loader.labels.emplace_back(index, *label);
+    if (fields.has("label") || fields.has("label_turns")) {
+        loader.labels.push_back({index, fields.get("label"), fields.get("label_turns"),
+                                 item.where, item.path});
+    }
 }
 
 }  // namespace

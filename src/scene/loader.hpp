@@ -51,7 +51,14 @@ struct Loader {
     std::map<std::string, std::uint32_t> category_bits;
     std::vector<std::pair<std::size_t, Value>> key_follows;   // camera.keys[k].follow, resolved
                                                               // with camera_follow
-    std::vector<std::pair<std::size_t, Value>> labels;   // bodies' `label`, read once all are
+    // Bodies' `label` (and `label_turns`), read once all bodies are.
+    struct Label {
+        std::size_t body = 0;
+        std::optional<Value> text, turns;
+        Location entry;
+        std::string where;
+    };
+    std::vector<Label> labels;
 };
 
 void read_video(Loader& loader, const Value& value);

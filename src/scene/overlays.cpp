@@ -210,9 +210,19 @@ void read_overlays(Loader& loader, const Value& value) {
 }
 
 void read_labels(Loader& loader) {
-    for (const auto& [body, value] : loader.labels) {
-        const auto parts = read_text(loader, value);
-        if (parts && body < loader.scene.bodies.size()) loader.scene.bodies[body].label = *parts;
+    auto& d = loader.diagnostics;
+    for (const Loader::Label& label : loader.labels) {
+        if (label.body >= loader.scene.bodies.size()) continue;
+        Body& body = loader.scene.bodies[label.body];
+        if (label.turns) {
+            if (!label.text) {
+                d.error(label.turns->where, label.where + ": 'label_turns' needs a 'label'");
+            } else if (const auto turns = read_bool(*label.turns, d)) {
+                body.label_turns = *turns;
+            }
+        }
+        if (!label.text) continue;
+        if (const auto parts = read_text(loader, *label.text)) body.label = *parts;
     }
 }
 

@@ -86,6 +86,7 @@ struct TextLabel {
     double size = 0.05;             // the font's em height: a fraction of the frame's height, or m
     Anchor anchor = Anchor::center;
     Rgba color;
+    double angle = 0;               // radians, counter-clockwise about the anchor point
     // Drawn first around every glyph, a twelfth of the em wide (at least a pixel): a label's
     // halo in its body's colour hides the spin marker under it.
     std::optional<Rgba> outline;

@@ -230,7 +230,8 @@ struct Body {
     Color color;                   // resolved from a palette by index when not given
     bool is_static = false;        // a fixed peg: collides, never moves
     std::optional<physics::KinematicDef> kinematic;   // moved as told (a platform, a windmill)
-    std::vector<TextPart> label;   // drawn at its centre, upright; empty: none
+    std::vector<TextPart> label;   // drawn at its centre; empty: none
+    bool label_turns = false;      // the label turns with the body (else it stays upright)
     // Collision filter bits (a category's bit; the bits of those it meets) and sensing.
     std::uint32_t category = physics::default_category;
     std::uint32_t collides = physics::all_categories;
