@@ -232,7 +232,9 @@ void FontRaster::blend_lines(const std::vector<std::u32string>& lines,
                 for (int k = 0; k < g.width; ++k) {
                     const int x = x0 + k;
                     if (x < 0 || x >= width) continue;
-                    const unsigned cover = g.coverage[static_cast<std::size_t>(r * g.width + k)];
+                    const unsigned cover =
+                        g.coverage[static_cast<std::size_t>(r) * static_cast<std::size_t>(g.width) +
+                                   static_cast<std::size_t>(k)];
                     const unsigned a8 = (cover * alpha8 + 127) / 255;
                     if (a8 == 0) continue;
                     std::uint8_t* p =
