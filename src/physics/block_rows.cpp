@@ -252,23 +252,29 @@ void BlockRows::lay_out(std::span<const RowRef> rows, std::span<const BlockBody>
     // chain through one record.
     const auto scratch = static_cast<std::uint32_t>(n + 1 + copies);
     velocities_.assign(n + copies + 2, Velocity{});
-    const std::uint32_t lanes = colour_start_[overflow + 1];
-    blocks_.assign(lanes / width, Block{});
-    for (Block& block : blocks_) {
-        std::fill(std::begin(block.a), std::end(block.a), scratch);
-        std::fill(std::begin(block.b), std::end(block.b), scratch);
-    }
-    lane_of_.resize(rows.size());
     auto copy = static_cast<std::uint32_t>(n + 1);
-    for (std::size_t i = 0; i < rows.size(); ++i) {
+    place(rows.size(), ends, [&](std::uint32_t e) { return e != still ? e : copy++; }, scratch,
+          blocks_, lane_of_);
+}
+
+template <class B, class Ends, class Record>
+void BlockRows::place(std::size_t count, Ends&& ends, Record&& record, std::uint32_t empty,
+                      std::vector<B>& blocks, std::vector<std::uint32_t>& lane_of) {
+    blocks.assign(colour_start_[overflow + 1] / width, B{});
+    for (B& block : blocks) {
+        std::fill(std::begin(block.a), std::end(block.a), empty);
+        std::fill(std::begin(block.b), std::end(block.b), empty);
+    }
+    lane_of.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
         const unsigned c = colour_of_[i];
         const std::uint32_t slot = colour_start_[c];
         colour_start_[c] += c == overflow ? width : 1;
-        lane_of_[i] = slot;
-        Block& block = blocks_[slot / width];
+        lane_of[i] = slot;
+        B& block = blocks[slot / width];
         const auto [a, b] = ends(i);
-        block.a[slot % width] = a != still ? a : copy++;
-        block.b[slot % width] = b != still ? b : copy++;
+        block.a[slot % width] = record(a);
+        block.b[slot % width] = record(b);
     }
 }
 
@@ -294,22 +300,8 @@ void BlockRows::lay_out_pins(std::span<const PinRef> pins, std::span<const Block
     // Immovable ends and empty lanes share the pins' still record (index n): its corrections
     // are zero and stay so, as their inverse masses are.
     const auto still_record = static_cast<std::uint32_t>(n);
-    pin_blocks_.assign(colour_start_[overflow + 1] / width, PinBlock{});
-    for (PinBlock& block : pin_blocks_) {
-        std::fill(std::begin(block.a), std::end(block.a), still_record);
-        std::fill(std::begin(block.b), std::end(block.b), still_record);
-    }
-    pin_lane_of_.resize(pins.size());
-    for (std::size_t i = 0; i < pins.size(); ++i) {
-        const unsigned c = colour_of_[i];
-        const std::uint32_t slot = colour_start_[c];
-        colour_start_[c] += c == overflow ? width : 1;
-        pin_lane_of_[i] = slot;
-        PinBlock& block = pin_blocks_[slot / width];
-        const auto [a, b] = ends(i);
-        block.a[slot % width] = a != still ? a : still_record;
-        block.b[slot % width] = b != still ? b : still_record;
-    }
+    place(pins.size(), ends, [&](std::uint32_t e) { return e != still ? e : still_record; },
+          still_record, pin_blocks_, pin_lane_of_);
 }
 
 void BlockRows::merge_moved() {

@@ -128,6 +128,12 @@ private:
     V2 pin_impulse(std::size_t i) const;   // N s
     // The bodies either kind of row moves, ascending.
     void merge_moved();
+    // Each of `count` rows a lane of its colour's blocks (colour() before; an overflow row a
+    // block of its own), in the rows' order within a colour, into lane_of; its ends' records
+    // record(end) (`ends(i)`, still for an immovable one); empty lanes point at `empty`.
+    template <class B, class Ends, class Record>
+    void place(std::size_t count, Ends&& ends, Record&& record, std::uint32_t empty,
+               std::vector<B>& blocks, std::vector<std::uint32_t>& lane_of);
     // A greedy colouring of rows with the ends `ends(i)` (moving ones only, index or -1),
     // into colour_of_ and colour_start_ (the counts per colour, then their starts in lanes,
     // each colour starting on a block).
