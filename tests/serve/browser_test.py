@@ -63,8 +63,11 @@ physics:
 BAD_LINE = BAD_SCENE.split("\n").index("    radius: -0.2") + 1
 assert BAD_LINE == 9, BAD_LINE
 GOOD_SCENE = BAD_SCENE.replace("radius: -0.2", "radius: 0.2")
-# Valid, but faster than a crowd of its discs holds: one warning, at the velocity.
-FAST_SCENE = GOOD_SCENE.replace("velocity: [1.5, 0]", "velocity: [2000, 0]")
+# Valid, but faster than a crowd of its discs holds (eight more discs make the crowd): one
+# warning, at the velocity.
+FAST_SCENE = GOOD_SCENE.replace("velocity: [1.5, 0]", "velocity: [2000, 0]").replace(
+    "walls:\n",
+    "  - grid: {origin: [0.4, 1.6], count: [8, 1], spacing: [0.3, 1], radius: 0.05}\nwalls:\n")
 FAST_LINE = BAD_LINE + 1
 
 

@@ -197,9 +197,12 @@ TEST_F(ServeGLTest, AClipIsTheCliBytesWithProgressEventsToTheEnd) {
                                        "cli.mp4"));
 }
 
-// A scene beyond the speeds a crowd holds: it loads with one warning, at line 4, column 48.
-const std::string fast_scene = "version: 1\nvideo: {duration: 0.1, fps: 10}\ndiscs:\n"
-                               "  - {position: [0, 0], radius: 0.05, velocity: [1000, 0]}\n";
+// A scene beyond the speeds a crowd holds (a fast disc among eight resting ones): it loads with
+// one warning, at line 4, column 48.
+const std::string fast_scene =
+    "version: 1\nvideo: {duration: 0.1, fps: 10}\ndiscs:\n"
+    "  - {position: [0, 0], radius: 0.05, velocity: [1000, 0]}\n"
+    "  - grid: {origin: [0, 5], count: [8, 1], spacing: [0.5, 1], radius: 0.05}\n";
 
 TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
     ServeProcess server(bin, {"--data", dir / "data", "--max-scene-bytes", "2000"}, log);
