@@ -36,12 +36,23 @@ void Diagnostics::sort_by_position(std::vector<Entry>& entries) {
     });
 }
 
+void Diagnostics::add_source(int first_line, std::string label) {
+    sources_.push_back({first_line, std::move(label)});
+}
+
+Diagnostic Diagnostics::report(std::string_view file, Entry& entry, bool warning) const {
+    for (auto it = sources_.rbegin(); it != sources_.rend(); ++it) {
+        if (entry.where.line >= it->first_line)
+            return {it->label, 0, 0, std::move(entry.message), warning};
+    }
+    return {std::string(file), entry.where.line, entry.where.column, std::move(entry.message),
+            warning};
+}
+
 std::vector<Diagnostic> Diagnostics::take_warnings(std::string_view file) {
     sort_by_position(warnings_);
     std::vector<Diagnostic> out;
-    for (Entry& e : warnings_) {
-        out.push_back({std::string(file), e.where.line, e.where.column, std::move(e.message), true});
-    }
+    for (Entry& e : warnings_) out.push_back(report(file, e, true));
     warnings_.clear();
     return out;
 }
@@ -51,17 +62,13 @@ std::vector<Diagnostic> Diagnostics::finish(std::string_view file) && {
     std::vector<Diagnostic> out;
     const std::size_t n = std::min(entries_.size(), shown);
     out.reserve(n + 1);
-    for (std::size_t i = 0; i < n; ++i) {
-        auto& e = entries_[i];
-        out.push_back({std::string(file), e.where.line, e.where.column, std::move(e.message)});
-    }
+    for (std::size_t i = 0; i < n; ++i) out.push_back(report(file, entries_[i], false));
     if (entries_.size() > shown) {
-        const Location next = entries_[shown].where;
         const std::string more = entries_.size() >= stop_after
                                      ? "at least " + std::to_string(entries_.size() - shown)
                                      : std::to_string(entries_.size() - shown);
-        out.push_back({std::string(file), next.line, next.column,
-                       "too many problems; " + more + " more not shown"});
+        Entry closing{entries_[shown].where, "too many problems; " + more + " more not shown"};
+        out.push_back(report(file, closing, false));
     }
     return out;
 }

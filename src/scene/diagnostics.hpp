@@ -37,15 +37,25 @@ public:
     // The warnings, sorted the same way; they are dropped from here.
     std::vector<Diagnostic> take_warnings(std::string_view file);
 
+    // Lines from `first_line` on (up to the next source's) hold what the command line added
+    // (`--set KEY=VALUE`): their problems are reported as `label: message`, without a line.
+    void add_source(int first_line, std::string label);
+
 private:
     struct Entry {
         Location where;
         std::string message;
     };
+    struct Source {
+        int first_line;
+        std::string label;
+    };
+    Diagnostic report(std::string_view file, Entry& entry, bool warning) const;
     // Stable: entries at the same place keep the order they were found.
     static void sort_by_position(std::vector<Entry>& entries);
 
     std::vector<Entry> entries_, warnings_;
+    std::vector<Source> sources_;  // in order of first_line
 };
 
 // Shortest text that reads back as the same double ("0.1", "1e-05"), whole numbers in full.

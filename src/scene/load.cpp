@@ -14,6 +14,7 @@
 
 #include "discreel/read_file.hpp"
 #include "loader.hpp"
+#include "overrides.hpp"
 
 namespace discreel::scene {
 namespace {
@@ -396,7 +397,8 @@ Location location_at(std::string_view text, std::size_t offset) {
 }  // namespace
 
 LoadResult load_scene_text(std::string_view original_text, std::string_view display_name,
-                           const Limits& limits, std::optional<double> clip_duration) {
+                           const Limits& limits, std::optional<double> clip_duration,
+                           std::span<const Override> overrides) {
     if (original_text.size() > limits.file_bytes)
         return whole_file_problem(display_name, too_large(original_text.size(), limits));
     std::string normalised = with_line_feeds(original_text);
@@ -447,6 +449,8 @@ LoadResult load_scene_text(std::string_view original_text, std::string_view disp
                 d.error(root.where, "a scene is a mapping of keys like 'version: 1' and 'discs:', "
                                     "got " + detail::describe(root.node));
             } else {
+                const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+                detail::apply_overrides(document, overrides, lines + 2, d);
                 detail::Loader loader{d, result.scene, {}, true, false, true, {}, {}, limits,
                                       clip_duration, {}, {}, {}};
                 read_scene(root, loader);
@@ -471,7 +475,8 @@ LoadResult load_scene_text(std::string_view original_text, std::string_view disp
 }
 
 LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limits,
-                           std::optional<double> clip_duration) {
+                           std::optional<double> clip_duration,
+                           std::span<const Override> overrides) {
     const std::string display = path.string();
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
@@ -489,7 +494,7 @@ LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limi
                                                " bytes, the limit (raise it with "
                                                "--max-scene-bytes)");
     }
-    return load_scene_text(read->bytes, display, limits, clip_duration);
+    return load_scene_text(read->bytes, display, limits, clip_duration, overrides);
 }
 
 }  // namespace discreel::scene

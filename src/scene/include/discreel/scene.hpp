@@ -6,10 +6,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "discreel/expected.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/shapes.hpp"
 #include "discreel/vec2.hpp"
@@ -301,15 +303,30 @@ struct LoadResult {
     bool ok() const { return diagnostics.empty(); }
 };
 
+// `--set KEY=VALUE`: a value put into the scene before it is read (docs/scene-format.md,
+// "Overrides"), checked as the file's own values are; its problems are reported as
+// `<label>: message`.
+struct Override {
+    std::string path;              // dotted: "physics.seed", "video.size", "discs.0.radius"
+    std::string value;             // YAML: "3", "[128, 128]", "{x: 1}"
+    std::string label;             // how problems name it: "--set physics.seed=3"
+};
+
+// Splits "KEY=VALUE"; `option` starts the label ("--set").
+Expected<Override> parse_override(std::string_view text, std::string_view option = "--set");
+
 // `display_name` is what diagnostics print as the file (usually the path as the user typed it).
 // `clip_duration`: the length the clip will have when the caller sets it instead of
 // video.duration (a command-line override, checked by the caller); respawns are drawn up to it,
 // as they must exist for the whole clip. video.duration itself stays the file's.
+// `overrides` are applied in order, a later one winning.
 LoadResult load_scene_text(std::string_view text, std::string_view display_name,
                            const Limits& limits = {},
-                           std::optional<double> clip_duration = std::nullopt);
+                           std::optional<double> clip_duration = std::nullopt,
+                           std::span<const Override> overrides = {});
 LoadResult load_scene_file(const std::filesystem::path& path, const Limits& limits = {},
-                           std::optional<double> clip_duration = std::nullopt);
+                           std::optional<double> clip_duration = std::nullopt,
+                           std::span<const Override> overrides = {});
 
 // The work a scene asks for against `limits`: more frames than max_frames, or more physics
 // substeps than limits.substeps. The problem in words, naming the option that raises the limit;
