@@ -15,9 +15,14 @@ using nlohmann::json;
 
 constexpr std::array<const char*, 6> formats{"mp4", "webm", "mkv", "gif", "png", "wav"};
 
-// A body is one flat object; anything nested deeper is refused while parsing, before it is
-// built, so no body can make the parser or the value's destructor recurse deeply.
-constexpr int max_depth = 2;
+// A body is one object whose only nested value is `set`, an object of scene values (lists
+// of numbers at most: `"video.size": [128, 128]`); anything nested deeper is refused while
+// parsing, before it is built, so no body can make the parser or the value's destructor
+// recurse deeply.
+constexpr int max_depth = 4;
+
+// How a problem with one of `set`'s values is named (Override::label).
+std::string set_label(const std::string& key) { return "set '" + key + "'"; }
 
 struct TooDeep {};
 
@@ -25,8 +30,16 @@ std::optional<std::string> type_problem(const std::string& key, const json& valu
     const auto must_be = [&](const char* what) {
         return "field '" + key + "' must be " + what;
     };
-    if (key == "scene" || key == "output" || key == "size" || key == "preset") {
+    if (key == "scene" || key == "output" || key == "size" || key == "preset" ||
+        key == "frames") {
         if (!value.is_string()) return must_be("a string");
+    } else if (key == "set") {
+        if (!value.is_object()) return must_be("an object of scene paths and values, e.g. "
+                                               "{\"physics.seed\": 3}");
+        for (const auto& [path, v] : value.items()) {
+            if (v.is_object()) return "field 'set': the value of '" + path + "' is an object; "
+                                      "set its keys one by one ('" + path + ".KEY')";
+        }
     } else if (key == "frame" || key == "fps" || key == "crf") {
         if (!value.is_number_integer()) return must_be("an integer");
     } else if (key == "at" || key == "duration") {
@@ -38,8 +51,8 @@ std::optional<std::string> type_problem(const std::string& key, const json& valu
 }
 
 bool known_field(const std::string& key) {
-    for (const char* name : {"scene", "output", "frame", "at", "size", "fps", "duration", "crf",
-                             "preset", "audio"}) {
+    for (const char* name : {"scene", "output", "frame", "frames", "at", "size", "fps",
+                             "duration", "crf", "preset", "audio", "set"}) {
         if (key == name) return true;
     }
     return false;
@@ -67,7 +80,11 @@ json one_error(const json& line, const json& column, const std::string& message)
 json placed(const std::vector<scene::Diagnostic>& diagnostics) {
     json list = json::array();
     for (const scene::Diagnostic& d : diagnostics) {
-        list.push_back(one_error(d.line, d.column, d.message));
+        if (d.line <= 0 && d.file != "scene") {   // one of `set`'s values: no place in the scene
+            list.push_back(one_error(nullptr, nullptr, d.file + ": " + d.message));
+        } else {
+            list.push_back(one_error(d.line, d.column, d.message));
+        }
     }
     return list;
 }
@@ -107,13 +124,14 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
     } catch (const json::out_of_range& e) {   // a number beyond a double, such as 1e400
         return refusal(400, std::string("a number in the body is out of range: ") + e.what());
     } catch (const TooDeep&) {
-        return refusal(400, "the body must be one JSON object of strings and numbers");
+        return refusal(400, "the body nests too deeply: it is one JSON object of strings, numbers and `set`");
     }
     if (!parsed.is_object()) return refusal(400, "the body must be a JSON object");
     for (const auto& [key, value] : parsed.items()) {
         if (!known_field(key)) {
             return refusal(400, "unknown field '" + key + "'; the fields are scene, output, "
-                                "frame, at, size, fps, duration, crf, preset and audio");
+                                "frame, frames, at, size, fps, duration, crf, preset, audio "
+                                "and set");
         }
         if (auto problem = type_problem(key, value)) return refusal(400, *problem);
     }
@@ -147,6 +165,13 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
     if (parsed.contains("at")) render.at = parsed["at"].get<double>();
     if (parsed.contains("duration")) render.video.duration = parsed["duration"].get<double>();
     if (parsed.contains("preset")) render.preset = parsed["preset"].get<std::string>();
+    if (parsed.contains("frames")) render.frames = parsed["frames"].get<std::string>();
+    if (parsed.contains("set")) {
+        // JSON is YAML: each value is read by the scene's loader as written.
+        for (const auto& [path, value] : parsed["set"].items()) {
+            request.overrides.push_back({path, value.dump(), set_label(path)});
+        }
+    }
     if (parsed.contains("audio")) render.audio = parsed["audio"].get<bool>();
     if (parsed.contains("size")) {
         const auto size = parse_size(parsed["size"].get<std::string>());
@@ -166,7 +191,8 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
 std::variant<PlannedJob, Refusal> plan_job(const JobRequest& request,
                                            const scene::Limits& limits) {
     scene::LoadResult loaded =
-        scene::load_scene_text(request.scene, "scene", limits, request.render.video.duration);
+        scene::load_scene_text(request.scene, "scene", limits, request.render.video.duration,
+                               request.overrides);
     if (!loaded.ok()) return Refusal{422, json{{"errors", placed(loaded.diagnostics)}}};
     json warnings = placed(loaded.warnings);
     auto plan = job::plan_render(std::move(loaded.scene), request.render, limits);

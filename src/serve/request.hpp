@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -27,6 +28,7 @@ struct JobRequest {
     std::string format;              // "mp4", "webm", "mkv", "gif", "png"
     nlohmann::json options;          // every field but the scene, output included: canonical
     job::RenderRequest render;       // .output is a bare "render.<format>", set by the worker
+    std::vector<scene::Override> overrides;   // `set`, in key order
     std::string id;                  // 32 hex digits
     std::string stored() const;      // the JSON kept in the store: options plus the scene
 };

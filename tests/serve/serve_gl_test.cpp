@@ -245,7 +245,19 @@ TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
                                           "JSON object\"}}\n")}));
     EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"colour", "red"}}.dump()).second,
               "{\"error\":{\"message\":\"unknown field 'colour'; the fields are scene, output, "
-              "frame, at, size, fps, duration, crf, preset and audio\"}}\n");
+              "frame, frames, at, size, fps, duration, crf, preset, audio and set\"}}\n");
+    // `set` as --set: its problems name the key, with no place in the scene.
+    EXPECT_EQ(json::parse(answer("/v1/validate", json{{"scene", scene_text()},
+                                                      {"set", {{"physics.sede", 3}}}}
+                                                     .dump())
+                              .second),
+              json::parse(R"({"errors": [{"line": null, "column": null, "message":
+                  "set 'physics.sede': physics: unknown key 'sede'; did you mean 'seed'?"}]})"));
+    EXPECT_EQ(answer("/v1/renders",
+                     json{{"scene", scene_text()}, {"set", {{"video", {{"fps", 2}}}}}}.dump()),
+              (std::pair{400, std::string("{\"error\":{\"message\":\"field 'set': the value of "
+                                          "'video' is an object; set its keys one by one "
+                                          "('video.KEY')\"}}\n")}));
     EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"fps", "30"}}.dump()).second,
               "{\"error\":{\"message\":\"field 'fps' must be an integer\"}}\n");
     EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"output", "avi"}}.dump()).first,
@@ -270,6 +282,31 @@ TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
     ASSERT_TRUE(page);
     EXPECT_EQ(page->status, 200);
     EXPECT_NE(page->body.find("<textarea id=\"scene\""), std::string::npos);
+}
+
+// What the command line takes, the service takes: `set` as --set, `frames` as --frames; the
+// bytes are the command line's.
+TEST_F(ServeGLTest, SetAndFramesAreTheCommandLines) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    const json request{{"scene", scene_text()}, {"output", "mkv"}, {"frames", "2-5"},
+                       {"set", {{"physics.seed", 7}, {"video.size", {96, 54}}}}};
+    auto accepted = post(client, "/v1/renders", request);
+    ASSERT_TRUE(accepted);
+    ASSERT_EQ(accepted->status, 202) << accepted->body;
+    const json done = wait_final(client, json::parse(accepted->body)["id"]);
+    ASSERT_EQ(done["status"], "succeeded") << done.dump();
+    EXPECT_EQ(done["progress"]["frames_total"], 4);
+    auto output = client.Get(done["output"]["url"].get<std::string>());
+    ASSERT_TRUE(output);
+    const std::string cli =
+        cli_render(dir, scene_text(),
+                   {"--frames", "2-5", "--set", "physics.seed=7", "--set", "video.size=[96,54]"},
+                   "cli.mkv");
+    EXPECT_EQ(output->body, cli) << "the service's clip differs from discreel render's";
+    EXPECT_NE(cli_render(dir, scene_text(), {"--frames", "2-5", "--set", "video.size=[96,54]"},
+                         "seed1.mkv"),
+              cli);   // the seed took effect
 }
 
 TEST_F(ServeGLTest, ATokenGuardsEveryV1Route) {
