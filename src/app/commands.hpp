@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "discreel/render.hpp"
 #include "progress.hpp"
 #include "scene_source.hpp"
 
@@ -17,6 +18,13 @@ struct OutputFiles {
     std::optional<std::string> joints;   // CSV, one row per joint per frame
 };
 
+// A renderer kept between the renders of one process (a batch's range of lines): its context
+// and compiled shaders are reused. Made for the first render's frame size, again when the size
+// changes. The bytes are the same either way.
+struct WarmRenderer {
+    std::optional<render::Renderer> renderer;
+};
+
 struct RenderOptions {
     std::optional<std::string> scene_path;   // none: the built-in demo
     // What to render and how: -o, --frame, --at, --frames, --quality, --size, --fps,
@@ -24,6 +32,7 @@ struct RenderOptions {
     // requests fill the same struct (job::plan_render resolves both alike).
     job::RenderRequest request;
     scene::Limits limits;                    // --max-bodies, --max-duration, --max-scene-bytes
+    std::vector<scene::Override> overrides;  // --set KEY=VALUE, in order
     OutputFiles files;
     bool sequential = false;                 // every stage on one thread: same bytes, slower
     int jobs = 0;                            // --jobs: segments at once; 0: one per core
@@ -32,11 +41,13 @@ struct RenderOptions {
     bool no_overwrite = false;               // refuse an existing output
     bool quiet = false;                      // errors only: no progress, no summary
     bool verbose = false;                    // settings, stage timings and peak memory too
+    WarmRenderer* warm = nullptr;            // none: the render makes its own renderer
 };
 
 struct SimulateOptions {
     std::string scene_path;
     scene::Limits limits;
+    std::vector<scene::Override> overrides;  // --set KEY=VALUE, in order
     std::optional<double> duration;
     OutputFiles files;
 };
@@ -44,6 +55,7 @@ struct SimulateOptions {
 struct ValidateOptions {
     std::vector<std::string> scene_paths;
     scene::Limits limits;
+    std::vector<scene::Override> overrides;  // --set KEY=VALUE, for every scene
 };
 
 struct ServeOptions {

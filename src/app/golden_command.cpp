@@ -257,7 +257,8 @@ std::optional<std::vector<LoadedScene>> load_scenes(const GoldenOptions& o, std:
     bool all_loaded = true;
     std::map<std::string, std::string> path_of_name;
     for (const std::string& path : o.scene_paths) {
-        scene::LoadResult loaded = scene::load_scene_file(path, o.limits, o.video.duration);
+        scene::LoadResult loaded = scene::load_scene_file(path, o.limits, o.video.duration,
+                                                            o.overrides);
         if (!report_diagnostics(loaded, err)) {
             all_loaded = false;
             continue;
@@ -449,12 +450,13 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
     auto scenes = load_scenes(o, err);
     if (!scenes) return exit_bad_input;
     if (o.shards > 1) keep_shard(*scenes, o.shard, o.shards);
-    // The reports' files are created now: a missing directory fails before any rendering.
+    // The reports' directories are made now: one that cannot be fails before any rendering.
     std::vector<NamedPath> inputs, reports;
     for (const std::string& path : o.scene_paths) inputs.push_back({"the scene", path});
     if (o.junit) reports.push_back({"--junit", *o.junit});
     if (o.report) reports.push_back({"--report", *o.report});
     if (!check_distinct_files(inputs, reports, err)) return exit_bad_input;
+    if (!make_output_directories(reports, err)) return exit_runtime_failure;
     const auto create = [&](const std::optional<std::string>& path,
                             std::optional<AtomicTextFile>& file) {
         if (!path) return true;

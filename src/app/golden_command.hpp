@@ -32,6 +32,7 @@ struct GoldenOptions {
     VideoOverrides video;                         // --size only
     ProgressRequest progress = ProgressRequest::none;   // --progress [json]
     scene::Limits limits;                         // --max-bodies, --max-duration, ...
+    std::vector<scene::Override> overrides;       // --set KEY=VALUE, for every scene
     // --shard K/N: only the K-th (1-based) of N shares of all the scenes' golden frames. The
     // frames, in scene order and then frame order, are dealt out in turn: frame i to share
     // i mod N + 1, so N runs together check every frame exactly once.

@@ -2,6 +2,9 @@
 // lives in discreel_app so tests can call it without a process.
 #include <CLI/CLI.hpp>
 
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <cmath>
@@ -51,6 +54,25 @@ void add_output_files(CLI::App& cmd, OutputFiles& files) {
     cmd.add_option("--joints", files.joints,
                    "Write one CSV row per joint per frame (anchors, force, torque) to FILE")
         ->option_text("FILE");
+}
+
+// --set KEY=VALUE, repeatable: values put into the scene before it is read.
+void add_set_option(CLI::App& cmd, std::vector<discreel::scene::Override>& overrides) {
+    cmd.add_option_function<std::vector<std::string>>(
+           "--set",
+           [&overrides](const std::vector<std::string>& texts) {
+               for (const std::string& text : texts) {
+                   auto parsed = discreel::scene::parse_override(text);
+                   if (!parsed) throw CLI::ValidationError(parsed.error().message);
+                   overrides.push_back(std::move(*parsed));
+               }
+           },
+           "Set a scene value before the scene is read: a dotted path and a YAML value, "
+           "e.g. physics.seed=3, video.size=[128,128], discs.0.radius=0.3; repeatable, "
+           "the last wins")
+        ->option_text("KEY=VALUE")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
 // A number option that must be finite (CLI11 reads "nan" and "inf" as doubles) and, where
@@ -231,15 +253,69 @@ std::optional<std::string> unknown_word(CLI::App& app, const std::vector<std::st
 
 }  // namespace
 
-static int run_words(const std::vector<std::string>& words, const std::string& where);
+static int run_words(const std::vector<std::string>& words, const std::string& where,
+                     WarmRenderer* warm = nullptr);
 
 struct BatchOptions {
     std::string manifest;
-    std::optional<std::size_t> index;
+    std::optional<IndexRange> index;
+    bool all = false;
+    int jobs = 1;
 };
 
-// A manifest's line, run as `discreel render` with that line's words; its mistakes are printed
-// as MANIFEST:LINE: message.
+// Names the failed lines of a range, after their own messages.
+static void report_failed(std::vector<std::size_t> failed, IndexRange range) {
+    if (failed.empty()) return;
+    std::sort(failed.begin(), failed.end());
+    std::string list;
+    for (const std::size_t i : failed) list += (list.empty() ? "" : ", ") + std::to_string(i);
+    report_error(std::cerr, std::to_string(failed.size()) + " of " +
+                                std::to_string(range.last - range.first + 1) +
+                                " renders failed (" + (failed.size() == 1 ? "index " : "indexes ") +
+                                list + ")");
+}
+
+// The renders of `range`, `jobs` at a time, each a process of its own (`batch MANIFEST --index
+// I`): a line's crash or memory is its own. The worst exit code; the failed lines are named.
+static int run_batch_processes(const BatchOptions& b, IndexRange range) {
+    std::map<pid_t, std::size_t> running;
+    std::vector<std::size_t> failed;
+    int worst = exit_ok;
+    const auto reap_one = [&] {
+        int status = 0;
+        const pid_t pid = waitpid(-1, &status, 0);
+        const auto found = running.find(pid);
+        if (found == running.end()) return;
+        const int code = WIFEXITED(status) ? WEXITSTATUS(status) : exit_runtime_failure;
+        if (code != exit_ok) failed.push_back(found->second);
+        worst = std::max(worst, code);
+        running.erase(found);
+    };
+    for (std::size_t i = range.first; i <= range.last && stop_signal() == 0; ++i) {
+        while (running.size() >= static_cast<std::size_t>(b.jobs)) reap_one();
+        std::string index = std::to_string(i);
+        std::string self = "/proc/self/exe", verb = "batch", flag = "--index";
+        std::string manifest = b.manifest;
+        char* argv[] = {self.data(), verb.data(), manifest.data(), flag.data(), index.data(),
+                        nullptr};
+        pid_t pid = 0;
+        if (posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv, environ) != 0) {
+            report_error(std::cerr, "cannot start the render of line index " + index);
+            failed.push_back(i);
+            worst = std::max(worst, static_cast<int>(exit_runtime_failure));
+            continue;
+        }
+        running.emplace(pid, i);
+    }
+    while (!running.empty()) reap_one();
+    if (stop_signal() != 0) worst = std::max(worst, static_cast<int>(exit_runtime_failure));
+    report_failed(failed, range);
+    return worst;
+}
+
+// Manifest lines, each run as `discreel render` with that line's words, in order in this
+// process (one warm renderer for them all) or `jobs` processes at a time; a line's mistakes are
+// printed as MANIFEST:LINE: message. A failed line does not stop the others.
 static int run_batch(const BatchOptions& b) {
     const auto fail = [](const std::string& message) {
         report_error(std::cerr, message);
@@ -248,26 +324,54 @@ static int run_batch(const BatchOptions& b) {
     auto text = discreel::read_file_bounded(b.manifest, 16u << 20);
     if (!text) return fail("cannot read '" + b.manifest + "': " + text.error().message);
     if (text->too_large) return fail("'" + b.manifest + "' is over 16 MiB: not a manifest");
-    auto index = batch_index(b.index, [](const char* name) -> const char* {
+    const std::size_t count = count_renders(text->bytes);
+    std::optional<IndexRange> flag = b.index;
+    if (b.all) {
+        if (count == 0) return fail(b.manifest + " holds no renders");
+        flag = IndexRange{0, count - 1};
+    }
+    auto range = batch_index(flag, [](const char* name) -> const char* {
         return std::getenv(name);
     });
-    if (!index) return fail(index.error().message);
-    auto line = pick_render(text->bytes, *index, b.manifest);
-    if (!line) return fail(line.error().message);
-    std::vector<std::string> words{"render"};
-    words.insert(words.end(), line->words.begin(), line->words.end());
-    return run_words(words, b.manifest + ":" + std::to_string(line->number) + ": ");
+    if (!range) return fail(range.error().message);
+    // A range past the end is refused before any line runs.
+    if (range->last >= count) return fail(pick_render(text->bytes, range->last, b.manifest)
+                                              .error()
+                                              .message);
+    if (b.jobs > 1 && range->last > range->first) return run_batch_processes(b, *range);
+    WarmRenderer warm;
+    int worst = exit_ok;
+    std::vector<std::size_t> failed;
+    for (std::size_t i = range->first; i <= range->last && stop_signal() == 0; ++i) {
+        auto line = pick_render(text->bytes, i, b.manifest);
+        int code = exit_bad_input;
+        if (!line) {
+            report_error(std::cerr, line.error().message);
+        } else {
+            std::vector<std::string> words{"render"};
+            words.insert(words.end(), line->words.begin(), line->words.end());
+            code = run_words(words, b.manifest + ":" + std::to_string(line->number) + ": ",
+                             &warm);
+        }
+        if (code != exit_ok) failed.push_back(i);
+        worst = std::max(worst, code);
+    }
+    if (range->last > range->first) report_failed(failed, *range);
+    return worst;
 }
 
 // Runs one command line (the words after the program's name). A mistake in it is printed after
-// `where`: "discreel: " for the process's own, "MANIFEST:LINE: " for a line of a batch.
-static int run_words(const std::vector<std::string>& words, const std::string& where) {
+// `where`: "discreel: " for the process's own, "MANIFEST:LINE: " for a line of a batch, whose
+// renders share `warm`.
+static int run_words(const std::vector<std::string>& words, const std::string& where,
+                     WarmRenderer* warm) {
     CLI::App app{"discreel: renders 2-D rigid-body physics scenes to video, headless and deterministic",
                  "discreel"};
     app.set_version_flag("--version", std::string("discreel ") + DISCREEL_VERSION);
     app.require_subcommand(1);
 
     RenderOptions render;
+    render.warm = warm;
     CLI::App* render_cmd = app.add_subcommand(
         "render", "Render a scene to a video (.mp4 .mkv .webm .gif) or stills (.png)");
     render_cmd->add_option("scene", render.scene_path,
@@ -331,6 +435,7 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     render_cmd->add_flag("--lossless", render.request.lossless,
                          "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);
+    add_set_option(*render_cmd, render.overrides);
     add_limit_options(*render_cmd, render.limits);
     render_cmd->add_option("--progress", render.progress,
                            "Report progress on standard error even when it is not a terminal: "
@@ -364,6 +469,7 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     simulate_cmd->add_option("--duration", simulate.duration, "Override duration in seconds")
         ->check(finite_number(1e-9, 1e9));
     add_output_files(*simulate_cmd, simulate.files);
+    add_set_option(*simulate_cmd, simulate.overrides);
     add_limit_options(*simulate_cmd, simulate.limits);
 
     BatchOptions batch;
@@ -371,10 +477,22 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
         "batch", "Render one line of a manifest (SCENE -o OUT [options] per line): the task's "
                  "index picks it (docs/scale.md)");
     batch_cmd->add_option("manifest", batch.manifest, "Manifest file")->required();
-    batch_cmd->add_option("--index", batch.index,
-                          "0-based render to run; default: SLURM_ARRAY_TASK_ID, then "
-                          "JOB_COMPLETION_INDEX")
-        ->check(whole_number(0, 1'000'000'000));
+    batch_cmd->add_option_function<std::string>(
+                  "--index",
+                  [&batch](const std::string& text) {
+                      auto range = parse_index_range(text);
+                      if (!range) throw CLI::ValidationError("--index", range.error().message);
+                      batch.index = *range;
+                  },
+                  "0-based render to run, or a range A-B run in order; default: "
+                  "SLURM_ARRAY_TASK_ID, then JOB_COMPLETION_INDEX")
+        ->option_text("I|A-B");
+    batch_cmd->add_flag("--all", batch.all, "Run every render of the manifest");
+    batch_cmd->add_option("--jobs", batch.jobs,
+                          "Renders at once, each a process of its own (default 1: in order, "
+                          "in this process)")
+        ->check(whole_number(1, 1024));
+    batch_cmd->get_option("--all")->excludes("--index");
 
     ServeOptions serve;
     serve.version = DISCREEL_VERSION;
@@ -411,6 +529,7 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     CLI::App* validate_cmd = app.add_subcommand(
         "validate", "Check scene files and print every problem; exit 2 if any");
     validate_cmd->add_option("scenes", validate.scene_paths, "Scene files (YAML)")->required();
+    add_set_option(*validate_cmd, validate.overrides);
     add_limit_options(*validate_cmd, validate.limits);
 
     GoldenOptions golden;
@@ -432,6 +551,7 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
                            "Also write one self-contained HTML page showing each failing "
                            "frame: golden, actual and difference, with the numbers")
         ->option_text("FILE.html");
+    add_set_option(*golden_cmd, golden.overrides);
     add_limit_options(*golden_cmd, golden.limits);
     golden_cmd->add_option("--progress", golden.progress,
                            "Report progress on standard error even when it is not a terminal: "

@@ -69,8 +69,34 @@ Expected<ManifestLine> pick_render(std::string_view text, std::size_t index,
     return Error{message + " renders (indexes 0 to " + std::to_string(renders - 1) + ")"};
 }
 
-Expected<std::size_t> batch_index(std::optional<std::size_t> flag,
-                                  const char* (*getenv)(const char*)) {
+std::size_t count_renders(std::string_view text) {
+    std::size_t renders = 0;
+    for (std::size_t start = 0; start < text.size();) {
+        auto end = text.find('\n', start);
+        if (end == std::string_view::npos) end = text.size();
+        const std::string_view line = text.substr(start, end - start);
+        start = end + 1;
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first != std::string_view::npos && line[first] != '#') ++renders;
+    }
+    return renders;
+}
+
+Expected<IndexRange> parse_index_range(std::string_view text) {
+    const auto dash = text.find('-');
+    const auto first = parse_whole<std::size_t>(text.substr(0, dash));
+    const auto last = dash == std::string_view::npos
+                          ? first
+                          : parse_whole<std::size_t>(text.substr(dash + 1));
+    if (!first || !last || *last < *first) {
+        return Error{"expected an index I or a range A-B of indexes (A <= B, from 0), got '" +
+                     std::string(text) + "'"};
+    }
+    return IndexRange{*first, *last};
+}
+
+Expected<IndexRange> batch_index(std::optional<IndexRange> flag,
+                                 const char* (*getenv)(const char*)) {
     if (flag) return *flag;
     for (const char* name : {"SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"}) {
         const char* value = getenv(name);
@@ -80,9 +106,9 @@ Expected<std::size_t> batch_index(std::optional<std::size_t> flag,
         if (!index) {
             return Error{std::string(name) + " is '" + value + "', not an index (0, 1, 2, ...)"};
         }
-        return *index;
+        return IndexRange{*index, *index};
     }
-    return Error{"batch needs the render's index: --index I, or SLURM_ARRAY_TASK_ID (a Slurm "
+    return Error{"batch needs the render's index: --index I (or A-B, or --all), or SLURM_ARRAY_TASK_ID (a Slurm "
                  "job array) or JOB_COMPLETION_INDEX (a Kubernetes indexed Job) in the "
                  "environment"};
 }

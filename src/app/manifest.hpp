@@ -28,9 +28,23 @@ struct ManifestLine {
 Expected<ManifestLine> pick_render(std::string_view text, std::size_t index,
                                   const std::string& manifest);
 
-// The task's index: `flag`, else the first of SLURM_ARRAY_TASK_ID and JOB_COMPLETION_INDEX that
-// is set (`getenv` returns them). An error names the variable that is not a number.
-Expected<std::size_t> batch_index(std::optional<std::size_t> flag,
-                                  const char* (*getenv)(const char*));
+// How many renders the manifest holds (lines that are neither blank nor comments).
+std::size_t count_renders(std::string_view text);
+
+// Renders first..last of a manifest, inclusive and 0-based.
+struct IndexRange {
+    std::size_t first = 0;
+    std::size_t last = 0;
+    friend bool operator==(const IndexRange&, const IndexRange&) = default;
+};
+
+// "I" or "A-B" (A <= B), as --index takes them.
+Expected<IndexRange> parse_index_range(std::string_view text);
+
+// The task's renders: `flag`, else the one the first of SLURM_ARRAY_TASK_ID and
+// JOB_COMPLETION_INDEX that is set names (`getenv` returns them). An error names the variable
+// that is not a number.
+Expected<IndexRange> batch_index(std::optional<IndexRange> flag,
+                                 const char* (*getenv)(const char*));
 
 }  // namespace discreel::app

@@ -86,7 +86,8 @@ void report_details(const job::RenderSummary& run, int frames, std::ostream& err
 
 int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = Clock::now();
-    scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits, o.request.video.duration);
+    scene::LoadResult loaded = load_scene_or_demo(o.scene_path, o.limits, o.request.video.duration,
+                                                  o.overrides);
     if (!report_diagnostics(loaded, err, !o.quiet)) return exit_bad_input;
     auto plan = job::plan_render(std::move(loaded.scene), o.request, o.limits);
     if (!plan) {
@@ -129,7 +130,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     // Tasks of one render share the directory of its segments, and make it if need be.
     if (plan->segment) {
         std::error_code error;
-        std::filesystem::create_directory(o.request.output, error);
+        std::filesystem::create_directories(o.request.output, error);
         if (error && !std::filesystem::is_directory(o.request.output)) {
             std::string message = "cannot make the directory '";
             message += printable(o.request.output);
@@ -156,6 +157,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     if (!output.to_stdout) output_paths.push_back({"-o", output.path});
     add_output_paths(o.files, output_paths);
     if (!check_distinct_files(inputs, output_paths, err)) return exit_bad_input;
+    if (!make_output_directories(output_paths, err)) return exit_runtime_failure;
 
     const int to_write = frames.last - frames.first + 1;
     if (o.verbose) {
@@ -199,6 +201,19 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     def.events = o.files.events;
     def.joints = o.files.joints;
     def.threaded = !o.sequential;
+    if (o.warm != nullptr) {
+        std::optional<render::Renderer>& warm = o.warm->renderer;
+        if (!warm || warm->def().width != video.width || warm->def().height != video.height) {
+            warm.reset();
+            auto made = render::Renderer::create({.width = video.width, .height = video.height});
+            if (!made) {
+                report_error(err, made.error().message);
+                return exit_runtime_failure;
+            }
+            warm = std::move(*made);
+        }
+        def.renderer = &*warm;
+    }
     def.on_progress = [&](const job::Progress& p) { progress.update(p.frames_done, p.elapsed); };
     def.should_stop = [] { return stop_signal() != 0; };
     // Warnings of the run come from the simulating threads; they are printed once it ends,

@@ -1,5 +1,6 @@
 #include "run_support.hpp"
 
+#include <filesystem>
 #include <fstream>
 
 #include "discreel/printable.hpp"
@@ -33,6 +34,27 @@ bool check_distinct_files(const std::vector<NamedPath>& inputs,
     const auto clash = find_clash(inputs, outputs);
     if (clash) report_error(err, *clash);
     return !clash;
+}
+
+bool make_output_directories(const std::vector<NamedPath>& outputs, std::ostream& err) {
+    for (const NamedPath& output : outputs) {
+        const std::filesystem::path parent = std::filesystem::path(output.path).parent_path();
+        std::error_code error;
+        // Something else in the directory's place is the writer's to report, in its words.
+        if (parent.empty() || std::filesystem::exists(parent, error)) continue;
+        std::filesystem::create_directories(parent, error);
+        if (error && !std::filesystem::is_directory(parent)) {
+            std::string message = "cannot make the directory '";
+            message.append(printable(parent.string()))
+                .append("' for ")
+                .append(output.role)
+                .append(": ")
+                .append(error.message());
+            report_error(err, message);
+            return false;
+        }
+    }
+    return true;
 }
 
 void add_output_paths(const OutputFiles& files, std::vector<NamedPath>& outputs) {

@@ -31,6 +31,11 @@ bool report_diagnostics(const scene::LoadResult& loaded, std::ostream& err, bool
 bool check_distinct_files(const std::vector<NamedPath>& inputs,
                           const std::vector<NamedPath>& outputs, std::ostream& err);
 
+// Makes the missing directories above every output (`-o out/a/b.mp4` makes out/a), as Manim
+// and Remotion do; called once the run is known to be sound, so a refused run makes none.
+// False, with the reason printed, when one cannot be made (a file in its place).
+bool make_output_directories(const std::vector<NamedPath>& outputs, std::ostream& err);
+
 // The trace and events files of `files`, named for check_distinct_files.
 void add_output_paths(const OutputFiles& files, std::vector<NamedPath>& outputs);
 

@@ -1,6 +1,7 @@
 #pragma once
 // Where the CLI gets its scene: a file, or the demo compiled into the binary.
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -15,7 +16,8 @@ std::string_view builtin_demo_yaml();
 // the scene's respawns must cover (scene::load_scene_file).
 scene::LoadResult load_scene_or_demo(const std::optional<std::string>& path,
                                      const scene::Limits& limits,
-                                     std::optional<double> clip_duration = std::nullopt);
+                                     std::optional<double> clip_duration = std::nullopt,
+                                     std::span<const scene::Override> overrides = {});
 
 // The command line's --size, --fps and --duration: the job layer's overrides.
 using job::VideoOverrides;

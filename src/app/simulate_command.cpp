@@ -20,7 +20,7 @@ std::string count_of(std::size_t n, const char* singular, const char* plural) {
 
 int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) {
     const auto started = std::chrono::steady_clock::now();
-    scene::LoadResult loaded = scene::load_scene_file(o.scene_path, o.limits, o.duration);
+    scene::LoadResult loaded = scene::load_scene_file(o.scene_path, o.limits, o.duration, o.overrides);
     if (!report_diagnostics(loaded, err)) return exit_bad_input;
     scene::Scene& scene = loaded.scene;
     VideoOverrides overrides;
@@ -33,6 +33,7 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     add_output_paths(o.files, output_paths);
     if (!check_distinct_files({{"the scene", o.scene_path}}, output_paths, err))
         return exit_bad_input;
+    if (!make_output_directories(output_paths, err)) return exit_runtime_failure;
     const std::string name = scene.name;
     const std::size_t discs = scene.bodies.size(), walls = scene.walls.size(),
                       throws = scene.throws.size();

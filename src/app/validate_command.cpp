@@ -13,7 +13,7 @@ namespace discreel::app {
 int run_validate(const ValidateOptions& o, std::ostream& out, std::ostream& err) {
     bool all_ok = true;
     for (const std::string& path : o.scene_paths) {
-        const auto loaded = scene::load_scene_file(path, o.limits);
+        const auto loaded = scene::load_scene_file(path, o.limits, std::nullopt, o.overrides);
         if (report_diagnostics(loaded, err)) {
             const auto& bodies = loaded.scene.bodies;
             const bool shaped = std::any_of(bodies.begin(), bodies.end(),

@@ -563,10 +563,11 @@ TEST(CliGLTest, RenderWritesTheSameTraceAsSimulate) {
 
 TEST(CliTest, UnwritableTraceFailsBeforeAnyWork) {
     TempDir dir;
+    testing::write_file(dir / "no", "");   // a file where the trace's directory would be made
     const auto run = run_command({bin, "simulate", short_scene, "--trace", dir / "no/such/dir/t.csv"});
     EXPECT_EQ(run.exit_code, 3);
-    EXPECT_EQ(run.err.rfind("discreel: cannot write '" + (dir / "no/such/dir/t.csv") + "': ", 0), 0u)
-        << run.err;
+    EXPECT_EQ(run.err.rfind("discreel: cannot ", 0), 0u) << run.err;
+    EXPECT_NE(run.err.find(dir / "no/such/dir"), std::string::npos) << run.err;
 }
 
 // A box resting flat on the floor of a box wall, through the binary: the summary names the

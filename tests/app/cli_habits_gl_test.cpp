@@ -285,5 +285,55 @@ TEST(BatchGLTest, EachTaskRendersItsLineOfTheManifest) {
     EXPECT_EQ(run.exit_code, 2);
 }
 
+// A dataset's manifest: lines that differ only in --set, run as a range in one process (one
+// warm renderer) or several at once, each byte for byte what its own run writes; the output
+// directories are made as needed.
+TEST(BatchGLTest, ARangeOfLinesEqualsTheLinesRunOneByOne) {
+    TempDir dir;
+    std::string manifest;
+    for (int i = 0; i < 4; ++i) {
+        manifest += short_scene + " -o " + (dir / "range") + "/" + std::to_string(i) +
+                    "/f.png --frame 3 --size 64x36 --set physics.seed=" + std::to_string(i) +
+                    " --set 'discs.0.velocity=[" + std::to_string(i) + ", 0]' -q\n";
+    }
+    write_file(dir / "m.txt", manifest);
+    auto run = run_command({bin, "batch", dir / "m.txt", "--index", "0-3"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::vector<std::string> stills;
+    for (int i = 0; i < 4; ++i) {
+        const std::string one = dir / ("one" + std::to_string(i) + ".png");
+        const auto single = run_command({bin, "render", short_scene, "-o", one, "--frame", "3",
+                                         "--size", "64x36", "--set",
+                                         "physics.seed=" + std::to_string(i), "--set",
+                                         "discs.0.velocity=[" + std::to_string(i) + ", 0]", "-q"});
+        ASSERT_EQ(single.exit_code, 0) << single.err;
+        stills.push_back(read_file(one));
+        EXPECT_EQ(read_file(dir / ("range/" + std::to_string(i) + "/f.png")), stills.back()) << i;
+    }
+    EXPECT_NE(stills[0], stills[3]);   // the overrides took effect
+
+    std::filesystem::remove_all(dir / "range");
+    run = run_command({bin, "batch", dir / "m.txt", "--all", "--jobs", "3"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(read_file(dir / ("range/" + std::to_string(i) + "/f.png")), stills[i]) << i;
+    }
+}
+
+// A failed line does not stop the others; the batch fails and names it.
+TEST(BatchGLTest, AFailedLineIsNamedAndTheOthersRun) {
+    TempDir dir;
+    write_file(dir / "m.txt", short_scene + " -o " + (dir / "a.png") + " -q\n" + short_scene +
+                                  " -o " + (dir / "b.png") + " --set physics.sede=2\n" +
+                                  short_scene + " -o " + (dir / "c.png") + " -q\n");
+    const auto run = run_command({bin, "batch", dir / "m.txt", "--index", "0-2"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "--set physics.sede=2: physics: unknown key 'sede'; did you mean "
+                       "'seed'?\ndiscreel: 1 of 3 renders failed (index 1)\n");
+    EXPECT_TRUE(std::filesystem::exists(dir / "a.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "b.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "c.png"));
+}
+
 }  // namespace
 }  // namespace discreel

@@ -27,13 +27,24 @@ using testing::TempDir;
 const std::string bin = DISCREEL_BIN;
 const std::string short_scene = std::string(DISCREEL_SOURCE_DIR) + "/tests/data/scenes/short.yaml";
 
-TEST(FaultsGLTest, MissingOutputDirectoryIsNamedAndNothingIsCreated) {
+// As Manim and Remotion do: `-o out/a/b.mp4` makes out/a, for every output of the run.
+TEST(FaultsGLTest, MissingOutputDirectoriesAreMade) {
     TempDir dir;
-    const std::string out = dir / "nowhere/clip.mp4";
-    const auto run = run_command({bin, "render", short_scene, "-o", out});
-    EXPECT_EQ(run.exit_code, 3);
-    EXPECT_EQ(run.err, "discreel: cannot write '" + out + "': directory '" + (dir / "nowhere") +
-                           "' does not exist\n");
+    const std::string out = dir / "a/b/clip.png";
+    const auto run = run_command({bin, "render", short_scene, "-o", out, "--trace",
+                                  dir / "c/trace.csv", "-q"});
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_TRUE(std::filesystem::is_regular_file(out));
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "c/trace.csv"));
+}
+
+// A run refused before any work makes no directory.
+TEST(FaultsGLTest, ARefusedRunMakesNoDirectory) {
+    TempDir dir;
+    const auto run = run_command({bin, "render", short_scene, "-o", dir / "a/clip.png",
+                                  "--set", "physics.sede=1"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "--set physics.sede=1: physics: unknown key 'sede'; did you mean 'seed'?\n");
     EXPECT_TRUE(directory_entries(dir.path()).empty());
 }
 

@@ -410,7 +410,8 @@ TEST(HostileInputGLTest, OptionNumbersNeverWrapAndTheirRangesAreReadable) {
     EXPECT_EQ(refused({"render", scene, "-o", dir / "a.mp4", "--jobs", "2000"}),
               "discreel: --jobs: must be from 1 to 1024, got 2000");
     EXPECT_EQ(refused({"batch", dir / "m.txt", "--index", "-1"}),
-              "discreel: --index: must be from 0 to 1000000000, got -1");
+              "discreel: --index: expected an index I or a range A-B of indexes (A <= B, "
+              "from 0), got '-1'");
     EXPECT_EQ(refused({"serve", "--workers", "0"}),
               "discreel: --workers: must be from 1 to 64, got 0");
     // The largest accepted limit reads files as any other does.
@@ -425,8 +426,10 @@ TEST(HostileInputGLTest, JobsBeyondWhatMemoryHoldsAreCutAndSaid) {
     write_file(dir / "many.yaml", "version: 1\nvideo: {size: [7680, 4320], fps: 10, duration: "
                                   "100, segment: 0.1}\ndiscs:\n  - {position: [1, 1], radius: "
                                   "0.3}\n");
-    // The output's directory is missing: the run fails once the plan is made, before any work.
-    const auto run = run_command({bin, "render", dir / "many.yaml", "-o", dir / "none/a.mp4",
+    // A file stands where the output's directory should be: the run fails once the plan is
+    // made, before any work.
+    write_file(dir / "file", "");
+    const auto run = run_command({bin, "render", dir / "many.yaml", "-o", dir / "file/a.mp4",
                                   "--jobs", "1024"});
     EXPECT_EQ(run.exit_code, 3);
     EXPECT_EQ(run.err.rfind("discreel: --jobs 1024: rendering ", 0), 0u) << run.err;
@@ -520,6 +523,8 @@ TEST(HostileInputGLTest, ControlBytesInNamesAreEscapedInMessages) {
     EXPECT_EQ(run.err, dir / "ids.yaml" +
                            ":3:10: discs[0].id: 'a\\x1b[31mX\\nY' is not a valid id; use "
                            "letters, digits, '_', '-' and '.'\n");
+    // A file in the place of the output's directory: the message names both.
+    write_file(dir / "no\x1b[2Jdir\n", "");
     const std::string evil = dir / "no\x1b[2Jdir\n/out.mp4";
     run = run_command({bin, "render", short_scene, "-o", evil});
     EXPECT_EQ(run.exit_code, 3);

@@ -41,6 +41,18 @@ TEST(ManifestTest, RendersArePickedByIndexSkippingBlanksAndComments) {
               "index 0 is past the end of m.txt, which has 0 renders");
 }
 
+TEST(ManifestTest, IndexesAreOneOrARangeAndRendersAreCounted) {
+    EXPECT_EQ(*parse_index_range("3"), (IndexRange{3, 3}));
+    EXPECT_EQ(*parse_index_range("0-99"), (IndexRange{0, 99}));
+    EXPECT_EQ(parse_index_range("5-2").error().message,
+              "expected an index I or a range A-B of indexes (A <= B, from 0), got '5-2'");
+    EXPECT_FALSE(parse_index_range("-2").ok());
+    EXPECT_FALSE(parse_index_range("2-").ok());
+    EXPECT_FALSE(parse_index_range("x").ok());
+    EXPECT_EQ(count_renders("# renders\n\na.yaml -o a.mp4\n  # later\nb.yaml -o b.png"), 2u);
+    EXPECT_EQ(count_renders(""), 0u);
+}
+
 std::map<std::string, std::string> environment;
 const char* fake_getenv(const char* name) {
     const auto found = environment.find(name);
@@ -49,10 +61,10 @@ const char* fake_getenv(const char* name) {
 
 TEST(ManifestTest, TheIndexComesFromTheFlagThenSlurmThenKubernetes) {
     environment = {{"SLURM_ARRAY_TASK_ID", "4"}, {"JOB_COMPLETION_INDEX", "7"}};
-    EXPECT_EQ(*batch_index(2, fake_getenv), 2u);
-    EXPECT_EQ(*batch_index(std::nullopt, fake_getenv), 4u);
+    EXPECT_EQ(*batch_index(IndexRange{2, 5}, fake_getenv), (IndexRange{2, 5}));
+    EXPECT_EQ(*batch_index(std::nullopt, fake_getenv), (IndexRange{4, 4}));
     environment = {{"JOB_COMPLETION_INDEX", "7"}};
-    EXPECT_EQ(*batch_index(std::nullopt, fake_getenv), 7u);
+    EXPECT_EQ(*batch_index(std::nullopt, fake_getenv), (IndexRange{7, 7}));
     environment = {{"SLURM_ARRAY_TASK_ID", "4x"}};
     EXPECT_EQ(batch_index(std::nullopt, fake_getenv).error().message,
               "SLURM_ARRAY_TASK_ID is '4x', not an index (0, 1, 2, ...)");
