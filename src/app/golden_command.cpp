@@ -15,6 +15,7 @@
 #include "discreel/commit.hpp"
 #include "discreel/printable.hpp"
 #include "discreel/encode.hpp"
+#include "discreel/parse_number.hpp"
 #include "discreel/job.hpp"
 #include "discreel/render.hpp"
 #include "exit_codes.hpp"
@@ -71,14 +72,34 @@ void keep_shard(std::vector<LoadedScene>& scenes, int shard, int shards) {
     scenes = std::move(kept);
 }
 
+// The directory of a failure's files and report: --results, else golden-results beside --dir.
+fs::path results_dir(const GoldenOptions& o) {
+    if (o.results) return *o.results;
+    return fs::path(o.dir).lexically_normal().parent_path() / "golden-results";
+}
+
+// One scene's thresholds: its `golden:` block's where it sets them, the command line's else.
+struct Thresholds {
+    double tolerance = 0.1;
+    std::optional<std::int64_t> max_diff_pixels;
+    std::optional<double> max_diff_ratio;
+};
+
+Thresholds thresholds_of(const GoldenOptions& o, const scene::Scene& scene) {
+    const auto& own = scene.golden_thresholds;
+    return {.tolerance = own.tolerance.value_or(o.tolerance),
+            .max_diff_pixels = own.max_diff_pixels ? own.max_diff_pixels : o.max_diff_pixels,
+            .max_diff_ratio = own.max_diff_ratio ? own.max_diff_ratio : o.max_diff_ratio};
+}
+
 // How many pixels of a frame may differ: the tighter of the two limits given, none by default.
-std::int64_t allowed_differences(const GoldenOptions& o, std::int64_t pixel_count) {
-    if (!o.max_diff_pixels && !o.max_diff_ratio) return 0;
+std::int64_t allowed_differences(const Thresholds& t, std::int64_t pixel_count) {
+    if (!t.max_diff_pixels && !t.max_diff_ratio) return 0;
     std::int64_t allowed = std::numeric_limits<std::int64_t>::max();
-    if (o.max_diff_pixels) allowed = *o.max_diff_pixels;
-    if (o.max_diff_ratio) {
+    if (t.max_diff_pixels) allowed = *t.max_diff_pixels;
+    if (t.max_diff_ratio) {
         allowed = std::min(allowed, static_cast<std::int64_t>(
-                                        std::floor(*o.max_diff_ratio * pixel_count)));
+                                        std::floor(*t.max_diff_ratio * pixel_count)));
     }
     return allowed;
 }
@@ -118,18 +139,20 @@ struct FrameCheck {
     std::string golden_image, actual_image, diff_image;   // data: URIs
 };
 
-// Compares one rendered frame with its golden; writes .actual.png and .diff.png beside a
-// golden it does not match, unless the run will replace that golden anyway
-// (--update changed). Fails (run-time error) only when those files cannot be written.
+// Compares one rendered frame with its golden; writes .actual.png and .diff.png into the
+// results directory for a golden it does not match, unless the run will replace that golden
+// anyway (--update changed). Fails (run-time error) only when those files cannot be written.
 Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& loaded, int frame,
                                  const ImageView& actual, const std::string& renderer) {
     const bool write_files = o.update != UpdateMode::changed;
     const std::string name = loaded.scene.name;
     const fs::path scene_dir = fs::path(o.dir) / name;
+    const fs::path results = results_dir(o) / name;
     const std::string stem = "frame_" + std::to_string(frame);
     const fs::path golden_png = scene_dir / (stem + ".png");
-    const fs::path actual_png = scene_dir / (stem + ".actual.png");
-    const fs::path diff_png = scene_dir / (stem + ".diff.png");
+    const fs::path actual_png = results / (stem + ".actual.png");
+    const fs::path diff_png = results / (stem + ".diff.png");
+    const Thresholds thresholds = thresholds_of(o, loaded.scene);
     FrameCheck check;
     check.result = {.scene = name, .name = stem, .passed = true, .message = {}, .details = {}};
     golden::CaseResult& result = check.result;
@@ -142,7 +165,7 @@ Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& load
     };
     const auto add_images = [&](const std::optional<Image>& golden_image,
                                 const Image* diff) -> Status {
-        if (!o.report) return {};
+        // Without --report, a failing run still writes one into the results directory.
         Status made = uri_of(actual, check.actual_image);
         if (made && golden_image) made = uri_of(golden_image->view(), check.golden_image);
         if (made && diff) made = uri_of(diff->view(), check.diff_image);
@@ -180,11 +203,11 @@ Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& load
     }
     golden::Comparison c;
     if (golden) {
-        c = golden::compare_images(actual, golden->view(), {.threshold = o.tolerance});
+        c = golden::compare_images(actual, golden->view(), {.threshold = thresholds.tolerance});
     } else {
         c.same_size = false;
     }
-    const std::int64_t allowed = allowed_differences(o, c.pixel_count);
+    const std::int64_t allowed = allowed_differences(thresholds, c.pixel_count);
     if (c.identical || (c.same_size && c.differing_pixels <= allowed)) {
         // A pass clears what an earlier failing run left, so what is there is current.
         remove_if_present(actual_png);
@@ -199,6 +222,9 @@ Expected<FrameCheck> check_frame(const GoldenOptions& o, const LoadedScene& load
 
     result.passed = false;
     if (write_files) {
+        std::error_code made;
+        fs::create_directories(results, made);
+        if (made) return Error{"cannot create '" + results.string() + "': " + made.message()};
         if (Status s = encode::write_png(actual_png.string(), actual); !s) return s.error();
     }
     std::string written = "wrote " + actual_png.string();
@@ -302,6 +328,8 @@ struct PendingGoldens {
     std::vector<OutputFile> images;
     std::vector<AtomicTextFile> metadata;
     std::vector<fs::path> stale;   // what an earlier failing check left beside a new golden
+    std::vector<fs::path> removed; // goldens of frames their scene no longer lists, and theirs
+    std::size_t removed_goldens = 0;
 
     Status commit() {
         std::vector<OutputFile*> files;
@@ -309,20 +337,45 @@ struct PendingGoldens {
         for (AtomicTextFile& text : metadata) files.push_back(&text.file());
         if (Status committed = commit_together(files); !committed) return committed;
         for (const fs::path& path : stale) remove_if_present(path);
+        for (const fs::path& path : removed) remove_if_present(path);
         return {};
     }
 };
 
+// The frames of the goldens in `scene_dir` (frame_N.png) that are not in `frames` (sorted).
+std::vector<int> goldens_not_listed(const fs::path& scene_dir, const std::vector<int>& frames) {
+    std::vector<int> out;
+    std::error_code error;
+    for (fs::directory_iterator it(scene_dir, error), end; !error && it != end;
+         it.increment(error)) {
+        const std::string name = it->path().filename().string();
+        constexpr std::string_view prefix = "frame_", suffix = ".png";
+        if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+            name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+            continue;
+        }
+        const auto frame = parse_whole<int>(std::string_view(name).substr(
+            prefix.size(), name.size() - prefix.size() - suffix.size()));
+        if (frame && "frame_" + std::to_string(*frame) + ".png" == name &&
+            !std::binary_search(frames.begin(), frames.end(), *frame)) {
+            out.push_back(*frame);
+        }
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
 // --update for one frame: the golden, prepared to be committed with all the others.
-Expected<golden::CaseResult> write_golden(const fs::path& scene_dir, const std::string& scene,
-                                          int frame, const ImageView& image,
-                                          PendingGoldens& pending) {
+Expected<golden::CaseResult> write_golden(const fs::path& scene_dir, const fs::path& results_dir,
+                                          const std::string& scene, int frame,
+                                          const ImageView& image, PendingGoldens& pending) {
     const std::string stem = (scene_dir / ("frame_" + std::to_string(frame))).string();
     auto file = encode::prepare_png(stem + ".png", image);
     if (!file) return file.error();
     pending.images.push_back(std::move(*file));
-    pending.stale.emplace_back(stem + ".actual.png");
-    pending.stale.emplace_back(stem + ".diff.png");
+    const std::string results = (results_dir / ("frame_" + std::to_string(frame))).string();
+    pending.stale.emplace_back(results + ".actual.png");
+    pending.stale.emplace_back(results + ".diff.png");
     return golden::CaseResult{.scene = scene,
                               .name = "frame_" + std::to_string(frame),
                               .passed = true,
@@ -400,7 +453,8 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
                                                      (o.update == UpdateMode::missing &&
                                                       check.missing)));
         if (write) {
-            auto written = write_golden(scene_dir, scene.name, frame, *image, pending);
+            auto written = write_golden(scene_dir, results_dir(o) / scene.name, scene.name, frame,
+                                        *image, pending);
             if (!written) return written.error();
             if (!check.result.passed) written->message += " (was: " + check.result.message + ")";
             check = FrameCheck{};
@@ -428,6 +482,20 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
                           .actual_image = std::move(check.actual_image),
                           .diff_image = std::move(check.diff_image)});
         results.push_back(std::move(result));
+    }
+    // An update leaves no golden of a frame the scene no longer lists (a shard sees only part
+    // of the frames, so it leaves them).
+    if (writes && o.shards == 1) {
+        for (const int frame : goldens_not_listed(scene_dir, frames)) {
+            const std::string stem = "frame_" + std::to_string(frame);
+            pending.removed.push_back(scene_dir / (stem + ".png"));
+            pending.removed.push_back(results_dir(o) / scene.name / (stem + ".actual.png"));
+            pending.removed.push_back(results_dir(o) / scene.name / (stem + ".diff.png"));
+            ++pending.removed_goldens;
+            out << printable(scene.name) << " frame " << frame << ": removed "
+                << printable((scene_dir / (stem + ".png")).string())
+                << " (the scene no longer lists this frame)\n";
+        }
     }
     // golden.txt records how the goldens were made: rewritten whenever one of them is.
     if (!writes || (o.update != UpdateMode::all && !wrote_any)) return {};
@@ -508,6 +576,16 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
         }
         return true;
     };
+    const auto failed = static_cast<std::size_t>(std::count_if(
+        results.begin(), results.end(), [](const golden::CaseResult& r) { return !r.passed; }));
+    // Without --report, a failing check writes its report among the results.
+    std::string default_report;
+    if (!o.report && failed > 0 && o.update != UpdateMode::changed) {
+        default_report = (results_dir(o) / "report.html").string();
+        std::error_code made;
+        fs::create_directories(results_dir(o), made);
+        if (!create(default_report, html)) return exit_runtime_failure;
+    }
     if (!commit_report(junit, golden::junit_xml("discreel golden", results)) ||
         !commit_report(html, golden::html_report("discreel golden: " + o.dir, scenes->size(),
                                                  report))) {
@@ -521,16 +599,19 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
         report.begin(), report.end(), [](const golden::ReportFrame& f) { return f.written; }));
     if (o.update == UpdateMode::all) {
         out << "golden: wrote " << frame_count_text(results.size()) << " of "
-            << scene_count_text(scenes->size()) << " to " << printable(o.dir) << '\n';
+            << scene_count_text(scenes->size()) << " to " << printable(o.dir);
+        if (pending.removed_goldens > 0)
+            out << ", removed " << frame_count_text(pending.removed_goldens);
+        out << '\n';
         return exit_ok;
     }
-    const auto failed = static_cast<std::size_t>(std::count_if(
-        results.begin(), results.end(), [](const golden::CaseResult& r) { return !r.passed; }));
     out << "golden: " << frame_count_text(results.size()) << " of "
         << scene_count_text(scenes->size()) << ": " << results.size() - failed - written
         << " passed, " << failed << " failed";
     if (writes) out << ", " << written << " written";
+    if (pending.removed_goldens > 0) out << ", " << pending.removed_goldens << " removed";
     out << '\n';
+    if (!default_report.empty()) out << "golden: report: " << printable(default_report) << '\n';
     return failed == 0 ? exit_ok : exit_golden_mismatch;
 }
 

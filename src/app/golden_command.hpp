@@ -29,6 +29,10 @@ struct GoldenOptions {
     std::optional<double> max_diff_ratio;         // per frame, of all its pixels, 0..1
     std::optional<std::string> junit;             // write a JUnit XML report here
     std::optional<std::string> report;            // write an HTML report here
+    // Where a failure's .actual.png and .diff.png go (RESULTS/<scene>/) and, without --report,
+    // its HTML report (RESULTS/report.html); never under `dir`. Default: golden-results beside
+    // `dir`.
+    std::optional<std::string> results;
     VideoOverrides video;                         // --size only
     ProgressRequest progress = ProgressRequest::none;   // --progress [json]
     scene::Limits limits;                         // --max-bodies, --max-duration, ...

@@ -548,9 +548,14 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
                                               {"changed", UpdateMode::changed},
                                               {"missing", UpdateMode::missing}}));
     golden_cmd->add_option("--report", golden.report,
-                           "Also write one self-contained HTML page showing each failing "
-                           "frame: golden, actual and difference, with the numbers")
+                           "Write the self-contained HTML page of the run (each failing frame: "
+                           "golden, actual and difference, with the numbers) to this file, "
+                           "passing or not; default: DIR/report.html of --results on a failure")
         ->option_text("FILE.html");
+    golden_cmd->add_option("--results", golden.results,
+                           "Directory for a failure's .actual.png, .diff.png and report "
+                           "(default: golden-results beside --dir); never under --dir")
+        ->option_text("DIR");
     add_set_option(*golden_cmd, golden.overrides);
     add_limit_options(*golden_cmd, golden.limits);
     golden_cmd->add_option("--progress", golden.progress,

@@ -301,7 +301,8 @@ void read_physics(Loader& loader, const Value& value) {
 }
 
 void read_golden(Loader& loader, const std::optional<Value>& value) {
-    static constexpr std::array<std::string_view, 1> known{"frames"};
+    static constexpr std::array<std::string_view, 4> known{"frames", "tolerance",
+                                                           "max_diff_ratio", "max_diff_pixels"};
     auto& d = loader.diagnostics;
     const int frame_count = loader.scene.video.frame_count();
     auto& frames = loader.scene.golden_frames;
@@ -310,6 +311,15 @@ void read_golden(Loader& loader, const std::optional<Value>& value) {
         const auto fields = Fields::open(*value, known, d);
         if (!fields) return;
         listed = fields->get("frames");
+        auto& thresholds = loader.scene.golden_thresholds;
+        if (const auto v = fields->get("tolerance")) thresholds.tolerance = read_between(*v, 0, 1, d);
+        if (const auto v = fields->get("max_diff_ratio"))
+            thresholds.max_diff_ratio = read_between(*v, 0, 1, d);
+        if (const auto v = fields->get("max_diff_pixels")) {
+            const auto pixels = read_integer(*v, d);
+            if (pixels && check_non_negative(*v, static_cast<double>(*pixels), d))
+                thresholds.max_diff_pixels = *pixels;
+        }
     }
     if (!listed) {
         if (!loader.frames_known) return;

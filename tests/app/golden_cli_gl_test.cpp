@@ -47,6 +47,8 @@ protected:
     TempDir dir_;
     const std::string scene_ = dir_ / "ball.yaml";
     const std::string goldens_ = dir_ / "goldens";
+    // A failure's files: golden-results beside the goldens, never among them.
+    const std::string results_ = dir_ / "golden-results";
     std::string scene_text_;
 };
 
@@ -70,7 +72,7 @@ TEST_F(GoldenCliGLTest, UpdateThenPass) {
                          "ball frame 15: ok (identical)\n"
                          "ball frame 29: ok (identical)\n"
                          "golden: 3 frames of 1 scene: 3 passed, 0 failed\n");
-    EXPECT_FALSE(fs::exists(g + "frame_0.actual.png"));
+    EXPECT_FALSE(fs::exists(results_));
 }
 
 // Not on a terminal the progress stays off unless asked for; asked for, it comes as plain lines
@@ -97,9 +99,19 @@ TEST_F(GoldenCliGLTest, AChangedColourFailsWithActualAndDiffImagesAndAJunitRepor
     EXPECT_EQ(check.err, "");
 
     const std::string g = goldens_ + "/ball/";
+    const std::string r = results_ + "/ball/";
     auto expected = encode::read_png(g + "frame_0.png");
-    auto actual = encode::read_png(g + "frame_0.actual.png");
-    auto diff = encode::read_png(g + "frame_0.diff.png");
+    auto actual = encode::read_png(r + "frame_0.actual.png");
+    auto diff = encode::read_png(r + "frame_0.diff.png");
+    // Nothing of the failure lands among the goldens; the report lands among the results.
+    std::vector<std::string> goldens;
+    for (const auto& entry : fs::directory_iterator(g)) goldens.push_back(entry.path().filename());
+    std::sort(goldens.begin(), goldens.end());
+    EXPECT_EQ(goldens, (std::vector<std::string>{"frame_0.png", "frame_15.png", "frame_29.png",
+                                                 "golden.txt"}));
+    EXPECT_NE(read_file(results_ + "/report.html").find("<img"), std::string::npos);
+    EXPECT_TRUE(check.out.ends_with("golden: report: " + results_ + "/report.html\n"))
+        << check.out;
     ASSERT_TRUE(expected.ok() && actual.ok() && diff.ok());
     const golden::Comparison c = golden::compare_images(actual->view(), expected->view(), {});
     // The camera fits the 4 x 3 m box with a 5 % margin: 120 / 3.3 = 36 pixels per metre, so
@@ -118,8 +130,8 @@ TEST_F(GoldenCliGLTest, AChangedColourFailsWithActualAndDiffImagesAndAJunitRepor
     std::istringstream lines(check.out);
     std::string first;
     std::getline(lines, first);
-    EXPECT_EQ(first, "ball frame 0: FAILED: " + message + "; wrote " + g + "frame_0.actual.png and " +
-                         g + "frame_0.diff.png");
+    EXPECT_EQ(first, "ball frame 0: FAILED: " + message + "; wrote " + r + "frame_0.actual.png and " +
+                         r + "frame_0.diff.png");
     EXPECT_NE(check.out.find("\nball frame 15: FAILED: "), std::string::npos) << check.out;
     EXPECT_NE(check.out.find("\nball frame 29: FAILED: "), std::string::npos) << check.out;
     EXPECT_NE(check.out.find("\ngolden: 3 frames of 1 scene: 0 passed, 3 failed\n"),
@@ -139,15 +151,15 @@ TEST_F(GoldenCliGLTest, AChangedColourFailsWithActualAndDiffImagesAndAJunitRepor
                         "  <testsuite name=\"discreel golden\" tests=\"3\" failures=\"3\" errors=\"0\">\n"
                         "    <testcase classname=\"ball\" name=\"frame_0\">\n"
                         "      <failure message=\"" + message + "\" type=\"golden mismatch\">" +
-                        message + "\nwrote " + g + "frame_0.actual.png and " + g +
+                        message + "\nwrote " + r + "frame_0.actual.png and " + r +
                         "frame_0.diff.png</failure>\n    </testcase>\n", 0), 0u) << xml;
     EXPECT_NE(xml.find("<testcase classname=\"ball\" name=\"frame_29\">"), std::string::npos);
 
     // Put back, the scene passes again, and the leftovers of the failure are gone.
     write_file(scene_, scene_text_);
     ASSERT_EQ(golden({}).exit_code, 0);
-    EXPECT_FALSE(fs::exists(g + "frame_0.actual.png"));
-    EXPECT_FALSE(fs::exists(g + "frame_0.diff.png"));
+    EXPECT_FALSE(fs::exists(r + "frame_0.actual.png"));
+    EXPECT_FALSE(fs::exists(r + "frame_0.diff.png"));
 }
 
 TEST_F(GoldenCliGLTest, TolerancesLetAChangeThrough) {
@@ -158,6 +170,52 @@ TEST_F(GoldenCliGLTest, TolerancesLetAChangeThrough) {
     // Both given: the tighter one decides.
     EXPECT_EQ(golden({"--max-diff-ratio", "0.1", "--max-diff-pixels", "10"}).exit_code, 1);
     EXPECT_EQ(golden({"--tolerance", "1"}).exit_code, 0);
+}
+
+// A scene's `golden:` block sets its own thresholds, which win over the command line's.
+TEST_F(GoldenCliGLTest, ASceneSetsItsOwnThresholds) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    const std::string blue = replace_all(scene_text_, "\"#e4572e\"", "\"#2040ff\"");
+    write_file(scene_, blue);
+    EXPECT_EQ(golden({}).exit_code, 1);
+    write_file(scene_, blue + "golden:\n  max_diff_ratio: 0.1\n");
+    EXPECT_EQ(golden({}).exit_code, 0);
+    EXPECT_EQ(golden({"--max-diff-ratio", "0"}).exit_code, 0);   // the scene's wins
+    write_file(scene_, blue + "golden:\n  max_diff_pixels: 10\n");
+    EXPECT_EQ(golden({"--max-diff-ratio", "0.1"}).exit_code, 1);   // the tighter decides
+    write_file(scene_, blue + "golden:\n  tolerance: 1\n");
+    EXPECT_EQ(golden({}).exit_code, 0);
+    write_file(scene_, blue + "golden:\n  tolerance: 2\n");
+    const auto bad = golden({});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_EQ(bad.err, scene_ + ":33:14: golden.tolerance: must be between 0 and 1, got 2\n");
+}
+
+// An update after the clip got shorter leaves no golden of a frame it no longer has, and says
+// which it removed; a shard, which sees part of the frames, removes none.
+TEST_F(GoldenCliGLTest, AnUpdateRemovesGoldensOfFramesNoLongerListed) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    const std::string g = goldens_ + "/ball/";
+    write_file(scene_, replace_all(scene_text_, "duration: 1.25", "duration: 0.5"));
+    EXPECT_EQ(golden({"--update", "--shard", "1/2"}).exit_code, 0);
+    EXPECT_TRUE(fs::exists(g + "frame_29.png"));
+    const auto run = golden({"--update"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(run.out, "ball frame 0: wrote " + g + "frame_0.png\n"
+                       "ball frame 6: wrote " + g + "frame_6.png\n"
+                       "ball frame 11: wrote " + g + "frame_11.png\n"
+                       "ball frame 15: removed " + g + "frame_15.png (the scene no longer lists "
+                       "this frame)\n"
+                       "ball frame 29: removed " + g + "frame_29.png (the scene no longer lists "
+                       "this frame)\n"
+                       "golden: wrote 3 frames of 1 scene to " + goldens_ +
+                       ", removed 2 frames\n");
+    std::vector<std::string> left;
+    for (const auto& entry : fs::directory_iterator(g)) left.push_back(entry.path().filename());
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"frame_0.png", "frame_11.png", "frame_6.png",
+                                              "golden.txt"}));
+    EXPECT_EQ(golden({}).exit_code, 0);
 }
 
 TEST_F(GoldenCliGLTest, AMissingGoldenSaysHowToCreateIt) {
@@ -199,9 +257,9 @@ TEST_F(GoldenCliGLTest, ASizeMismatchIsAFailureWithTheActualFrame) {
     EXPECT_EQ(check.out.substr(0, check.out.find('\n')),
               "ball frame 0: FAILED: the frame is 320x240 but the golden is 160x120; check at "
               "the golden's size with --size 160x120, or rewrite the goldens with --update; wrote " +
-                  goldens_ + "/ball/frame_0.actual.png");
-    EXPECT_TRUE(fs::exists(goldens_ + "/ball/frame_0.actual.png"));
-    EXPECT_FALSE(fs::exists(goldens_ + "/ball/frame_0.diff.png"));
+                  results_ + "/ball/frame_0.actual.png");
+    EXPECT_TRUE(fs::exists(results_ + "/ball/frame_0.actual.png"));
+    EXPECT_FALSE(fs::exists(results_ + "/ball/frame_0.diff.png"));
 }
 
 // Goldens made with --size are checked at that size (golden.txt records it) without it.
@@ -243,8 +301,8 @@ TEST_F(GoldenCliGLTest, UpdateModesWriteOnlyWhatIsMissingOrChanged) {
     ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
     EXPECT_TRUE(run.out.ends_with("golden: 3 frames of 1 scene: 0 passed, 0 failed, 3 written\n"))
         << run.out;
-    EXPECT_FALSE(fs::exists(g + "frame_0.actual.png"));   // the failed check's files are gone
-    EXPECT_FALSE(fs::exists(g + "frame_0.diff.png"));
+    EXPECT_FALSE(fs::exists(results_ + "/ball/frame_0.actual.png"));   // the failed check's
+    EXPECT_FALSE(fs::exists(results_ + "/ball/frame_0.diff.png"));     // files are gone
     EXPECT_EQ(golden({}).exit_code, 0);
 
     run = golden({"--update=sometimes"});
@@ -320,8 +378,9 @@ void expect_scenes_match_goldens(const fs::path& scenes, const fs::path& goldens
     std::sort(argv.begin() + 2, argv.end());
     ASSERT_GE(argv.size(), at_least + 2);
     TempDir dir;
-    // The goldens are copied so that a failure's .actual.png and .diff.png land in the build's
-    // temporary directory, not in the source tree; the output names them.
+    // The goldens are copied so that the run works as a user's would (a failure's .actual.png,
+    // .diff.png and report in golden-results beside them) in a temporary directory, not in the
+    // source tree; the output names them.
     fs::copy(source_dir / goldens, dir.path() / "goldens", fs::copy_options::recursive);
     const std::string copied = dir / "goldens";
     argv.insert(argv.end(), {"--dir", copied, "--size", "320x180"});
@@ -333,8 +392,9 @@ void expect_scenes_match_goldens(const fs::path& scenes, const fs::path& goldens
         const fs::path keep = fs::path(DISCREEL_BINARY_DIR) /
                               ("golden-" + goldens.filename().string() + "-mismatch");
         fs::remove_all(keep);
-        fs::copy(copied, keep, fs::copy_options::recursive);
-        ADD_FAILURE() << "goldens, .actual.png and .diff.png kept in " << keep;
+        fs::copy(dir.path(), keep, fs::copy_options::recursive);
+        ADD_FAILURE() << "goldens, and the .actual.png, .diff.png and report.html of "
+                         "golden-results, kept in " << keep;
     }
 }
 

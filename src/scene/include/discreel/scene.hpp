@@ -279,6 +279,12 @@ struct Scene {
     std::vector<physics::JointDef> joints;
     std::vector<std::string> joint_ids;   // per joint: its `id`, or its index
     std::vector<int> golden_frames;  // default: first, middle, last
+    // `golden:`'s thresholds for this scene's frames; unset: the command line's.
+    struct GoldenThresholds {
+        std::optional<double> tolerance;              // perceptual colour distance, 0..1
+        std::optional<double> max_diff_ratio;         // of a frame's pixels, 0..1
+        std::optional<std::int64_t> max_diff_pixels;  // per frame, >= 0
+    } golden_thresholds;
     bool warnings = true;          // `warnings: false`: the scene's warnings are not reported
     std::vector<Overlay> overlays;
 };
