@@ -52,7 +52,8 @@ std::optional<std::string> check_options(const GoldenOptions& o) {
 
 // Keeps the golden frames of share `shard` of `shards` (see GoldenOptions::shard); each
 // scene's frames end sorted and without repeats, and a scene left with none is dropped.
-void keep_shard(std::vector<LoadedScene>& scenes, int shard, int shards) {
+// Returns how many frames all the shares hold together.
+std::size_t keep_shard(std::vector<LoadedScene>& scenes, int shard, int shards) {
     std::size_t index = 0;
     std::vector<LoadedScene> kept;
     for (LoadedScene& loaded : scenes) {
@@ -70,6 +71,7 @@ void keep_shard(std::vector<LoadedScene>& scenes, int shard, int shards) {
         kept.push_back(std::move(loaded));
     }
     scenes = std::move(kept);
+    return index;
 }
 
 // The directory of a failure's files and report: --results, else golden-results beside --dir.
@@ -427,6 +429,7 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
     int next_frame = 0;
     bool wrote_any = false;
     for (const int frame : frames) {
+        const auto case_started = std::chrono::steady_clock::now();
         // Trails and the follow camera remember earlier frames: show them every one.
         for (; next_frame < frame; ++next_frame) {
             if (stop_signal() != 0) return Error{"interrupted"};
@@ -462,6 +465,8 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
             wrote_any = true;
         }
         golden::CaseResult& result = check.result;
+        result.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - case_started).count();
         progress.meter.finish();   // a result line must not land in the middle of the bar
         out << printable(scene.name) << " frame " << frame << ": ";
         if (write) {
@@ -517,7 +522,15 @@ int run_golden(const GoldenOptions& o, std::ostream& out, std::ostream& err) {
     }
     auto scenes = load_scenes(o, err);
     if (!scenes) return exit_bad_input;
-    if (o.shards > 1) keep_shard(*scenes, o.shard, o.shards);
+    if (o.shards > 1) {
+        const std::size_t all = keep_shard(*scenes, o.shard, o.shards);
+        // More shards than frames: this one has nothing to check, which is no failure (its
+        // JUnit file, if asked for, holds no case).
+        if (scenes->empty()) {
+            out << "golden: shard " << o.shard << '/' << o.shards << " has no frames: the run has "
+                << frame_count_text(all) << " in all, dealt out to " << o.shards << " shards\n";
+        }
+    }
     // The reports' directories are made now: one that cannot be fails before any rendering.
     std::vector<NamedPath> inputs, reports;
     for (const std::string& path : o.scene_paths) inputs.push_back({"the scene", path});

@@ -12,6 +12,7 @@ struct CaseResult {
     bool passed = true;
     std::string message;   // why it failed: one line
     std::string details;   // more lines for the failure's body (files written, renderer); optional
+    double seconds = 0;    // simulating up to the frame, drawing and checking it
 };
 
 // One <testsuite> named `suite` holding one <testcase> per result, in order.

@@ -145,7 +145,13 @@ TEST_F(GoldenCliGLTest, AChangedColourFailsWithActualAndDiffImagesAndAJunitRepor
     }();
     EXPECT_EQ(red, c.differing_pixels);
 
-    const std::string xml = read_file(dir_ / "report.xml");
+    // Times vary run to run: each case has one, and the rest is exact.
+    const std::string timed = read_file(dir_ / "report.xml");
+    const std::regex time(" time=\"[0-9]+\\.[0-9]{3}\"");
+    EXPECT_EQ(std::distance(std::sregex_iterator(timed.begin(), timed.end(), time),
+                            std::sregex_iterator()),
+              5);   // the two suites and three cases
+    const std::string xml = std::regex_replace(timed, time, "");
     EXPECT_EQ(xml.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                         "<testsuites name=\"discreel golden\" tests=\"3\" failures=\"3\" errors=\"0\">\n"
                         "  <testsuite name=\"discreel golden\" tests=\"3\" failures=\"3\" errors=\"0\">\n"
@@ -322,6 +328,11 @@ TEST_F(GoldenCliGLTest, HtmlReportShowsEachFailingFrame) {
               std::string::npos) << html;
     EXPECT_NE(html.find("Every frame matched its golden."), std::string::npos);
     EXPECT_EQ(html.find("data:image/png"), std::string::npos);
+    // The passing frames are listed, folded away.
+    EXPECT_NE(html.find("<details><summary class=\"passed\">3 frames passed or written"
+                        "</summary>"),
+              std::string::npos);
+    EXPECT_NE(html.find("<li>ball frame_15: identical</li>"), std::string::npos);
 
     write_file(scene_, replace_all(scene_text_, "#e4572e", "#2e57e4"));
     run = golden({"--report", report});
@@ -330,16 +341,35 @@ TEST_F(GoldenCliGLTest, HtmlReportShowsEachFailingFrame) {
     EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0U);
     EXPECT_EQ(html.find("src=\"http"), std::string::npos);   // nothing to fetch
     EXPECT_EQ(html.find("<script"), std::string::npos);
-    // Three failing frames, each with three images.
+    // Three failing frames, each with three images side by side and the same three in a
+    // wipe (golden | actual on a slider, the difference over them on another).
     std::size_t images = 0;
     for (auto at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
          at = html.find("src=\"data:image/png;base64,", at + 1)) {
         ++images;
     }
-    EXPECT_EQ(images, 9u);
+    EXPECT_EQ(images, 18u);
+    std::size_t wipes = 0;
+    for (auto at = html.find("<div class=\"wipe\">"); at != std::string::npos;
+         at = html.find("<div class=\"wipe\">", at + 1)) {
+        ++wipes;
+    }
+    EXPECT_EQ(wipes, 3u);
+    EXPECT_NE(html.find("type=\"range\""), std::string::npos);
     EXPECT_NE(html.find("<h2 class=\"failed\">ball frame_15</h2>"), std::string::npos);
     EXPECT_NE(html.find(" pixels differ ("), std::string::npos);   // the numbers, as printed
     EXPECT_NE(html.find("<figcaption>actual</figcaption>"), std::string::npos);
+}
+
+// More shards than frames: a shard with nothing to check says so and passes.
+TEST_F(GoldenCliGLTest, AShardWithNoFramesSaysSo) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    const auto run = golden({"--shard", "5/5", "--junit", dir_ / "empty.xml"});
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(run.out.substr(0, run.out.find('\n')),
+              "golden: shard 5/5 has no frames: the run has 3 frames in all, dealt out to 5 "
+              "shards");
+    EXPECT_NE(read_file(dir_ / "empty.xml").find("tests=\"0\""), std::string::npos);
 }
 
 TEST_F(GoldenCliGLTest, BadOptionsAndScenesAreExit2BeforeAnyWork) {
@@ -416,7 +446,7 @@ std::vector<std::string> junit_cases(const std::string& path) {
     std::vector<std::string> cases;
     for (auto at = xml.find("<testcase "); at != std::string::npos;
          at = xml.find("<testcase ", at + 1)) {
-        cases.push_back(xml.substr(at, xml.find('>', at) - at));
+        cases.push_back(xml.substr(at, xml.find(" time=", at) - at));
     }
     std::sort(cases.begin(), cases.end());
     return cases;

@@ -132,15 +132,20 @@ TEST(GoldenCompareTest, ColourDistanceIsPerceptual) {
 TEST(GoldenJunitTest, OneSuiteOneCasePerFrameWithEscapedFailures) {
     const std::string xml = junit_xml(
         "discreel golden",
-        {{.scene = "demo", .name = "frame_0", .passed = true, .message = "identical", .details = {}},
+        {{.scene = "demo", .name = "frame_0", .passed = true, .message = "identical", .details = {},
+          .seconds = 0.25},
          {.scene = "a<b>&\"c\"", .name = "frame_1", .passed = false,
-          .message = "3 pixels differ", .details = "3 pixels differ\nwrote 'x'"}});
+          .message = "3 pixels differ", .details = "3 pixels differ\nwrote 'x'", .seconds = 1.5}});
+    // Times per case, and their sum per suite, in seconds (JUnit's `time`).
     EXPECT_EQ(xml,
               "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-              "<testsuites name=\"discreel golden\" tests=\"2\" failures=\"1\" errors=\"0\">\n"
-              "  <testsuite name=\"discreel golden\" tests=\"2\" failures=\"1\" errors=\"0\">\n"
-              "    <testcase classname=\"demo\" name=\"frame_0\"/>\n"
-              "    <testcase classname=\"a&lt;b&gt;&amp;&quot;c&quot;\" name=\"frame_1\">\n"
+              "<testsuites name=\"discreel golden\" tests=\"2\" failures=\"1\" errors=\"0\" "
+              "time=\"1.750\">\n"
+              "  <testsuite name=\"discreel golden\" tests=\"2\" failures=\"1\" errors=\"0\" "
+              "time=\"1.750\">\n"
+              "    <testcase classname=\"demo\" name=\"frame_0\" time=\"0.250\"/>\n"
+              "    <testcase classname=\"a&lt;b&gt;&amp;&quot;c&quot;\" name=\"frame_1\" "
+              "time=\"1.500\">\n"
               "      <failure message=\"3 pixels differ\" type=\"golden mismatch\">3 pixels "
               "differ\nwrote &apos;x&apos;</failure>\n"
               "    </testcase>\n"
