@@ -16,6 +16,11 @@ struct OutputFiles {
     std::optional<std::string> trace;    // CSV, one row per disc per frame
     std::optional<std::string> events;   // CSV, one row per new contact
     std::optional<std::string> joints;   // CSV, one row per joint per frame
+    // Ground truth (render; simulate takes shapes only): docs/cli.md, "Ground truth".
+    std::optional<std::string> shapes;   // JSON, every body's shape per set
+    std::optional<std::string> camera;   // CSV, world-to-pixel per drawn frame
+    std::optional<std::string> masks;    // directory of mask_NNNNN.png
+    std::optional<std::string> boxes;    // CSV, pixel boxes per drawn frame
 };
 
 // A renderer kept between the renders of one process (a batch's range of lines): its context

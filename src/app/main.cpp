@@ -75,6 +75,30 @@ void add_set_option(CLI::App& cmd, std::vector<discreel::scene::Override>& overr
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
+// Ground truth for datasets; `views`: the per-frame ones too (render), else shapes only.
+void add_ground_truth(CLI::App& cmd, OutputFiles& files, bool views) {
+    cmd.add_option("--shapes", files.shapes,
+                   "Write every body's shape, colour and mass (each respawned set too) as JSON "
+                   "to FILE")
+        ->option_text("FILE")
+        ->group("Ground truth");
+    if (!views) return;
+    cmd.add_option("--camera", files.camera,
+                   "Write each drawn frame's world-to-pixel transform as CSV to FILE")
+        ->option_text("FILE")
+        ->group("Ground truth");
+    cmd.add_option("--masks", files.masks,
+                   "Write each drawn frame's instance mask (16-bit PNG: body index + 1, walls "
+                   "65535) into DIR as mask_NNNNN.png")
+        ->option_text("DIR")
+        ->group("Ground truth");
+    cmd.add_option("--boxes", files.boxes,
+                   "Write each visible body's pixel bounding box and pixel count per drawn "
+                   "frame as CSV to FILE")
+        ->option_text("FILE")
+        ->group("Ground truth");
+}
+
 // A number option that must be finite (CLI11 reads "nan" and "inf" as doubles) and, where
 // given, within [low, high].
 CLI::Validator finite_number(double low = -std::numeric_limits<double>::max(),
@@ -435,6 +459,7 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     render_cmd->add_flag("--lossless", render.request.lossless,
                          "FFV1 in Matroska (.mkv or -): every pixel's RGB exactly");
     add_output_files(*render_cmd, render.files);
+    add_ground_truth(*render_cmd, render.files, true);
     add_set_option(*render_cmd, render.overrides);
     add_limit_options(*render_cmd, render.limits);
     render_cmd->add_option("--progress", render.progress,
@@ -469,6 +494,7 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
     simulate_cmd->add_option("--duration", simulate.duration, "Override duration in seconds")
         ->check(finite_number(1e-9, 1e9));
     add_output_files(*simulate_cmd, simulate.files);
+    add_ground_truth(*simulate_cmd, simulate.files, false);
     add_set_option(*simulate_cmd, simulate.overrides);
     add_limit_options(*simulate_cmd, simulate.limits);
 

@@ -35,6 +35,9 @@ std::optional<std::string> existing_output(const RenderOptions& o,
     if (o.files.trace) paths.push_back(*o.files.trace);
     if (o.files.events) paths.push_back(*o.files.events);
     if (o.files.joints) paths.push_back(*o.files.joints);
+    if (o.files.shapes) paths.push_back(*o.files.shapes);
+    if (o.files.camera) paths.push_back(*o.files.camera);
+    if (o.files.boxes) paths.push_back(*o.files.boxes);
     for (const std::string& path : paths) {
         struct stat info{};
         if (lstat(path.c_str(), &info) == 0) return path;
@@ -122,9 +125,17 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             << "\naudio=" << (plan->audio || output.format == "wav" ? "yes" : "no") << '\n';
         return standard_output_ok(out, err) ? exit_ok : exit_runtime_failure;
     }
-    if (plan->segment && (o.files.trace || o.files.events || o.files.joints)) {
-        report_error(err, "--trace, --events and --joints belong to a whole render, not to one "
-                          "segment");
+    const OutputFiles& files = o.files;
+    const bool truth = files.shapes || files.camera || files.masks || files.boxes;
+    if (plan->segment && (files.trace || files.events || files.joints || truth)) {
+        report_error(err, "--trace, --events, --joints and the ground truth (--shapes, --camera, "
+                          "--masks, --boxes) belong to a whole render, not to one segment");
+        return exit_bad_input;
+    }
+    if ((files.masks || files.boxes) && scene.bodies.size() >= render::wall_mask_id) {
+        report_error(err, "--masks and --boxes number bodies in 16 bits: at most " +
+                              std::to_string(render::wall_mask_id - 1) + " bodies, and the scene "
+                              "has " + std::to_string(scene.bodies.size()));
         return exit_bad_input;
     }
     // Tasks of one render share the directory of its segments, and make it if need be.
@@ -200,6 +211,10 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     def.trace = o.files.trace;
     def.events = o.files.events;
     def.joints = o.files.joints;
+    def.truth = {.shapes = files.shapes,
+                 .camera = files.camera,
+                 .masks = files.masks,
+                 .boxes = files.boxes};
     def.threaded = !o.sequential;
     if (o.warm != nullptr) {
         std::optional<render::Renderer>& warm = o.warm->renderer;

@@ -61,6 +61,11 @@ void add_output_paths(const OutputFiles& files, std::vector<NamedPath>& outputs)
     if (files.trace) outputs.push_back({"--trace", *files.trace});
     if (files.events) outputs.push_back({"--events", *files.events});
     if (files.joints) outputs.push_back({"--joints", *files.joints});
+    if (files.shapes) outputs.push_back({"--shapes", *files.shapes});
+    if (files.camera) outputs.push_back({"--camera", *files.camera});
+    if (files.boxes) outputs.push_back({"--boxes", *files.boxes});
+    // The masks' directory, made like the others' (its first file stands for it).
+    if (files.masks) outputs.push_back({"--masks", *files.masks + "/mask_00000.png"});
 }
 
 bool standard_output_ok(std::ostream& out, std::ostream& err) {

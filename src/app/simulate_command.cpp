@@ -45,6 +45,7 @@ int run_simulate(const SimulateOptions& o, std::ostream& out, std::ostream& err)
     def.trace = o.files.trace;
     def.events = o.files.events;
     def.joints = o.files.joints;
+    def.shapes = o.files.shapes;
     def.should_stop = [] { return stop_signal() != 0; };
     def.on_warning = [&err](const std::string& message) {
         err << "discreel: warning: " << message << '\n';

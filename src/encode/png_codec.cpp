@@ -27,7 +27,8 @@ void copy_rows(std::uint8_t* destination, int destination_stride, const std::uin
     }
 }
 
-Expected<CodecContextPtr> open_png_codec(const AVCodec* codec, int width, int height) {
+Expected<CodecContextPtr> open_png_codec(const AVCodec* codec, int width, int height,
+                                        AVPixelFormat format = AV_PIX_FMT_RGBA) {
     if (codec == nullptr) {
         return Error{"libavcodec was built without its PNG codec"};
     }
@@ -40,7 +41,7 @@ Expected<CodecContextPtr> open_png_codec(const AVCodec* codec, int width, int he
     if (av_codec_is_encoder(codec)) {
         context->width = width;
         context->height = height;
-        context->pix_fmt = AV_PIX_FMT_RGBA;
+        context->pix_fmt = format;
         context->time_base = AVRational{1, 1};   // required by the API, meaningless for a still
         context->flags |= AV_CODEC_FLAG_BITEXACT;
     }
@@ -50,14 +51,13 @@ Expected<CodecContextPtr> open_png_codec(const AVCodec* codec, int width, int he
     return context;
 }
 
-}  // namespace
-
-Expected<std::vector<std::uint8_t>> encode_png(const ImageView& image) {
+// One packed plane (rows of `row_bytes`) in `format` as a PNG.
+Expected<std::vector<std::uint8_t>> encode_plane(const std::uint8_t* pixels, int width,
+                                                 int height, int row_bytes,
+                                                 AVPixelFormat format) {
     begin_libav_call();
-    if (auto problem = image_problem(image)) {
-        return Error{*problem};
-    }
-    auto context = open_png_codec(avcodec_find_encoder(AV_CODEC_ID_PNG), image.width, image.height);
+    auto context =
+        open_png_codec(avcodec_find_encoder(AV_CODEC_ID_PNG), width, height, format);
     if (!context) {
         return context.error();
     }
@@ -66,14 +66,13 @@ Expected<std::vector<std::uint8_t>> encode_png(const ImageView& image) {
     if (!frame || !packet) {
         return libav_failure("cannot allocate a frame", AVERROR(ENOMEM));
     }
-    frame->width = image.width;
-    frame->height = image.height;
-    frame->format = AV_PIX_FMT_RGBA;
+    frame->width = width;
+    frame->height = height;
+    frame->format = format;
     if (const int result = av_frame_get_buffer(frame.get(), 0); result < 0) {
         return libav_failure("cannot allocate a frame", result);
     }
-    copy_rows(frame->data[0], frame->linesize[0], image.rgba.data(), 4 * image.width,
-              4 * image.width, image.height);
+    copy_rows(frame->data[0], frame->linesize[0], pixels, row_bytes, row_bytes, height);
 
     if (const int result = avcodec_send_frame(context->get(), frame.get()); result < 0) {
         return libav_failure("PNG encoder rejected the image", result);
@@ -96,7 +95,36 @@ Expected<std::vector<std::uint8_t>> encode_png(const ImageView& image) {
     return png;
 }
 
-Expected<Image> decode_png(std::span<const std::uint8_t> png_bytes) {
+}  // namespace
+
+Expected<std::vector<std::uint8_t>> encode_png(const ImageView& image) {
+    if (auto problem = image_problem(image)) {
+        return Error{*problem};
+    }
+    return encode_plane(image.rgba.data(), image.width, image.height, 4 * image.width,
+                        AV_PIX_FMT_RGBA);
+}
+
+Expected<std::vector<std::uint8_t>> encode_png_gray16(const Gray16View& image) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.values.size() != static_cast<std::size_t>(image.width) *
+                                   static_cast<std::size_t>(image.height)) {
+        return Error{"a 16-bit grey image needs width x height values"};
+    }
+    // PNG stores 16-bit samples big-endian.
+    std::vector<std::uint8_t> bytes(2 * image.values.size());
+    for (std::size_t i = 0; i < image.values.size(); ++i) {
+        bytes[2 * i] = static_cast<std::uint8_t>(image.values[i] >> 8);
+        bytes[2 * i + 1] = static_cast<std::uint8_t>(image.values[i] & 0xff);
+    }
+    return encode_plane(bytes.data(), image.width, image.height, 2 * image.width,
+                        AV_PIX_FMT_GRAY16BE);
+}
+
+namespace {
+
+// The decoded frame of a PNG, in whatever format the file has.
+Expected<FramePtr> decode_frame(std::span<const std::uint8_t> png_bytes) {
     begin_libav_call();
     auto context = open_png_codec(avcodec_find_decoder(AV_CODEC_ID_PNG), 0, 0);
     if (!context) {
@@ -121,6 +149,37 @@ Expected<Image> decode_png(std::span<const std::uint8_t> png_bytes) {
     if (const int result = avcodec_receive_frame(context->get(), frame.get()); result < 0) {
         return libav_failure("not a PNG image", result);
     }
+    return frame;
+}
+
+}  // namespace
+
+Expected<Gray16Image> decode_png_gray16(std::span<const std::uint8_t> png_bytes) {
+    auto decoded = decode_frame(png_bytes);
+    if (!decoded) return decoded.error();
+    const AVFrame& frame = **decoded;
+    if (frame.format != AV_PIX_FMT_GRAY16BE) {
+        return Error{std::string("not a 16-bit grey PNG (it is ") +
+                     av_get_pix_fmt_name(static_cast<AVPixelFormat>(frame.format)) + ")"};
+    }
+    Gray16Image image;
+    image.width = frame.width;
+    image.height = frame.height;
+    image.values.reserve(static_cast<std::size_t>(frame.width) *
+                         static_cast<std::size_t>(frame.height));
+    for (int row = 0; row < frame.height; ++row) {
+        const std::uint8_t* p = frame.data[0] + static_cast<std::ptrdiff_t>(row) * frame.linesize[0];
+        for (int x = 0; x < frame.width; ++x) {
+            image.values.push_back(static_cast<std::uint16_t>((p[2 * x] << 8) | p[2 * x + 1]));
+        }
+    }
+    return image;
+}
+
+Expected<Image> decode_png(std::span<const std::uint8_t> png_bytes) {
+    auto decoded = decode_frame(png_bytes);
+    if (!decoded) return decoded.error();
+    FramePtr frame = std::move(*decoded);
 
     Image image;
     image.width = frame->width;

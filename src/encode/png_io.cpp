@@ -106,6 +106,29 @@ Expected<OutputFile> prepare_png(const std::string& path, const ImageView& image
     return file;
 }
 
+Expected<OutputFile> prepare_png_gray16(const std::string& path, const Gray16View& image) {
+    auto png = encode_png_gray16(image);
+    if (!png) return write_error(path, png.error().message);
+    auto file = OutputFile::create(path);
+    if (!file) return file.error();
+    if (Status written = file->write_all(png->data(), png->size()); !written) {
+        return written.error();
+    }
+    if (Status sealed = file->seal(); !sealed) return sealed.error();
+    return file;
+}
+
+Expected<Gray16Image> read_png_gray16(const std::string& path) {
+    const auto size = read_png_size(path);
+    if (!size) return size.error();
+    auto file = read_file_bounded(path, largest_png_bytes(*size));
+    if (!file) return read_error(path, file.error().message);
+    const auto* data = reinterpret_cast<const std::uint8_t*>(file->bytes.data());
+    auto image = decode_png_gray16(std::span<const std::uint8_t>(data, file->bytes.size()));
+    if (!image) return read_error(path, image.error().message);
+    return image;
+}
+
 Expected<std::string> png_data_uri(const ImageView& image) {
     auto png = encode_png(image);
     if (!png) return png.error();

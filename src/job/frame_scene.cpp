@@ -188,6 +188,9 @@ FrameSceneBuilder::FrameSceneBuilder(const scene::Scene& scene) : scene_(scene) 
 
 void FrameSceneBuilder::set_look(std::size_t body, const scene::Body& d) {
     const Slot slot = slots_[body];
+    // An instance mask holds the body's index + 1 (render::wall_mask_id is the walls').
+    const auto mask_id = body + 1 < render::wall_mask_id ? static_cast<std::uint16_t>(body + 1)
+                                                         : std::uint16_t{0};
     fill_[body] = to_rgba(d.color);
     radius_[body] = static_cast<float>(d.radius);
     outline_[body].clear();
@@ -201,6 +204,7 @@ void FrameSceneBuilder::set_look(std::size_t body, const scene::Body& d) {
         g.radius = static_cast<float>(d.radius);
         g.fill = fill_[body];
         g.is_static = d.is_static;
+        g.mask_id = mask_id;
         return;
     }
     render::PolygonGeom& g = frame_.polygons[slot.slot];
@@ -219,6 +223,7 @@ void FrameSceneBuilder::set_look(std::size_t body, const scene::Body& d) {
     }
     g.fill = fill_[body];
     g.is_static = d.is_static;
+    g.mask_id = mask_id;
 }
 
 void FrameSceneBuilder::respawned(std::size_t applied) {

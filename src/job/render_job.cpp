@@ -98,7 +98,7 @@ Expected<RenderSummary> render(const RenderDef& def) {
     if (segmented(*output)) return render_segments(def, range, sink_def, output->format);
     if (def.segment) return Error{"only video files (.mp4, .mkv, .webm) are made of segments"};
 
-    auto outputs = SideOutputs::open(def.trace, def.events, def.joints, scene);
+    auto outputs = SideOutputs::open(def.trace, def.events, def.joints, scene, def.truth);
     if (!outputs) return outputs.error();
     sink_def.sound = def.audio;
     auto sink = encode::open_sink(sink_def);
@@ -161,7 +161,12 @@ Expected<RenderSummary> render(const RenderDef& def) {
                 playback.observe(frame);   // trails and the follow camera
                 return nullptr;
             }
-            return &playback.frame_scene(frame);
+            const render::FrameScene& view = playback.frame_scene(frame);
+            if (outputs->views_wanted()) {
+                simulated = outputs->record_view(frame, playback.time_of_frame(frame), view);
+                if (!simulated) return nullptr;
+            }
+            return &view;
         },
         .encode =
             [&](const ImageView& image) {

@@ -205,6 +205,16 @@ private:
             warnings_.say(playback.take_warnings());
             outputs.record(frame, playback.time_of_frame(frame), playback.world(),
                            playback.take_events());
+            // The drawn frames' views, as the segments draw them: every earlier frame
+            // observed (trails, the follow camera).
+            if (!outputs.views_wanted()) continue;
+            if (frame < range_.first) {
+                playback.observe(frame);
+            } else if (Status viewed = outputs.record_view(frame, playback.time_of_frame(frame),
+                                                           playback.frame_scene(frame));
+                       !viewed) {
+                return fail(viewed.error());
+            }
         }
     }
 
@@ -280,8 +290,10 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
         sound.emplace(std::move(*opened));
     }
     std::optional<SideOutputs> outputs;
-    if (def.trace || def.events || def.joints) {
-        auto opened = SideOutputs::open(def.trace, def.events, def.joints, def.scene);
+    const GroundTruthPaths& truth = def.truth;
+    if (def.trace || def.events || def.joints || truth.shapes || truth.camera || truth.masks ||
+        truth.boxes) {
+        auto opened = SideOutputs::open(def.trace, def.events, def.joints, def.scene, truth);
         if (!opened) return opened.error();
         outputs.emplace(std::move(*opened));
     }

@@ -5,7 +5,8 @@ namespace discreel::job {
 Expected<SideOutputs> SideOutputs::open(const std::optional<std::string>& trace,
                                         const std::optional<std::string>& events,
                                         const std::optional<std::string>& joints,
-                                        const scene::Scene& scene) {
+                                        const scene::Scene& scene,
+                                        const GroundTruthPaths& truth) {
     SideOutputs outputs;
     if (trace) {
         auto writer = TraceWriter::create(*trace, scene);
@@ -22,6 +23,15 @@ Expected<SideOutputs> SideOutputs::open(const std::optional<std::string>& trace,
         if (!writer) return writer.error();
         outputs.joints_.emplace(std::move(*writer));
     }
+    if (truth.shapes) {
+        auto file = AtomicTextFile::create(*truth.shapes);
+        if (!file) return file.error();
+        outputs.shapes_.emplace(std::move(*file));
+        outputs.shapes_->write(shapes_json(scene));
+    }
+    auto views = ViewWriter::open(truth, scene);
+    if (!views) return views.error();
+    outputs.views_.emplace(std::move(*views));
     return outputs;
 }
 
@@ -30,6 +40,10 @@ void SideOutputs::record(int frame, double t, const physics::World& world,
     if (trace_) trace_->write_frame(frame, t, world.bodies(), world.respawns_applied());
     if (events_) events_->write(events);
     if (joints_) joints_->write_frame(frame, t, world.joints());
+}
+
+Status SideOutputs::record_view(int frame, double t, const render::FrameScene& view) {
+    return views_ ? views_->record(frame, t, view) : Status{};
 }
 
 Status SideOutputs::seal() {
@@ -42,6 +56,10 @@ Status SideOutputs::seal() {
     if (joints_) {
         if (Status s = joints_->file().seal(); !s) return s;
     }
+    if (shapes_) {
+        if (Status s = shapes_->seal(); !s) return s;
+    }
+    if (views_) return views_->seal();
     return {};
 }
 
@@ -50,6 +68,10 @@ std::vector<OutputFile*> SideOutputs::files() {
     if (trace_) files.push_back(&trace_->file().file());
     if (events_) files.push_back(&events_->file().file());
     if (joints_) files.push_back(&joints_->file().file());
+    if (shapes_) files.push_back(&shapes_->file());
+    if (views_) {
+        for (OutputFile* file : views_->files()) files.push_back(file);
+    }
     return files;
 }
 

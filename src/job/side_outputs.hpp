@@ -10,6 +10,7 @@
 #include "discreel/output_file.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/scene.hpp"
+#include "ground_truth.hpp"
 #include "trace.hpp"
 
 namespace discreel::job {
@@ -19,11 +20,15 @@ public:
     static Expected<SideOutputs> open(const std::optional<std::string>& trace,
                                       const std::optional<std::string>& events,
                                       const std::optional<std::string>& joints,
-                                      const scene::Scene& scene);
+                                      const scene::Scene& scene,
+                                      const GroundTruthPaths& truth = {});
 
     // `respawns`: World::respawns_applied() at that frame.
     void record(int frame, double t, const physics::World& world,
                 std::span<const physics::ContactEvent> events);
+    // Whether the camera, masks or boxes are asked for: record_view() wants each drawn frame.
+    bool views_wanted() const { return views_ && views_->wanted(); }
+    Status record_view(int frame, double t, const render::FrameScene& view);
     // Writes what is buffered and seals the files; then files() are ready to be committed
     // together with the run's other outputs.
     Status seal();
@@ -33,6 +38,8 @@ private:
     std::optional<TraceWriter> trace_;
     std::optional<EventWriter> events_;
     std::optional<JointWriter> joints_;
+    std::optional<AtomicTextFile> shapes_;
+    std::optional<ViewWriter> views_;
 };
 
 }  // namespace discreel::job

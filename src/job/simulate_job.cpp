@@ -12,7 +12,9 @@ namespace discreel::job {
 Expected<SimulateSummary> simulate(const SimulateDef& def) {
     const auto started = std::chrono::steady_clock::now();
     const scene::Scene& scene = def.scene;
-    auto outputs = SideOutputs::open(def.trace, def.events, def.joints, scene);
+    GroundTruthPaths truth;
+    truth.shapes = def.shapes;
+    auto outputs = SideOutputs::open(def.trace, def.events, def.joints, scene, truth);
     if (!outputs) return outputs.error();
 
     Playback playback(scene);

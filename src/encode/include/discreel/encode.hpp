@@ -157,6 +157,18 @@ Expected<Image> read_png(const std::string& path);
 Status write_png(const std::string& path, const ImageView& image);   // atomic: temp + rename
 // The PNG written and sealed under a temporary name, for commit_together() with other files.
 Expected<OutputFile> prepare_png(const std::string& path, const ImageView& image);
+// 16-bit grey images (instance masks: one id per pixel), top row first.
+struct Gray16View {
+    int width = 0, height = 0;
+    std::span<const std::uint16_t> values;   // width x height
+};
+struct Gray16Image {
+    int width = 0, height = 0;
+    std::vector<std::uint16_t> values;
+};
+// A 16-bit grey PNG written and sealed under a temporary name, for commit_together().
+Expected<OutputFile> prepare_png_gray16(const std::string& path, const Gray16View& image);
+Expected<Gray16Image> read_png_gray16(const std::string& path);
 // "data:image/png;base64,...": the image as a PNG an HTML page can carry inside itself.
 Expected<std::string> png_data_uri(const ImageView& image);
 

@@ -74,6 +74,14 @@ struct StageSeconds {        // time each stage spent working, not waiting
     double encode = 0;
 };
 
+// Ground truth for datasets, written beside a render (docs/cli.md, "Ground truth").
+struct GroundTruthPaths {
+    std::optional<std::string> shapes;   // JSON: every body's shape, colour and mass, per set
+    std::optional<std::string> camera;   // CSV: each drawn frame's world-to-pixel transform
+    std::optional<std::string> masks;    // directory: mask_NNNNN.png, 16-bit body ids, per frame
+    std::optional<std::string> boxes;    // CSV: each visible body's pixel box, per drawn frame
+};
+
 struct RenderDef {
     scene::Scene scene;                      // loaded, validated, overrides applied
     // Where and how: path, encoder settings. Size and fps are the scene's, the palette's key
@@ -83,6 +91,7 @@ struct RenderDef {
     std::optional<std::string> trace;        // CSV path, one row per disc per frame
     std::optional<std::string> events;       // CSV path, one row per new contact
     std::optional<std::string> joints;       // CSV path, one row per joint per frame
+    GroundTruthPaths truth;                  // of the drawn frames (shapes: of the clip)
     bool threaded = true;                    // false: one thread, same bytes, slower
     // Video files (.mp4, .mkv, .webm) are encoded in segments of scene.video.segment seconds,
     // each its own closed group of pictures on one encoder thread, and joined by stream copy:
@@ -133,6 +142,7 @@ Expected<RenderSummary> render(const RenderDef& def);
 struct SimulateDef {
     scene::Scene scene;
     std::optional<std::string> trace, events, joints;   // CSV paths, as for render
+    std::optional<std::string> shapes;                  // JSON path, as for render
     std::function<bool()> should_stop;
     std::function<void(const std::string&)> on_warning;   // as RenderDef's
 };

@@ -26,6 +26,7 @@ struct DiscGeom {
     float angle = 0;                // radians, counter-clockwise from +x (the spin marker points so)
     Rgba fill;
     bool is_static = false;         // pegs are drawn differently from moving discs
+    std::uint16_t mask_id = 0;      // its value in draw_mask: the caller's id, 0 for none
 };
 
 // A rigid body of another shape: a convex outline of 2..8 vertices (2: a capsule's segment)
@@ -38,6 +39,7 @@ struct PolygonGeom {
     float rounding = 0;             // metres swept around the outline
     Rgba fill;
     bool is_static = false;         // drawn darker, without the spin marker
+    std::uint16_t mask_id = 0;      // its value in draw_mask: the caller's id, 0 for none
 };
 
 struct CapsuleGeom {                // walls: segment a..b swept by a circle of `radius`
@@ -117,6 +119,26 @@ struct FrameScene {
 
 // Where the font for TextLabel comes from: Debian's fonts-dejavu-core.
 inline constexpr const char* default_font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+// Where a world point lands in a width x height image of `camera`: pixel = M [x, y, 1], in
+// pixels from the image's top-left corner, y down, a pixel's centre at (i + 0.5, j + 0.5).
+// The renderer draws through exactly this.
+struct PixelTransform {
+    double m00 = 1, m01 = 0, m02 = 0;
+    double m10 = 0, m11 = -1, m12 = 0;
+    double pixels_per_metre = 1;
+};
+PixelTransform pixel_transform(const Camera& camera, int width, int height);
+
+// What an instance mask gives the walls (every CapsuleGeom).
+inline constexpr std::uint16_t wall_mask_id = 65535;
+
+// Which geometry is drawn on top at each pixel of the frame, width x height, top row first:
+// a disc's or polygon's mask_id, wall_mask_id for capsules, 0 for nothing. No anti-aliasing:
+// a pixel belongs to a shape when its centre is inside it (a shape thinner than a pixel as
+// wide as the renderer draws it). In the renderer's order, later on top; geometry with mask_id
+// 0 or a transparent fill is left out (it hides nothing). The same frame gives the same ids.
+std::vector<std::uint16_t> draw_mask(const FrameScene& frame, int width, int height);
 
 // How many threads of its own llvmpipe rasterizes on (Mesa's LP_NUM_THREADS), for the whole
 // process: 0 draws on the thread that calls draw(). By default Mesa starts one per core and the
