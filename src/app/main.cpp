@@ -299,41 +299,35 @@ static void report_failed(std::vector<std::size_t> failed, IndexRange range) {
                                 list + ")");
 }
 
-// The renders of `range`, `jobs` at a time, each a process of its own (`batch MANIFEST --index
-// I`): a line's crash or memory is its own. The worst exit code; the failed lines are named.
+// The renders of `range` in `jobs` processes at once (`batch MANIFEST --index A-B`), each a
+// contiguous share of the range on one warm renderer: a process's crash or memory stays its
+// own. Each names its own failed lines; the worst exit code is returned.
 static int run_batch_processes(const BatchOptions& b, IndexRange range) {
-    std::map<pid_t, std::size_t> running;
-    std::vector<std::size_t> failed;
+    const std::size_t count = range.last - range.first + 1;
+    const std::size_t shares = std::min(count, static_cast<std::size_t>(b.jobs));
+    std::vector<pid_t> running;
     int worst = exit_ok;
-    const auto reap_one = [&] {
-        int status = 0;
-        const pid_t pid = waitpid(-1, &status, 0);
-        const auto found = running.find(pid);
-        if (found == running.end()) return;
-        const int code = WIFEXITED(status) ? WEXITSTATUS(status) : exit_runtime_failure;
-        if (code != exit_ok) failed.push_back(found->second);
-        worst = std::max(worst, code);
-        running.erase(found);
-    };
-    for (std::size_t i = range.first; i <= range.last && stop_signal() == 0; ++i) {
-        while (running.size() >= static_cast<std::size_t>(b.jobs)) reap_one();
-        std::string index = std::to_string(i);
+    for (std::size_t k = 0; k < shares; ++k) {
+        const std::size_t first = range.first + count * k / shares;
+        const std::size_t last = range.first + count * (k + 1) / shares - 1;
+        std::string index = std::to_string(first) + "-" + std::to_string(last);
         std::string self = "/proc/self/exe", verb = "batch", flag = "--index";
         std::string manifest = b.manifest;
         char* argv[] = {self.data(), verb.data(), manifest.data(), flag.data(), index.data(),
                         nullptr};
         pid_t pid = 0;
         if (posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv, environ) != 0) {
-            report_error(std::cerr, "cannot start the render of line index " + index);
-            failed.push_back(i);
+            report_error(std::cerr, "cannot start the renders of indexes " + index);
             worst = std::max(worst, static_cast<int>(exit_runtime_failure));
             continue;
         }
-        running.emplace(pid, i);
+        running.push_back(pid);
     }
-    while (!running.empty()) reap_one();
-    if (stop_signal() != 0) worst = std::max(worst, static_cast<int>(exit_runtime_failure));
-    report_failed(failed, range);
+    for (const pid_t pid : running) {
+        int status = 0;
+        const bool ended = waitpid(pid, &status, 0) == pid && WIFEXITED(status);
+        worst = std::max(worst, ended ? WEXITSTATUS(status) : static_cast<int>(exit_runtime_failure));
+    }
     return worst;
 }
 
@@ -515,8 +509,8 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
         ->option_text("I|A-B");
     batch_cmd->add_flag("--all", batch.all, "Run every render of the manifest");
     batch_cmd->add_option("--jobs", batch.jobs,
-                          "Renders at once, each a process of its own (default 1: in order, "
-                          "in this process)")
+                          "Processes at once, each rendering a contiguous share of the lines "
+                          "in order (default 1: every line in this process)")
         ->check(whole_number(1, 1024));
     batch_cmd->get_option("--all")->excludes("--index");
 
