@@ -70,6 +70,9 @@ struct ServeOptions {
     std::size_t max_queue = 64;
     std::optional<std::string> token_file;
     std::vector<std::string> allow_hosts;    // Host names accepted besides the address
+    std::vector<std::string> cors_origins;   // --cors: web origins whose pages may call it
+    std::optional<double> keep_seconds = 7.0 * 24 * 3600;   // --keep; nullopt: never
+    std::optional<std::uint64_t> keep_bytes;                // --keep-bytes
     double job_timeout = 600;                // seconds
     scene::Limits limits;
     std::string version;                     // discreel's, part of every job id

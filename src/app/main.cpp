@@ -56,6 +56,46 @@ void add_output_files(CLI::App& cmd, OutputFiles& files) {
         ->option_text("FILE");
 }
 
+// "7d", "12h", "30m", "90s" or a plain number of seconds; positive and finite.
+std::optional<double> parse_duration(const std::string& text) {
+    if (text.empty()) return std::nullopt;
+    double unit = 1;
+    std::string number = text;
+    switch (text.back()) {
+        case 's': unit = 1; number.pop_back(); break;
+        case 'm': unit = 60; number.pop_back(); break;
+        case 'h': unit = 3600; number.pop_back(); break;
+        case 'd': unit = 86400; number.pop_back(); break;
+        default: break;
+    }
+    try {
+        std::size_t used = 0;
+        const double value = std::stod(number, &used);
+        if (used != number.size() || !(value > 0) || !std::isfinite(value * unit))
+            return std::nullopt;
+        return value * unit;
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+}
+
+// "20G", "500M", "64K", "1T" (powers of 1024) or a plain number of bytes.
+std::optional<std::uint64_t> parse_bytes(const std::string& text) {
+    if (text.empty()) return std::nullopt;
+    int shift = 0;
+    std::string number = text;
+    switch (text.back()) {
+        case 'K': shift = 10; number.pop_back(); break;
+        case 'M': shift = 20; number.pop_back(); break;
+        case 'G': shift = 30; number.pop_back(); break;
+        case 'T': shift = 40; number.pop_back(); break;
+        default: break;
+    }
+    const auto value = parse_whole<std::uint64_t>(number);
+    if (!value || *value == 0 || *value > (std::uint64_t{1} << (62 - shift))) return std::nullopt;
+    return *value << shift;
+}
+
 // --set KEY=VALUE, repeatable: values put into the scene before it is read.
 void add_set_option(CLI::App& cmd, std::vector<discreel::scene::Override>& overrides) {
     cmd.add_option_function<std::vector<std::string>>(
@@ -539,6 +579,45 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
                           "A Host name the server answers for besides its address (and "
                           "localhost); repeat for more. Requests for any other get 421")
         ->option_text("NAME");
+    serve_cmd->add_option_function<std::string>(
+                 "--keep",
+                 [&serve](const std::string& text) {
+                     if (text == "never") {
+                         serve.keep_seconds.reset();
+                         return;
+                     }
+                     const auto seconds = parse_duration(text);
+                     if (!seconds) {
+                         throw CLI::ValidationError(
+                             "--keep", "expected a time such as 7d, 12h, 30m or 90s, or never; "
+                                       "got '" + text + "'");
+                     }
+                     serve.keep_seconds = *seconds;
+                 },
+                 "Delete finished jobs and their outputs this long after they were accepted "
+                 "(s, m, h, d; never keeps them all); default 7d")
+        ->option_text("TIME");
+    serve_cmd->add_option_function<std::string>(
+                 "--keep-bytes",
+                 [&serve](const std::string& text) {
+                     const auto bytes = parse_bytes(text);
+                     if (!bytes) {
+                         throw CLI::ValidationError(
+                             "--keep-bytes", "expected a size such as 20G, 500M or 1048576; "
+                                             "got '" + text + "'");
+                     }
+                     serve.keep_bytes = *bytes;
+                 },
+                 "Also delete the oldest finished jobs while their outputs take more than this "
+                 "(K, M, G, T: powers of 1024)")
+        ->option_text("SIZE");
+    serve_cmd->add_option("--cors", serve.cors_origins,
+                          "A web origin (scheme://host[:port]) whose pages may call the API "
+                          "from a browser: preflights are answered and Access-Control-Allow-"
+                          "Origin sent to it only; repeat for more")
+        ->option_text("ORIGIN")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     serve_cmd->add_option("--job-timeout", serve.job_timeout,
                           "Seconds one job may render before it fails")
         ->check(finite_number(0.001, 1e7))

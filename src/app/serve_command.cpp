@@ -83,6 +83,9 @@ int run_serve(const ServeOptions& o, std::ostream& out, std::ostream& err) {
     def.job_timeout = o.job_timeout;
     def.version = o.version;
     def.allow_hosts = o.allow_hosts;
+    def.cors_origins = o.cors_origins;
+    def.keep_seconds = o.keep_seconds;
+    def.keep_bytes = o.keep_bytes;
     if (Status listen = split_listen(o.listen, def.host, def.port); !listen) {
         report_error(err, listen.error().message);
         return exit_bad_input;

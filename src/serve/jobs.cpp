@@ -21,6 +21,12 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
+std::int64_t unix_now() {
+    return std::chrono::duration_cast<std::chrono::seconds>(
+               std::chrono::system_clock::now().time_since_epoch())
+        .count();
+}
+
 std::string utc_now() {
     const auto now = std::chrono::system_clock::now();
     const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
@@ -165,6 +171,9 @@ Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics
                 .warnings = json::parse(stored.warnings, nullptr, false),
                 .version = 1};
         if (!job.warnings.is_array()) job.warnings = json::array();
+        job.seq = ++jobs->last_seq_;
+        // A store from before jobs had a time: its jobs count from this start.
+        job.created = stored.created > 0 ? stored.created : unix_now();
         if (!is_final(job.status)) {
             job.status = JobStatus::queued;
             jobs->queue_.push_back(job.id);
@@ -182,6 +191,7 @@ void Jobs::start_workers() {
     for (int i = 0; i < std::max(1, def_.workers); ++i) {
         workers_.emplace_back([this] { worker_loop(); });
     }
+    if (def_.keep_seconds || def_.keep_bytes) sweeper_ = std::thread([this] { sweeper_loop(); });
 }
 
 void Jobs::stop() {
@@ -193,8 +203,10 @@ void Jobs::stop() {
     }
     work_ready_.notify_all();
     changed_.notify_all();
+    sweeper_wake_.notify_all();
     for (std::thread& worker : workers_) worker.join();
     workers_.clear();
+    if (sweeper_.joinable()) sweeper_.join();
 }
 
 void Jobs::changed(Job& job) {
@@ -255,13 +267,17 @@ Submission Jobs::submit(const JobRequest& request, int frames_total, const json&
         return busy;
     }
     // Durable before the answer: a 202 promises the job will finish.
-    if (Status stored = store_.accept(request.id, request.stored(), frames_total, warnings.dump());
+    const std::int64_t now = unix_now();
+    if (Status stored =
+            store_.accept(request.id, request.stored(), frames_total, warnings.dump(), now);
         !stored) {
         Submission failed = answer(Submitted::store_failed, nullptr);
         failed.error = stored.error().message;
         return failed;
     }
     Job& job = jobs_[request.id];
+    if (job.seq == 0) job.seq = ++last_seq_;
+    job.created = now;
     job.id = request.id;
     job.status = JobStatus::queued;
     job.frames_done = 0;
@@ -288,7 +304,7 @@ std::optional<json> Jobs::get(const std::string& id) {
     return job_json(found->second);
 }
 
-std::optional<Jobs::Output> Jobs::output(const std::string& id) {
+std::optional<Jobs::OpenOutput> Jobs::open_output(const std::string& id) {
     std::lock_guard lock(mutex_);
     const auto found = jobs_.find(id);
     if (found == jobs_.end() || found->second.status != JobStatus::succeeded ||
@@ -296,7 +312,119 @@ std::optional<Jobs::Output> Jobs::output(const std::string& id) {
         return std::nullopt;
     }
     const OutputInfo& info = *found->second.output;
-    return Output{outputs_ / (info.sha256 + "." + info.extension), info};
+    const auto path = outputs_ / (info.sha256 + "." + info.extension);
+    return OpenOutput{::open(path.c_str(), O_RDONLY | O_CLOEXEC), info};
+}
+
+json Jobs::list(const std::optional<JobStatus>& state, std::size_t limit,
+                const std::optional<std::string>& before) {
+    std::lock_guard lock(mutex_);
+    std::vector<const Job*> all;
+    for (const auto& [id, job] : jobs_) all.push_back(&job);
+    // Newest first: by time of acceptance, then by order of acceptance.
+    std::sort(all.begin(), all.end(), [](const Job* a, const Job* b) {
+        return a->created != b->created ? a->created > b->created : a->seq > b->seq;
+    });
+    auto from = all.begin();
+    if (before) {
+        from = std::find_if(all.begin(), all.end(), [&](const Job* j) { return j->id == *before; });
+        if (from != all.end()) ++from;
+    }
+    json page = json::array();
+    std::optional<std::string> last;
+    bool more = false;
+    for (auto it = from; it != all.end(); ++it) {
+        if (state && (*it)->status != *state) continue;
+        if (page.size() == limit) {
+            more = true;
+            break;
+        }
+        json entry = job_json(**it);
+        entry["created"] = (*it)->created;
+        page.push_back(std::move(entry));
+        last = (*it)->id;
+    }
+    return {{"jobs", std::move(page)}, {"next", more && last ? json(*last) : json(nullptr)}};
+}
+
+void Jobs::forget(const std::string& id, Swept& swept) {
+    const auto found = jobs_.find(id);
+    if (found == jobs_.end()) return;
+    if (Status removed = store_.remove(id); !removed) {
+        log_line("store_error", {{"id", id}, {"message", removed.error().message}});
+        return;
+    }
+    std::optional<OutputInfo> output = found->second.output;
+    jobs_.erase(found);
+    ++swept.jobs;
+    if (!output) return;
+    // Outputs are kept by content: another job may have the same bytes.
+    for (const auto& [other, job] : jobs_) {
+        if (job.output && job.output->sha256 == output->sha256 &&
+            job.output->extension == output->extension) {
+            return;
+        }
+    }
+    std::error_code failed;
+    if (std::filesystem::remove(outputs_ / (output->sha256 + "." + output->extension), failed)) {
+        swept.bytes += static_cast<std::uint64_t>(output->bytes);
+    }
+}
+
+Jobs::Swept Jobs::sweep(std::int64_t now) {
+    std::lock_guard lock(mutex_);
+    Swept swept;
+    std::vector<std::pair<std::int64_t, std::string>> finished;   // oldest first
+    for (const auto& [id, job] : jobs_) {
+        if (is_final(job.status)) finished.emplace_back(job.created, id);
+    }
+    std::sort(finished.begin(), finished.end());
+    std::size_t next = 0;
+    if (def_.keep_seconds) {
+        const auto oldest = static_cast<double>(now) - *def_.keep_seconds;
+        for (; next < finished.size() && static_cast<double>(finished[next].first) < oldest;
+             ++next) {
+            forget(finished[next].second, swept);
+        }
+    }
+    if (def_.keep_bytes) {
+        const auto kept = [&] {
+            std::uint64_t total = 0;
+            std::map<std::string, std::uint64_t> files;   // each output once
+            for (const auto& [id, job] : jobs_) {
+                if (job.output) {
+                    files[job.output->sha256 + "." + job.output->extension] =
+                        static_cast<std::uint64_t>(job.output->bytes);
+                }
+            }
+            for (const auto& [name, bytes] : files) total += bytes;
+            return total;
+        };
+        for (; next < finished.size() && kept() > *def_.keep_bytes; ++next) {
+            forget(finished[next].second, swept);
+        }
+    }
+    if (swept.jobs > 0) {
+        metrics_.swept(swept.jobs, swept.bytes);
+        log_line("sweep", {{"jobs", swept.jobs}, {"bytes", swept.bytes}});
+    }
+    return swept;
+}
+
+void Jobs::sweeper_loop() {
+    // Often enough that nothing outlives its time by more than a tenth of it (at most a
+    // minute), and outputs pass their size cap for a second at most.
+    double interval = def_.keep_seconds ? std::clamp(*def_.keep_seconds / 10, 0.2, 60.0) : 60.0;
+    if (def_.keep_bytes) interval = std::min(interval, 1.0);
+    std::unique_lock lock(mutex_);
+    while (!stopping_) {
+        sweeper_wake_.wait_for(lock, std::chrono::duration<double>(interval),
+                               [&] { return stopping_.load(); });
+        if (stopping_) return;
+        lock.unlock();
+        sweep(unix_now());
+        lock.lock();
+    }
 }
 
 std::pair<int, json> Jobs::cancel(const std::string& id) {

@@ -35,6 +35,8 @@ struct Job {
     // The scene's warnings: [{"line", "column", "message"}, ...] (request.hpp, PlannedJob).
     nlohmann::json warnings = nlohmann::json::array();
     std::uint64_t version = 0;                         // bumped on every change
+    std::uint64_t seq = 0;                             // order of first acceptance
+    std::int64_t created = 0;                          // Unix seconds of its last acceptance
     std::shared_ptr<std::atomic<bool>> cancel = std::make_shared<std::atomic<bool>>(false);
 };
 
@@ -67,12 +69,24 @@ public:
     // `warnings`: the scene's (PlannedJob), kept with the job.
     Submission submit(const JobRequest& request, int frames_total, const nlohmann::json& warnings);
     std::optional<nlohmann::json> get(const std::string& id);
-    // The file of a succeeded job, with its facts; nullopt while there is none.
-    struct Output {
-        std::filesystem::path path;
+    // A succeeded job's output opened for reading, under the lock the sweeper deletes under:
+    // once open, its bytes stay readable whatever the sweeper does. fd -1: it cannot be opened;
+    // nullopt: there is no output (yet).
+    struct OpenOutput {
+        int fd = -1;
         OutputInfo info;
     };
-    std::optional<Output> output(const std::string& id);
+    std::optional<OpenOutput> open_output(const std::string& id);
+    // GET /v1/renders: jobs newest first, at most `limit`, only of `state` when given, only
+    // those listed after the job `before` (the previous page's "next").
+    nlohmann::json list(const std::optional<JobStatus>& state, std::size_t limit,
+                        const std::optional<std::string>& before);
+    // One pass of the sweeper at `now` (Unix seconds); what it deleted.
+    struct Swept {
+        std::size_t jobs = 0;
+        std::uint64_t bytes = 0;
+    };
+    Swept sweep(std::int64_t now);
     // DELETE: 404 unknown, 409 finished, otherwise cancelled (waits for a running job to stop,
     // which it does within a physics step; 202 if it has not after a few seconds).
     std::pair<int, nlohmann::json> cancel(const std::string& id);
@@ -95,6 +109,9 @@ public:
 private:
     Jobs(const ServeDef& def, Metrics& metrics, Store store);
     void worker_loop();
+    void sweeper_loop();
+    // Forgets a finished job, and its output where no other job has it; with mutex_ held.
+    void forget(const std::string& id, Swept& swept);
     void run_job(const std::string& id, std::optional<render::Renderer>& warm);
     void changed(Job& job);      // with mutex_ held
     void counted();              // with mutex_ held: queued_count_, running_count_ from the queue
@@ -120,6 +137,9 @@ private:
     double mean_seconds_ = 1;    // of recent jobs, for Retry-After
     std::atomic<bool> stopping_{false};
     std::vector<std::thread> workers_;
+    std::thread sweeper_;
+    std::condition_variable sweeper_wake_;
+    std::uint64_t last_seq_ = 0;
 };
 
 }  // namespace discreel::serve

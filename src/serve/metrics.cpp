@@ -44,6 +44,12 @@ std::string Metrics::text(std::size_t queued, std::size_t running, int workers) 
     out << "discreel_workers " << workers << '\n';
     metric("discreel_output_bytes_served_total", "counter", "Bytes of outputs sent to clients.");
     out << "discreel_output_bytes_served_total " << bytes_served_.load() << '\n';
+    metric("discreel_jobs_swept_total", "counter",
+           "Finished jobs the sweeper deleted (--keep, --keep-bytes).");
+    out << "discreel_jobs_swept_total " << swept_jobs_.load() << '\n';
+    metric("discreel_output_bytes_swept_total", "counter",
+           "Bytes of outputs the sweeper deleted.");
+    out << "discreel_output_bytes_swept_total " << swept_bytes_.load() << '\n';
     std::lock_guard lock(mutex_);
     metric("discreel_jobs_finished_total", "counter", "Jobs that reached a final status.");
     for (const char* status : {"succeeded", "failed", "cancelled"}) {

@@ -204,6 +204,10 @@ struct Server::Impl final : http::Handler {
     }
 
     bool allowed_host(std::string_view host) const;
+    bool allowed_origin(std::string_view origin) const;
+    void add_cors(const http::Request& request, http::Response& res) const;
+    std::optional<http::Response> preflight(const http::Request& head) const;
+    std::optional<http::Response> check_request_head(const http::Request& head);
     std::optional<http::Response> check_head(const http::Request& head) override;
     bool blocking(const http::Request& request) const override;
     http::Response handle(http::Request& request) override;
@@ -213,6 +217,7 @@ struct Server::Impl final : http::Handler {
     http::Response post_render(const http::Request& req);
     http::Response post_validate(const http::Request& req);
     http::Response get_output(const http::Request& req, const std::string& id);
+    http::Response list_renders(const http::Request& req);
     http::Response get_events(const std::string& id);
 };
 
@@ -236,7 +241,56 @@ bool Server::Impl::allowed_host(std::string_view host) const {
     return wildcard || boost::asio::ip::make_address(name) == listening;
 }
 
+bool Server::Impl::allowed_origin(std::string_view origin) const {
+    return !origin.empty() && std::find(def.cors_origins.begin(), def.cors_origins.end(),
+                                        origin) != def.cors_origins.end();
+}
+
+// An allowed origin's page may read the answer (and these headers of it); any other origin's
+// gets no CORS header, so its browser keeps the answer from it.
+void Server::Impl::add_cors(const http::Request& request, http::Response& res) const {
+    if (def.cors_origins.empty()) return;
+    res.set("Vary", "Origin");
+    const std::string_view origin = request.field("origin");
+    if (!allowed_origin(origin)) return;
+    res.set("Access-Control-Allow-Origin", std::string(origin));
+    res.set("Access-Control-Expose-Headers",
+            "Location, ETag, Content-Range, Content-Disposition, Retry-After");
+}
+
+// A browser's preflight (OPTIONS with Access-Control-Request-Method) for a /v1 route, answered
+// before authentication: it never carries the token. Nullopt: not one, or no --cors given (then
+// OPTIONS is answered as any unknown method).
+std::optional<http::Response> Server::Impl::preflight(const http::Request& head) const {
+    if (def.cors_origins.empty() || head.method != "OPTIONS" ||
+        head.field("access-control-request-method").empty()) {
+        return std::nullopt;
+    }
+    const std::string_view origin = head.field("origin");
+    if (!allowed_origin(origin)) {
+        http::Response res = refuse(403, "origin '" + std::string(origin) +
+                                             "' may not call this server (serve --cors ORIGIN "
+                                             "allows one)");
+        res.set("Vary", "Origin");
+        return res;
+    }
+    http::Response res;
+    res.status = 204;
+    res.set("Access-Control-Allow-Origin", std::string(origin));
+    res.set("Access-Control-Allow-Methods", "GET, HEAD, POST, DELETE");
+    res.set("Access-Control-Allow-Headers", "Authorization, Content-Type, Range, If-None-Match");
+    res.set("Access-Control-Max-Age", "600");
+    res.set("Vary", "Origin");
+    return res;
+}
+
 std::optional<http::Response> Server::Impl::check_head(const http::Request& head) {
+    auto res = check_request_head(head);
+    if (res) add_cors(head, *res);   // a refusal the page should be able to read (401, 415)
+    return res;
+}
+
+std::optional<http::Response> Server::Impl::check_request_head(const http::Request& head) {
     // HTTP/1.0 may leave Host out (the container's health check does); browsers, which DNS
     // rebinding works through, always send it.
     const std::string_view host = head.field("host");
@@ -247,6 +301,7 @@ std::optional<http::Response> Server::Impl::check_head(const http::Request& head
         return refuse(421, "this server does not answer for host '" + std::string(host) +
                                "' (serve --allow-host NAME adds names)");
     }
+    if (auto answer = preflight(head)) return answer;
     if (def.token && head.path.rfind("/v1/", 0) == 0) {
         const std::string_view header = head.field("authorization");
         const std::string_view prefix = "Bearer ";
@@ -302,6 +357,7 @@ http::Response Server::Impl::handle(http::Request& request) {
         // The page and every answer: never inside another site's frame.
         res.set("X-Frame-Options", "DENY");
         res.set("X-Content-Type-Options", "nosniff");
+        add_cors(request, res);
         return res;
     } catch (const std::exception& e) {
         log_line("exception", {{"message", e.what()}});
@@ -339,7 +395,8 @@ http::Response Server::Impl::route(http::Request& req) {
         return res;
     }
     if (path == "/v1/renders") {
-        if (req.method != "POST") return only("POST");
+        if (get) return list_renders(req);
+        if (req.method != "POST") return only("GET, HEAD, POST");
         return post_render(req);
     }
     if (path == "/v1/validate") {
@@ -412,12 +469,67 @@ http::Response Server::Impl::post_validate(const http::Request& req) {
     return reply(200, {{"ok", true}, {"warnings", std::get<PlannedJob>(planned).warnings}});
 }
 
+// The query's parameters, in order; nullopt when one is not name=value.
+std::optional<std::vector<std::pair<std::string, std::string>>> query_of(const std::string& target) {
+    std::vector<std::pair<std::string, std::string>> out;
+    const auto mark = target.find('?');
+    if (mark == std::string::npos) return out;
+    std::string_view rest = std::string_view(target).substr(mark + 1);
+    while (!rest.empty()) {
+        const auto amp = rest.find('&');
+        const std::string_view part = rest.substr(0, amp);
+        rest = amp == std::string_view::npos ? std::string_view() : rest.substr(amp + 1);
+        if (part.empty()) continue;
+        const auto eq = part.find('=');
+        if (eq == std::string_view::npos) return std::nullopt;
+        out.emplace_back(std::string(part.substr(0, eq)), std::string(part.substr(eq + 1)));
+    }
+    return out;
+}
+
+http::Response Server::Impl::list_renders(const http::Request& req) {
+    const auto query = query_of(req.target);
+    if (!query) return refuse(400, "the query is name=value pairs: state, limit and before");
+    std::optional<JobStatus> state;
+    std::size_t limit = 50;
+    std::optional<std::string> before;
+    for (const auto& [name, value] : *query) {
+        if (name == "state") {
+            bool known = false;
+            for (const JobStatus s : {JobStatus::queued, JobStatus::running, JobStatus::succeeded,
+                                      JobStatus::failed, JobStatus::cancelled}) {
+                if (value == to_string(s)) {
+                    state = s;
+                    known = true;
+                }
+            }
+            if (!known) {
+                return refuse(400, "state must be queued, running, succeeded, failed or "
+                                   "cancelled, not '" + value + "'");
+            }
+        } else if (name == "limit") {
+            const auto n = digits_value(value);
+            if (!n || *n < 1 || *n > 1000) return refuse(400, "limit must be from 1 to 1000");
+            limit = static_cast<std::size_t>(*n);
+        } else if (name == "before") {
+            before = value;
+        } else {
+            return refuse(400, "unknown parameter '" + name + "'; the parameters are state, "
+                               "limit and before");
+        }
+    }
+    return reply(200, jobs->list(state, limit, before));
+}
+
 http::Response Server::Impl::get_output(const http::Request& req, const std::string& id) {
-    const auto output = jobs->output(id);
+    // Opened under the jobs' lock: the sweeper cannot take the file between here and the read.
+    auto output = jobs->open_output(id);
     if (!output) {
         if (!jobs->get(id)) return refuse(404, "no job " + id);
         return refuse(409, "the job has no output (yet): see its status");
     }
+    if (output->fd < 0) return refuse(500, "the output of job " + id + " is missing");
+    const std::shared_ptr<const int> owned(new int(output->fd), FdCloser{});
     const std::string etag = "\"" + output->info.sha256 + "\"";
     http::Response res;
     res.set("ETag", etag);
@@ -437,12 +549,10 @@ http::Response Server::Impl::get_output(const http::Request& req, const std::str
         res.set("Content-Range", "bytes */" + std::to_string(size));
         return res;
     }
-    const int fd = ::open(output->path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return refuse(500, "the output of job " + id + " is missing");
     res.set("Content-Type", content_type_of(output->info.extension));
     res.set("Content-Disposition",
             "inline; filename=\"" + id + "." + output->info.extension + "\"");
-    http::FileBody file{.fd = std::shared_ptr<const int>(new int(fd), FdCloser{}),
+    http::FileBody file{.fd = owned,
                         .offset = 0,
                         .length = size,
                         .sent = [this](std::uint64_t bytes) { metrics.served(bytes); }};

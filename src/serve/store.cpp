@@ -61,18 +61,19 @@ CREATE TABLE IF NOT EXISTS jobs (
     sha256 TEXT,
     bytes INTEGER,
     extension TEXT,
-    warnings TEXT
+    warnings TEXT,
+    created INTEGER
 );
 )sql";
 
-// Whether the jobs table has the warnings column: a store written before jobs had warnings
-// gets it added (NULL there: none known).
-Expected<bool> has_warnings_column(sqlite3* db) {
+// Whether the jobs table has `column`: a store written before jobs had warnings or a time of
+// acceptance gets the column added (NULL there: none known).
+Expected<bool> has_column(sqlite3* db, const std::string& column) {
     auto statement = prepare(db, "PRAGMA table_info(jobs)");
     if (!statement) return statement.error();
     bool found = false;
     while (sqlite3_step(statement->get()) == SQLITE_ROW) {
-        found = found || column_text(statement->get(), 1) == "warnings";
+        found = found || column_text(statement->get(), 1) == column;
     }
     return found;
 }
@@ -149,12 +150,13 @@ Expected<Store> Store::open(const std::string& path) {
                             "PRAGMA wal_autocheckpoint=64;", schema}) {
         if (Status done = store.exec(sql); !done) return done.error();
     }
-    const auto has_warnings = has_warnings_column(db);
-    if (!has_warnings) return has_warnings.error();
-    if (!*has_warnings) {
-        if (Status done = store.exec("ALTER TABLE jobs ADD COLUMN warnings TEXT;"); !done) {
-            return done.error();
-        }
+    for (const auto& [column, add] :
+         {std::pair{"warnings", "ALTER TABLE jobs ADD COLUMN warnings TEXT;"},
+          std::pair{"created", "ALTER TABLE jobs ADD COLUMN created INTEGER;"}}) {
+        const auto has = has_column(db, column);
+        if (!has) return has.error();
+        if (*has) continue;
+        if (Status done = store.exec(add); !done) return done.error();
     }
     return store;
 }
@@ -195,7 +197,7 @@ Status Store::update(const char* sql, const std::vector<std::optional<std::strin
 Expected<std::vector<StoredJob>> Store::load() {
     auto statement = prepare(db_.get(),
                              "SELECT id, status, frames_total, error, sha256, bytes, extension, "
-                             "warnings FROM jobs ORDER BY seq");
+                             "warnings, created FROM jobs ORDER BY seq");
     if (!statement) return statement.error();
     std::vector<StoredJob> jobs;
     int step = SQLITE_ROW;
@@ -212,6 +214,7 @@ Expected<std::vector<StoredJob>> Store::load() {
                                     .extension = column_text(row, 6)};
         }
         if (auto warnings = optional_text(row, 7)) job.warnings = std::move(*warnings);
+        job.created = sqlite3_column_int64(row, 8);   // 0 for NULL
         jobs.push_back(std::move(job));
     }
     if (step != SQLITE_DONE) return sqlite_error(db_.get(), "read the job store");
@@ -230,12 +233,16 @@ Expected<std::string> Store::request(const std::string& id) {
 }
 
 Status Store::accept(const std::string& id, const std::string& request, int frames_total,
-                     const std::string& warnings) {
-    return update("INSERT INTO jobs (id, request, status, frames_total, warnings) "
-                  "VALUES (?1, ?2, 'queued', ?4, ?3) "
+                     const std::string& warnings, std::int64_t created) {
+    return update("INSERT INTO jobs (id, request, status, frames_total, warnings, created) "
+                  "VALUES (?1, ?2, 'queued', ?4, ?3, ?5) "
                   "ON CONFLICT(id) DO UPDATE SET status = 'queued', error = NULL, "
-                  "sha256 = NULL, bytes = NULL, extension = NULL, warnings = ?3",
-                  {id, request, warnings}, {frames_total});
+                  "sha256 = NULL, bytes = NULL, extension = NULL, warnings = ?3, created = ?5",
+                  {id, request, warnings}, {frames_total, created});
+}
+
+Status Store::remove(const std::string& id) {
+    return update("DELETE FROM jobs WHERE id = ?1", {id}, {});
 }
 
 Status Store::set_running(const std::string& id) {

@@ -32,6 +32,7 @@ struct StoredJob {
     std::optional<std::string> error;     // failed, cancelled
     std::optional<OutputInfo> output;     // succeeded
     std::string warnings = "[]";          // the scene's warnings, a JSON array (job_json)
+    std::int64_t created = 0;             // Unix seconds of its (last) acceptance; 0: unknown
 };
 
 // An exclusive lock on a store (flock on DATA/serve.lock), held while the object lives: a
@@ -67,7 +68,9 @@ public:
     // Accepts a job (new, or one that failed or was cancelled before): queued, durable when
     // this returns. `warnings`: the scene's, a JSON array.
     Status accept(const std::string& id, const std::string& request, int frames_total,
-                  const std::string& warnings);
+                  const std::string& warnings, std::int64_t created);
+    // Forgets a job (the sweeper's): its row goes.
+    Status remove(const std::string& id);
     Status set_running(const std::string& id);
     Status set_succeeded(const std::string& id, const OutputInfo& output);
     Status set_ended(const std::string& id, JobStatus status, const std::string& error);

@@ -309,6 +309,159 @@ TEST_F(ServeGLTest, SetAndFramesAreTheCommandLines) {
               cli);   // the seed took effect
 }
 
+// An app's view of its jobs: newest first, a page at a time, by state.
+TEST_F(ServeGLTest, JobsAreListedNewestFirstAPageAtATime) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    std::vector<std::string> ids;
+    for (int seed = 1; seed <= 3; ++seed) {
+        auto accepted = post(client, "/v1/renders",
+                             json{{"scene", scene_text(seed)}, {"output", "png"}, {"size", "64x36"}});
+        ASSERT_TRUE(accepted);
+        ASSERT_EQ(accepted->status, 202) << accepted->body;
+        ids.push_back(json::parse(accepted->body)["id"]);
+        ASSERT_EQ(wait_final(client, ids.back())["status"], "succeeded");
+    }
+    auto first = client.Get("/v1/renders?limit=2");
+    ASSERT_TRUE(first);
+    ASSERT_EQ(first->status, 200) << first->body;
+    const json page = json::parse(first->body);
+    ASSERT_EQ(page["jobs"].size(), 2u);
+    EXPECT_EQ(page["jobs"][0]["id"], ids[2]);
+    EXPECT_EQ(page["jobs"][1]["id"], ids[1]);
+    EXPECT_EQ(page["jobs"][0]["status"], "succeeded");
+    EXPECT_TRUE(page["jobs"][0]["created"].is_number_integer());
+    EXPECT_EQ(page["next"], ids[1]);
+    auto second = client.Get("/v1/renders?limit=2&before=" + ids[1]);
+    ASSERT_TRUE(second);
+    const json rest = json::parse(second->body);
+    ASSERT_EQ(rest["jobs"].size(), 1u);
+    EXPECT_EQ(rest["jobs"][0]["id"], ids[0]);
+    EXPECT_EQ(rest["next"], nullptr);
+    auto failed = client.Get("/v1/renders?state=failed");
+    ASSERT_TRUE(failed);
+    EXPECT_EQ(json::parse(failed->body), (json{{"jobs", json::array()}, {"next", nullptr}}));
+    auto bad = client.Get("/v1/renders?state=done");
+    ASSERT_TRUE(bad);
+    EXPECT_EQ(bad->status, 400);
+    EXPECT_EQ(json::parse(bad->body)["error"]["message"],
+              "state must be queued, running, succeeded, failed or cancelled, not 'done'");
+    bad = client.Get("/v1/renders?limit=0");
+    ASSERT_TRUE(bad);
+    EXPECT_EQ(bad->status, 400);
+}
+
+// --cors: a page of an allowed origin may call the API (its preflight answered, its answers
+// marked readable); another origin's is refused and gets no CORS header. Without --cors, as
+// before: OPTIONS is no method of the API.
+TEST_F(ServeGLTest, CorsAllowsTheOriginsGivenAndNoOther) {
+    {
+        ServeProcess server(bin, {"--data", dir / "plain"}, log);
+        auto client = client_for(server.port());
+        auto options = client.Options("/v1/renders", {{"Origin", "http://app.example"},
+                                                      {"Access-Control-Request-Method", "POST"}});
+        ASSERT_TRUE(options);
+        EXPECT_EQ(options->status, 405);
+        EXPECT_FALSE(options->has_header("Access-Control-Allow-Origin"));
+    }
+    ServeProcess server(bin, {"--data", dir / "data", "--cors", "http://app.example", "--cors",
+                              "https://studio.example:8443"},
+                        log);
+    auto client = client_for(server.port());
+    auto allowed = client.Options("/v1/renders",
+                                  {{"Origin", "https://studio.example:8443"},
+                                   {"Access-Control-Request-Method", "POST"},
+                                   {"Access-Control-Request-Headers", "content-type"}});
+    ASSERT_TRUE(allowed);
+    EXPECT_EQ(allowed->status, 204);
+    EXPECT_EQ(allowed->get_header_value("Access-Control-Allow-Origin"),
+              "https://studio.example:8443");
+    EXPECT_NE(allowed->get_header_value("Access-Control-Allow-Methods").find("POST"),
+              std::string::npos);
+    EXPECT_NE(allowed->get_header_value("Access-Control-Allow-Headers").find("Content-Type"),
+              std::string::npos);
+    auto refused = client.Options("/v1/renders", {{"Origin", "http://evil.example"},
+                                                  {"Access-Control-Request-Method", "POST"}});
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 403);
+    EXPECT_FALSE(refused->has_header("Access-Control-Allow-Origin"));
+    // The actual requests: marked for the allowed origin only.
+    auto ok = post(client, "/v1/validate", json{{"scene", scene_text()}},
+                   {{"Origin", "http://app.example"}});
+    ASSERT_TRUE(ok);
+    EXPECT_EQ(ok->status, 200);
+    EXPECT_EQ(ok->get_header_value("Access-Control-Allow-Origin"), "http://app.example");
+    EXPECT_EQ(ok->get_header_value("Vary"), "Origin");
+    auto other = post(client, "/v1/validate", json{{"scene", scene_text()}},
+                      {{"Origin", "http://evil.example"}});
+    ASSERT_TRUE(other);
+    EXPECT_FALSE(other->has_header("Access-Control-Allow-Origin"));
+}
+
+// --keep: a finished job older than that goes with its output, while it is being read over
+// and over; a younger one stays; the metrics count what went.
+TEST_F(ServeGLTest, TheSweeperDeletesWhatIsOldAndNothingElse) {
+    ServeProcess server(bin, {"--data", dir / "data", "--keep", "3s"}, log);
+    auto client = client_for(server.port());
+    const auto render = [&](int seed) {
+        auto accepted = post(client, "/v1/renders",
+                             json{{"scene", scene_text(seed)}, {"output", "png"}, {"size", "64x36"},
+                                  {"set", {{"physics.seed", seed}}}});
+        EXPECT_TRUE(accepted && accepted->status == 202);
+        const std::string id = json::parse(accepted->body)["id"];
+        const json done = wait_final(client, id);
+        EXPECT_EQ(done["status"], "succeeded");
+        return std::pair{id, done["output"]["sha256"].get<std::string>()};
+    };
+    const auto [old_id, old_sha] = render(1);
+    auto bytes = client.Get("/v1/renders/" + old_id + "/output");
+    ASSERT_TRUE(bytes);
+    ASSERT_EQ(bytes->status, 200);
+    const std::string old_bytes = bytes->body;
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    const auto [young_id, young_sha] = render(2);
+    ASSERT_NE(old_sha, young_sha);
+    // Readers of the old output until it is gone: each gets all of it, or a 404 once the job
+    // is forgotten; never a part, never a 500.
+    std::atomic<bool> done{false};
+    std::atomic<int> whole{0}, gone{0}, broken{0};
+    std::thread reader([&] {
+        auto mine = client_for(server.port());
+        for (int i = 0; i < 2000 && !done; ++i) {
+            auto got = mine.Get("/v1/renders/" + old_id + "/output");
+            if (got && got->status == 200 && got->body == old_bytes) {
+                ++whole;
+            } else if (got && got->status == 404) {
+                ++gone;
+            } else {
+                ++broken;
+            }
+        }
+    });
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(8);
+    bool swept = false;
+    while (!swept && std::chrono::steady_clock::now() < deadline) {
+        auto job = client.Get("/v1/renders/" + old_id);
+        swept = job && job->status == 404;
+        if (!swept) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    EXPECT_TRUE(swept) << "the old job is still there";
+    // The young one, accepted two seconds later, is within its time.
+    auto young = client.Get("/v1/renders/" + young_id);
+    ASSERT_TRUE(young);
+    EXPECT_EQ(young->status, 200);
+    done = true;
+    reader.join();
+    EXPECT_GT(whole.load(), 0);
+    EXPECT_EQ(broken.load(), 0);
+    EXPECT_FALSE(std::filesystem::exists(dir / ("data/outputs/" + old_sha + ".png")));
+    EXPECT_TRUE(std::filesystem::exists(dir / ("data/outputs/" + young_sha + ".png")));
+    auto metrics = client.Get("/metrics");
+    ASSERT_TRUE(metrics);
+    EXPECT_NE(metrics->body.find("\ndiscreel_jobs_swept_total 1\n"), std::string::npos)
+        << metrics->body;
+}
+
 TEST_F(ServeGLTest, ATokenGuardsEveryV1Route) {
     testing::write_file(dir / "token", "s3cret-token\n");
     ServeProcess server(bin, {"--data", dir / "data", "--token-file", dir / "token"}, log);

@@ -6,6 +6,7 @@
 //     server->run();            // blocks until stop(), from another thread or a signal
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -30,6 +31,14 @@ struct ServeDef {
     double job_timeout = 600;                // seconds one job may render before it fails
     std::string version;                     // discreel's, part of every job id
     bool log_requests = true;                // one JSON line per request and job transition
+    // Web origins ("https://app.example.com") whose pages may call the API from a browser:
+    // preflights answered, Access-Control-Allow-Origin sent to them only. Empty: none.
+    std::vector<std::string> cors_origins;
+    // The sweeper: finished jobs accepted longer ago than keep_seconds are forgotten with their
+    // outputs, and the oldest finished ones while the outputs take more than keep_bytes. A job
+    // queued or running, and an output being sent, are never taken. Nullopt: no such bound.
+    std::optional<double> keep_seconds = 7.0 * 24 * 3600;
+    std::optional<std::uint64_t> keep_bytes;
 };
 
 // Whether `dir` may be a server's --data: a new or empty directory, or one holding a job
