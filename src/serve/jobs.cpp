@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "digest.hpp"
+#include "tar.hpp"
 #include "discreel/job.hpp"
 #include "discreel/printable.hpp"
 #include "discreel/render.hpp"
@@ -111,12 +112,24 @@ json job_json(const Job& job) {
     }
     json error = nullptr;
     if (job.error) error = {{"message", *job.error}};
-    return {{"id", job.id},
-            {"status", to_string(job.status)},
-            {"progress", {{"frames_done", job.frames_done}, {"frames_total", job.frames_total}}},
-            {"error", error},
-            {"output", output},
-            {"warnings", job.warnings}};
+    json answer = {{"id", job.id},
+                   {"status", to_string(job.status)},
+                   {"progress",
+                    {{"frames_done", job.frames_done}, {"frames_total", job.frames_total}}},
+                   {"error", error},
+                   {"output", output},
+                   {"warnings", job.warnings}};
+    if (job.status == JobStatus::succeeded && !job.extras.empty()) {
+        json outputs = json::object();
+        for (const auto& [name, info] : job.extras) {
+            outputs[name] = {{"url", "/v1/renders/" + job.id + "/" + name},
+                             {"bytes", info.bytes},
+                             {"sha256", info.sha256},
+                             {"content_type", content_type_of(info.extension)}};
+        }
+        answer["outputs"] = std::move(outputs);
+    }
+    return answer;
 }
 
 void log_line(const std::string& event, const json& fields) {
@@ -168,9 +181,18 @@ Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics
                 .frames_total = stored.frames_total,
                 .error = std::move(stored.error),
                 .output = std::move(stored.output),
+                .extras = {},
                 .warnings = json::parse(stored.warnings, nullptr, false),
                 .version = 1};
         if (!job.warnings.is_array()) job.warnings = json::array();
+        const json extras = json::parse(stored.extras, nullptr, false);
+        if (extras.is_object()) {
+            for (const auto& [name, info] : extras.items()) {
+                job.extras[name] = OutputInfo{.sha256 = info.value("sha256", ""),
+                                              .bytes = info.value("bytes", std::int64_t{0}),
+                                              .extension = info.value("extension", "")};
+            }
+        }
         job.seq = ++jobs->last_seq_;
         // A store from before jobs had a time: its jobs count from this start.
         job.created = stored.created > 0 ? stored.created : unix_now();
@@ -285,6 +307,7 @@ Submission Jobs::submit(const JobRequest& request, int frames_total, const json&
     job.warnings = warnings;
     job.error.reset();
     job.output.reset();
+    job.extras.clear();
     job.cancel = std::make_shared<std::atomic<bool>>(stopping_.load());
     changed(job);
     queue_.push_back(request.id);
@@ -304,14 +327,18 @@ std::optional<json> Jobs::get(const std::string& id) {
     return job_json(found->second);
 }
 
-std::optional<Jobs::OpenOutput> Jobs::open_output(const std::string& id) {
+std::optional<Jobs::OpenOutput> Jobs::open_output(const std::string& id,
+                                                  const std::string& name) {
     std::lock_guard lock(mutex_);
     const auto found = jobs_.find(id);
     if (found == jobs_.end() || found->second.status != JobStatus::succeeded ||
         !found->second.output) {
         return std::nullopt;
     }
-    const OutputInfo& info = *found->second.output;
+    const Job& job = found->second;
+    const auto extra = job.extras.find(name);
+    if (name != "output" && extra == job.extras.end()) return std::nullopt;
+    const OutputInfo& info = name == "output" ? *job.output : extra->second;
     const auto path = outputs_ / (info.sha256 + "." + info.extension);
     return OpenOutput{::open(path.c_str(), O_RDONLY | O_CLOEXEC), info};
 }
@@ -354,21 +381,32 @@ void Jobs::forget(const std::string& id, Swept& swept) {
         log_line("store_error", {{"id", id}, {"message", removed.error().message}});
         return;
     }
-    std::optional<OutputInfo> output = found->second.output;
+    std::vector<OutputInfo> files;
+    if (found->second.output) files.push_back(*found->second.output);
+    for (const auto& [name, info] : found->second.extras) files.push_back(info);
     jobs_.erase(found);
     ++swept.jobs;
-    if (!output) return;
-    // Outputs are kept by content: another job may have the same bytes.
-    for (const auto& [other, job] : jobs_) {
-        if (job.output && job.output->sha256 == output->sha256 &&
-            job.output->extension == output->extension) {
-            return;
+    for (const OutputInfo& file : files) {
+        // Outputs are kept by content: another job may have the same bytes.
+        if (referenced(file)) continue;
+        std::error_code failed;
+        if (std::filesystem::remove(outputs_ / (file.sha256 + "." + file.extension), failed)) {
+            swept.bytes += static_cast<std::uint64_t>(file.bytes);
         }
     }
-    std::error_code failed;
-    if (std::filesystem::remove(outputs_ / (output->sha256 + "." + output->extension), failed)) {
-        swept.bytes += static_cast<std::uint64_t>(output->bytes);
+}
+
+bool Jobs::referenced(const OutputInfo& info) const {
+    const auto same = [&](const OutputInfo& other) {
+        return other.sha256 == info.sha256 && other.extension == info.extension;
+    };
+    for (const auto& [id, job] : jobs_) {
+        if (job.output && same(*job.output)) return true;
+        for (const auto& [name, extra] : job.extras) {
+            if (same(extra)) return true;
+        }
     }
+    return false;
 }
 
 Jobs::Swept Jobs::sweep(std::int64_t now) {
@@ -395,6 +433,10 @@ Jobs::Swept Jobs::sweep(std::int64_t now) {
                 if (job.output) {
                     files[job.output->sha256 + "." + job.output->extension] =
                         static_cast<std::uint64_t>(job.output->bytes);
+                }
+                for (const auto& [name, extra] : job.extras) {
+                    files[extra.sha256 + "." + extra.extension] =
+                        static_cast<std::uint64_t>(extra.bytes);
                 }
             }
             for (const auto& [name, bytes] : files) total += bytes;
@@ -526,7 +568,11 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
     std::error_code made;
     std::filesystem::create_directories(tmp, made);
     std::atomic<bool> timed_out{false};   // set by whichever stage polls should_stop
-    const auto outcome = [&]() -> Expected<OutputInfo> {
+    struct Kept {
+        OutputInfo output;
+        std::map<std::string, OutputInfo> extras;
+    };
+    const auto outcome = [&]() -> Expected<Kept> {
         auto text = store_.request(id);
         if (!text) return text.error();
         auto parsed = parse_job_request(*text, def_.limits, def_.version);
@@ -556,6 +602,22 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         def.frames = plan.frames;
         def.audio = plan.audio;
         def.renderer = &*warm;
+        // Side outputs, each a file of the job's directory (the masks a directory, archived).
+        const auto side = [&](const std::string& name) -> std::optional<std::string> {
+            if (std::find(request.extras.begin(), request.extras.end(), name) ==
+                request.extras.end()) {
+                return std::nullopt;
+            }
+            return tmp + "/" + name + (name == "masks" ? "" : std::string(".") + extension_of(name));
+        };
+        def.trace = side("trace");
+        def.events = side("events");
+        def.joints = side("joints");
+        def.truth = {.shapes = side("shapes"),
+                     .camera = side("camera"),
+                     .masks = side("masks"),
+                     .boxes = side("boxes")};
+        if (def.truth.masks) std::filesystem::create_directories(*def.truth.masks, made);
         // One segment at a time: the service's parallelism is its workers, each on its warm
         // renderer. The bytes are those of any --jobs.
         def.jobs = 1;
@@ -579,7 +641,23 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         };
         auto rendered = job::render(def);
         if (!rendered) return rendered.error();
-        return keep_output(def.output.path, request.format);
+        Kept kept;
+        for (const std::string& name : request.extras) {
+            std::string file = *side(name);
+            if (name == "masks") {
+                if (Status archived = write_tar(file, "masks", tmp + "/masks.tar"); !archived) {
+                    return archived.error();
+                }
+                file = tmp + "/masks.tar";
+            }
+            auto extra = keep_output(file, extension_of(name));
+            if (!extra) return extra.error();
+            kept.extras[name] = *extra;
+        }
+        auto output = keep_output(def.output.path, request.format);
+        if (!output) return output.error();
+        kept.output = *output;
+        return kept;
     }();
     const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
     std::error_code ignored;
@@ -596,9 +674,15 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
     Status stored;
     if (outcome) {
         job.status = JobStatus::succeeded;
-        job.output = *outcome;
+        job.output = outcome->output;
+        job.extras = outcome->extras;
         job.frames_done = job.frames_total;
-        stored = store_.set_succeeded(id, *outcome);
+        json extras = json::object();
+        for (const auto& [name, info] : outcome->extras) {
+            extras[name] = {{"sha256", info.sha256}, {"bytes", info.bytes},
+                            {"extension", info.extension}};
+        }
+        stored = store_.set_succeeded(id, outcome->output, extras.dump());
         mean_seconds_ = 0.8 * mean_seconds_ + 0.2 * seconds;
     } else {
         const bool cancelled = cancel->load() && !timed_out;

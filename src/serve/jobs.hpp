@@ -32,6 +32,7 @@ struct Job {
     int frames_total = 0;
     std::optional<std::string> error;
     std::optional<OutputInfo> output;
+    std::map<std::string, OutputInfo> extras;          // side outputs by name (request.hpp)
     // The scene's warnings: [{"line", "column", "message"}, ...] (request.hpp, PlannedJob).
     nlohmann::json warnings = nlohmann::json::array();
     std::uint64_t version = 0;                         // bumped on every change
@@ -76,7 +77,8 @@ public:
         int fd = -1;
         OutputInfo info;
     };
-    std::optional<OpenOutput> open_output(const std::string& id);
+    // `name`: "output" for the main one, or a side output's name.
+    std::optional<OpenOutput> open_output(const std::string& id, const std::string& name);
     // GET /v1/renders: jobs newest first, at most `limit`, only of `state` when given, only
     // those listed after the job `before` (the previous page's "next").
     nlohmann::json list(const std::optional<JobStatus>& state, std::size_t limit,
@@ -112,6 +114,8 @@ private:
     void sweeper_loop();
     // Forgets a finished job, and its output where no other job has it; with mutex_ held.
     void forget(const std::string& id, Swept& swept);
+    // Whether a job kept keeps the file of `info` (its main output or a side one).
+    bool referenced(const OutputInfo& info) const;
     void run_job(const std::string& id, std::optional<render::Renderer>& warm);
     void changed(Job& job);      // with mutex_ held
     void counted();              // with mutex_ held: queued_count_, running_count_ from the queue

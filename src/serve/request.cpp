@@ -33,6 +33,11 @@ std::optional<std::string> type_problem(const std::string& key, const json& valu
     if (key == "scene" || key == "output" || key == "size" || key == "preset" ||
         key == "frames") {
         if (!value.is_string()) return must_be("a string");
+    } else if (key == "outputs") {
+        if (!value.is_array() || value.empty()) return must_be("a list of output names");
+        for (const auto& item : value) {
+            if (!item.is_string()) return must_be("a list of output names");
+        }
     } else if (key == "set") {
         if (!value.is_object()) return must_be("an object of scene paths and values, e.g. "
                                                "{\"physics.seed\": 3}");
@@ -51,8 +56,8 @@ std::optional<std::string> type_problem(const std::string& key, const json& valu
 }
 
 bool known_field(const std::string& key) {
-    for (const char* name : {"scene", "output", "frame", "frames", "at", "size", "fps",
-                             "duration", "crf", "preset", "audio", "set"}) {
+    for (const char* name : {"scene", "output", "outputs", "frame", "frames", "at", "size",
+                             "fps", "duration", "crf", "preset", "audio", "set"}) {
         if (key == name) return true;
     }
     return false;
@@ -101,7 +106,16 @@ std::string JobRequest::stored() const {
     return all.dump();
 }
 
+const char* extension_of(const std::string& side_output) {
+    if (side_output == "shapes") return "json";
+    if (side_output == "masks") return "tar";
+    return "csv";
+}
+
 const char* content_type_of(const std::string& format) {
+    if (format == "csv") return "text/csv; charset=utf-8";
+    if (format == "json") return "application/json";
+    if (format == "tar") return "application/x-tar";
     if (format == "mp4") return "video/mp4";
     if (format == "webm") return "video/webm";
     if (format == "mkv") return "video/x-matroska";
@@ -130,8 +144,8 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
     for (const auto& [key, value] : parsed.items()) {
         if (!known_field(key)) {
             return refusal(400, "unknown field '" + key + "'; the fields are scene, output, "
-                                "frame, frames, at, size, fps, duration, crf, preset, audio "
-                                "and set");
+                                "outputs, frame, frames, at, size, fps, duration, crf, preset, "
+                                "audio and set");
         }
         if (auto problem = type_problem(key, value)) return refusal(400, *problem);
     }
@@ -149,6 +163,37 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
     for (const char* format : formats) known_format = known_format || request.format == format;
     if (!known_format) {
         return refusal(400, "field 'output' must be one of mp4, webm, mkv, gif, png, wav");
+    }
+    if (parsed.contains("outputs")) {
+        // The media format among them is the main output (`output` may say the same); the
+        // rest are side outputs, each once.
+        std::optional<std::string> media;
+        for (const auto& item : parsed["outputs"]) {
+            const std::string name = item.get<std::string>();
+            const bool is_media = std::find(formats.begin(), formats.end(), name) != formats.end();
+            const bool is_side =
+                std::find(side_outputs.begin(), side_outputs.end(), name) != side_outputs.end();
+            if (!is_media && !is_side) {
+                return refusal(400, "field 'outputs': unknown output '" + name +
+                                        "'; the outputs are mp4, webm, mkv, gif, png, wav (one "
+                                        "of them) and trace, events, joints, shapes, camera, "
+                                        "masks, boxes");
+            }
+            if (is_media) {
+                if (media || (parsed.contains("output") && parsed["output"] != name)) {
+                    return refusal(400, "field 'outputs' names one video or image format, the "
+                                        "same as 'output' if both are given");
+                }
+                media = name;
+                continue;
+            }
+            if (std::find(request.extras.begin(), request.extras.end(), name) !=
+                request.extras.end()) {
+                return refusal(400, "field 'outputs' names '" + name + "' twice");
+            }
+            request.extras.push_back(name);
+        }
+        if (media) request.format = *media;
     }
     parsed.erase("scene");
     parsed["output"] = request.format;

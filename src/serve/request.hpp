@@ -1,6 +1,7 @@
 #pragma once
 // A render request's JSON body: checked field by field, turned into the render-job layer's
 // request, and named by an id derived from discreel's version, the scene and the options.
+#include <array>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -29,6 +30,9 @@ struct JobRequest {
     nlohmann::json options;          // every field but the scene, output included: canonical
     job::RenderRequest render;       // .output is a bare "render.<format>", set by the worker
     std::vector<scene::Override> overrides;   // `set`, in key order
+    // `outputs` beside the main one: "trace", "events", "joints", "shapes", "camera", "masks",
+    // "boxes", in the order given (side_outputs names them all).
+    std::vector<std::string> extras;
     std::string id;                  // 32 hex digits
     std::string stored() const;      // the JSON kept in the store: options plus the scene
 };
@@ -52,5 +56,11 @@ std::variant<PlannedJob, Refusal> plan_job(const JobRequest& request,
                                            const scene::Limits& limits);
 
 const char* content_type_of(const std::string& format);
+
+// The outputs a job may ask for beside its video or image, each at /v1/renders/<id>/<name>.
+inline constexpr std::array<const char*, 7> side_outputs{"trace",  "events", "joints", "shapes",
+                                                         "camera", "masks",  "boxes"};
+// A side output's file extension: "csv", "json", or "tar" for the masks.
+const char* extension_of(const std::string& side_output);
 
 }  // namespace discreel::serve

@@ -216,7 +216,8 @@ struct Server::Impl final : http::Handler {
     http::Response route(http::Request& request);
     http::Response post_render(const http::Request& req);
     http::Response post_validate(const http::Request& req);
-    http::Response get_output(const http::Request& req, const std::string& id);
+    http::Response get_output(const http::Request& req, const std::string& id,
+                              const std::string& name);
     http::Response list_renders(const http::Request& req);
     http::Response get_events(const std::string& id);
 };
@@ -425,7 +426,12 @@ http::Response Server::Impl::route(http::Request& req) {
         }
         return only("GET, HEAD, DELETE");
     }
-    if (rest == "/output") return get ? get_output(req, id) : only("GET, HEAD");
+    if (rest == "/output") return get ? get_output(req, id, "output") : only("GET, HEAD");
+    for (const char* side : side_outputs) {
+        if (rest.substr(1) == side && rest.front() == '/') {
+            return get ? get_output(req, id, side) : only("GET, HEAD");
+        }
+    }
     if (rest == "/events") return get ? get_events(id) : only("GET");
     return refuse(404, "no such resource");
 }
@@ -521,11 +527,16 @@ http::Response Server::Impl::list_renders(const http::Request& req) {
     return reply(200, jobs->list(state, limit, before));
 }
 
-http::Response Server::Impl::get_output(const http::Request& req, const std::string& id) {
+http::Response Server::Impl::get_output(const http::Request& req, const std::string& id,
+                                        const std::string& name) {
     // Opened under the jobs' lock: the sweeper cannot take the file between here and the read.
-    auto output = jobs->open_output(id);
+    auto output = jobs->open_output(id, name);
     if (!output) {
-        if (!jobs->get(id)) return refuse(404, "no job " + id);
+        const auto job = jobs->get(id);
+        if (!job) return refuse(404, "no job " + id);
+        if ((*job)["status"] == "succeeded") {
+            return refuse(404, "job " + id + " has no " + name + ": ask for it in \"outputs\"");
+        }
         return refuse(409, "the job has no output (yet): see its status");
     }
     if (output->fd < 0) return refuse(500, "the output of job " + id + " is missing");
@@ -551,7 +562,8 @@ http::Response Server::Impl::get_output(const http::Request& req, const std::str
     }
     res.set("Content-Type", content_type_of(output->info.extension));
     res.set("Content-Disposition",
-            "inline; filename=\"" + id + "." + output->info.extension + "\"");
+            "inline; filename=\"" + id + (name == "output" ? "" : "." + name) + "." +
+                output->info.extension + "\"");
     http::FileBody file{.fd = owned,
                         .offset = 0,
                         .length = size,

@@ -62,7 +62,8 @@ CREATE TABLE IF NOT EXISTS jobs (
     bytes INTEGER,
     extension TEXT,
     warnings TEXT,
-    created INTEGER
+    created INTEGER,
+    extras TEXT
 );
 )sql";
 
@@ -152,7 +153,8 @@ Expected<Store> Store::open(const std::string& path) {
     }
     for (const auto& [column, add] :
          {std::pair{"warnings", "ALTER TABLE jobs ADD COLUMN warnings TEXT;"},
-          std::pair{"created", "ALTER TABLE jobs ADD COLUMN created INTEGER;"}}) {
+          std::pair{"created", "ALTER TABLE jobs ADD COLUMN created INTEGER;"},
+          std::pair{"extras", "ALTER TABLE jobs ADD COLUMN extras TEXT;"}}) {
         const auto has = has_column(db, column);
         if (!has) return has.error();
         if (*has) continue;
@@ -197,7 +199,7 @@ Status Store::update(const char* sql, const std::vector<std::optional<std::strin
 Expected<std::vector<StoredJob>> Store::load() {
     auto statement = prepare(db_.get(),
                              "SELECT id, status, frames_total, error, sha256, bytes, extension, "
-                             "warnings, created FROM jobs ORDER BY seq");
+                             "warnings, created, extras FROM jobs ORDER BY seq");
     if (!statement) return statement.error();
     std::vector<StoredJob> jobs;
     int step = SQLITE_ROW;
@@ -215,6 +217,7 @@ Expected<std::vector<StoredJob>> Store::load() {
         }
         if (auto warnings = optional_text(row, 7)) job.warnings = std::move(*warnings);
         job.created = sqlite3_column_int64(row, 8);   // 0 for NULL
+        if (auto extras = optional_text(row, 9)) job.extras = std::move(*extras);
         jobs.push_back(std::move(job));
     }
     if (step != SQLITE_DONE) return sqlite_error(db_.get(), "read the job store");
@@ -237,7 +240,8 @@ Status Store::accept(const std::string& id, const std::string& request, int fram
     return update("INSERT INTO jobs (id, request, status, frames_total, warnings, created) "
                   "VALUES (?1, ?2, 'queued', ?4, ?3, ?5) "
                   "ON CONFLICT(id) DO UPDATE SET status = 'queued', error = NULL, "
-                  "sha256 = NULL, bytes = NULL, extension = NULL, warnings = ?3, created = ?5",
+                  "sha256 = NULL, bytes = NULL, extension = NULL, warnings = ?3, created = ?5, "
+                  "extras = NULL",
                   {id, request, warnings}, {frames_total, created});
 }
 
@@ -249,10 +253,11 @@ Status Store::set_running(const std::string& id) {
     return update("UPDATE jobs SET status = 'running' WHERE id = ?1", {id}, {});
 }
 
-Status Store::set_succeeded(const std::string& id, const OutputInfo& output) {
+Status Store::set_succeeded(const std::string& id, const OutputInfo& output,
+                            const std::string& extras) {
     return update("UPDATE jobs SET status = 'succeeded', error = NULL, sha256 = ?2, "
-                  "extension = ?3, bytes = ?4 WHERE id = ?1",
-                  {id, output.sha256, output.extension}, {output.bytes});
+                  "extension = ?3, extras = ?4, bytes = ?5 WHERE id = ?1",
+                  {id, output.sha256, output.extension, extras}, {output.bytes});
 }
 
 Status Store::set_ended(const std::string& id, JobStatus status, const std::string& error) {

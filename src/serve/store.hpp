@@ -33,6 +33,9 @@ struct StoredJob {
     std::optional<OutputInfo> output;     // succeeded
     std::string warnings = "[]";          // the scene's warnings, a JSON array (job_json)
     std::int64_t created = 0;             // Unix seconds of its (last) acceptance; 0: unknown
+    // Side outputs of a succeeded job (trace, masks, ...), a JSON object of
+    // {"name": {"sha256", "bytes", "extension"}}.
+    std::string extras = "{}";
 };
 
 // An exclusive lock on a store (flock on DATA/serve.lock), held while the object lives: a
@@ -72,7 +75,9 @@ public:
     // Forgets a job (the sweeper's): its row goes.
     Status remove(const std::string& id);
     Status set_running(const std::string& id);
-    Status set_succeeded(const std::string& id, const OutputInfo& output);
+    // `extras`: the side outputs, as StoredJob::extras.
+    Status set_succeeded(const std::string& id, const OutputInfo& output,
+                         const std::string& extras = "{}");
     Status set_ended(const std::string& id, JobStatus status, const std::string& error);
 
 private:

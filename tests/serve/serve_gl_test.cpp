@@ -9,6 +9,7 @@
 #include <httplib.h>
 
 #include <atomic>
+#include <map>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -245,7 +246,7 @@ TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
                                           "JSON object\"}}\n")}));
     EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"colour", "red"}}.dump()).second,
               "{\"error\":{\"message\":\"unknown field 'colour'; the fields are scene, output, "
-              "frame, frames, at, size, fps, duration, crf, preset, audio and set\"}}\n");
+              "outputs, frame, frames, at, size, fps, duration, crf, preset, audio and set\"}}\n");
     // `set` as --set: its problems name the key, with no place in the scene.
     EXPECT_EQ(json::parse(answer("/v1/validate", json{{"scene", scene_text()},
                                                       {"set", {{"physics.sede", 3}}}}
@@ -307,6 +308,76 @@ TEST_F(ServeGLTest, SetAndFramesAreTheCommandLines) {
     EXPECT_NE(cli_render(dir, scene_text(), {"--frames", "2-5", "--set", "video.size=[96,54]"},
                          "seed1.mkv"),
               cli);   // the seed took effect
+}
+
+// The files of a tar archive, by name.
+std::map<std::string, std::string> untar(const std::string& archive) {
+    std::map<std::string, std::string> files;
+    for (std::size_t at = 0; at + 512 <= archive.size();) {
+        const std::string name = archive.substr(at, archive.find('\0', at) - at).substr(0, 100);
+        if (name.empty()) break;   // the zero blocks at the end
+        const std::size_t size = std::stoul(archive.substr(at + 124, 11), nullptr, 8);
+        files[name] = archive.substr(at + 512, size);
+        at += 512 + (size + 511) / 512 * 512;
+    }
+    return files;
+}
+
+// A dataset's job: the clip and its ground truth as outputs of one job, each the bytes the
+// command line writes with the same options.
+TEST_F(ServeGLTest, SideOutputsAreTheCommandLinesFiles) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    const json request{{"scene", scene_text()}, {"frames", "0-3"}, {"size", "64x36"},
+                       {"outputs", {"mkv", "trace", "events", "shapes", "camera", "masks",
+                                    "boxes"}}};
+    auto accepted = post(client, "/v1/renders", request);
+    ASSERT_TRUE(accepted);
+    ASSERT_EQ(accepted->status, 202) << accepted->body;
+    const json done = wait_final(client, json::parse(accepted->body)["id"]);
+    ASSERT_EQ(done["status"], "succeeded") << done.dump();
+    EXPECT_EQ(done["output"]["content_type"], "video/x-matroska");
+    ASSERT_EQ(done["outputs"].size(), 6u) << done.dump();
+    EXPECT_EQ(done["outputs"]["masks"]["content_type"], "application/x-tar");
+    EXPECT_EQ(done["outputs"]["shapes"]["content_type"], "application/json");
+
+    testing::write_file(dir / "cli.yaml", scene_text());
+    const auto cli = run_command({bin, "render", dir / "cli.yaml", "-o", dir / "cli.mkv",
+                                  "--frames", "0-3", "--size", "64x36", "--trace",
+                                  dir / "t.csv", "--events", dir / "e.csv", "--shapes",
+                                  dir / "s.json", "--camera", dir / "c.csv", "--masks",
+                                  dir / "masks", "--boxes", dir / "b.csv", "-q"});
+    ASSERT_EQ(cli.exit_code, 0) << cli.err;
+    const auto fetch = [&](const std::string& name) {
+        auto got = client.Get(done["outputs"][name]["url"].get<std::string>());
+        EXPECT_TRUE(got && got->status == 200) << name;
+        return got ? got->body : std::string();
+    };
+    EXPECT_EQ(fetch("trace"), read_file(dir / "t.csv"));
+    EXPECT_EQ(fetch("events"), read_file(dir / "e.csv"));
+    EXPECT_EQ(fetch("shapes"), read_file(dir / "s.json"));
+    EXPECT_EQ(fetch("camera"), read_file(dir / "c.csv"));
+    EXPECT_EQ(fetch("boxes"), read_file(dir / "b.csv"));
+    const auto masks = untar(fetch("masks"));
+    ASSERT_EQ(masks.size(), 4u);
+    for (int frame = 0; frame < 4; ++frame) {
+        const std::string name = "mask_0000" + std::to_string(frame) + ".png";
+        EXPECT_EQ(masks.at("masks/" + name), read_file(dir / ("masks/" + name))) << name;
+    }
+    auto video = client.Get("/v1/renders/" + done["id"].get<std::string>() + "/output");
+    ASSERT_TRUE(video);
+    EXPECT_EQ(video->body, read_file(dir / "cli.mkv"));
+    // A side output not asked for, and names that are none.
+    auto absent = client.Get("/v1/renders/" + done["id"].get<std::string>() + "/joints");
+    ASSERT_TRUE(absent);
+    EXPECT_EQ(absent->status, 404);
+    auto refused = post(client, "/v1/renders",
+                        json{{"scene", scene_text()}, {"outputs", {"mp4", "depth"}}});
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 400);
+    EXPECT_EQ(json::parse(refused->body)["error"]["message"],
+              "field 'outputs': unknown output 'depth'; the outputs are mp4, webm, mkv, gif, png, "
+              "wav (one of them) and trace, events, joints, shapes, camera, masks, boxes");
 }
 
 // An app's view of its jobs: newest first, a page at a time, by state.
