@@ -327,6 +327,27 @@ std::optional<json> Jobs::get(const std::string& id) {
     return job_json(found->second);
 }
 
+bool Jobs::has_output(const std::string& id, const std::string& name) {
+    {
+        std::lock_guard lock(mutex_);
+        const auto found = jobs_.find(id);
+        if (found == jobs_.end()) return false;
+        if (found->second.extras.count(name) > 0) return true;
+        if (found->second.status == JobStatus::succeeded) return false;
+    }
+    // Not done yet: what it asked for is in its request.
+    auto text = store_.request(id);
+    if (!text) return false;
+    const json request = json::parse(*text, nullptr, false);
+    if (!request.is_object() || !request.contains("outputs") || !request["outputs"].is_array()) {
+        return false;
+    }
+    for (const auto& item : request["outputs"]) {
+        if (item.is_string() && item.get<std::string>() == name) return true;
+    }
+    return false;
+}
+
 std::optional<Jobs::OpenOutput> Jobs::open_output(const std::string& id,
                                                   const std::string& name) {
     std::lock_guard lock(mutex_);

@@ -77,6 +77,8 @@ public:
         int fd = -1;
         OutputInfo info;
     };
+    // Whether job `id` asked for side output `name` (it need not have succeeded yet).
+    bool has_output(const std::string& id, const std::string& name);
     // `name`: "output" for the main one, or a side output's name.
     std::optional<OpenOutput> open_output(const std::string& id, const std::string& name);
     // GET /v1/renders: jobs newest first, at most `limit`, only of `state` when given, only

@@ -427,12 +427,18 @@ http::Response Server::Impl::route(http::Request& req) {
         return only("GET, HEAD, DELETE");
     }
     if (rest == "/output") return get ? get_output(req, id, "output") : only("GET, HEAD");
+    // /events is two things: the job's progress as server-sent events (what EventSource asks
+    // for), and the contact events' CSV of a job that asked for that output.
+    if (rest == "/events" &&
+        (req.field("accept").find("text/event-stream") != std::string_view::npos ||
+         !jobs->has_output(id, "events"))) {
+        return get ? get_events(id) : only("GET");
+    }
     for (const char* side : side_outputs) {
         if (rest.substr(1) == side && rest.front() == '/') {
             return get ? get_output(req, id, side) : only("GET, HEAD");
         }
     }
-    if (rest == "/events") return get ? get_events(id) : only("GET");
     return refuse(404, "no such resource");
 }
 

@@ -355,6 +355,12 @@ TEST_F(ServeGLTest, SideOutputsAreTheCommandLinesFiles) {
     };
     EXPECT_EQ(fetch("trace"), read_file(dir / "t.csv"));
     EXPECT_EQ(fetch("events"), read_file(dir / "e.csv"));
+    // The same path with EventSource's Accept is the job's progress stream, as for any job.
+    auto stream = client.Get(done["outputs"]["events"]["url"].get<std::string>(),
+                             {{"Accept", "text/event-stream"}});
+    ASSERT_TRUE(stream);
+    EXPECT_EQ(stream->get_header_value("Content-Type"), "text/event-stream");
+    EXPECT_EQ(stream->body.rfind("event: job\n", 0), 0u) << stream->body;
     EXPECT_EQ(fetch("shapes"), read_file(dir / "s.json"));
     EXPECT_EQ(fetch("camera"), read_file(dir / "c.csv"));
     EXPECT_EQ(fetch("boxes"), read_file(dir / "b.csv"));
