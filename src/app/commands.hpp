@@ -73,6 +73,7 @@ struct ServeOptions {
     std::vector<std::string> cors_origins;   // --cors: web origins whose pages may call it
     std::optional<double> keep_seconds = 7.0 * 24 * 3600;   // --keep; nullopt: never
     std::optional<std::uint64_t> keep_bytes;                // --keep-bytes
+    std::vector<std::string> callback_allow;  // --callback-allow: hosts callbacks may go to
     double job_timeout = 600;                // seconds
     scene::Limits limits;
     std::string version;                     // discreel's, part of every job id

@@ -611,6 +611,12 @@ static int run_words(const std::vector<std::string>& words, const std::string& w
                  "Also delete the oldest finished jobs while their outputs take more than this "
                  "(K, M, G, T: powers of 1024)")
         ->option_text("SIZE");
+    serve_cmd->add_option("--callback-allow", serve.callback_allow,
+                          "A host (name or address, as the URL writes it) a job's \"callback\" "
+                          "may name; repeat for more. Without it, callbacks are refused")
+        ->option_text("HOST")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     serve_cmd->add_option("--cors", serve.cors_origins,
                           "A web origin (scheme://host[:port]) whose pages may call the API "
                           "from a browser: preflights are answered and Access-Control-Allow-"

@@ -86,6 +86,7 @@ int run_serve(const ServeOptions& o, std::ostream& out, std::ostream& err) {
     def.cors_origins = o.cors_origins;
     def.keep_seconds = o.keep_seconds;
     def.keep_bytes = o.keep_bytes;
+    def.callback_allow = o.callback_allow;
     if (Status listen = split_listen(o.listen, def.host, def.port); !listen) {
         report_error(err, listen.error().message);
         return exit_bad_input;

@@ -173,6 +173,7 @@ Expected<std::unique_ptr<Jobs>> Jobs::open(const ServeDef& def, Metrics& metrics
     auto loaded = store->load();
     if (!loaded) return loaded.error();
     std::unique_ptr<Jobs> jobs(new Jobs(def, metrics, std::move(*store)));
+    jobs->callbacks_ = std::make_unique<Callbacks>(CallbackPolicy{.first_wait = def.callback_retry});
     jobs->lock_ = std::move(*lock);
     for (StoredJob& stored : *loaded) {
         Job job{.id = stored.id,
@@ -229,6 +230,7 @@ void Jobs::stop() {
     for (std::thread& worker : workers_) worker.join();
     workers_.clear();
     if (sweeper_.joinable()) sweeper_.join();
+    if (callbacks_) callbacks_->stop();
 }
 
 void Jobs::changed(Job& job) {
@@ -325,6 +327,24 @@ std::optional<json> Jobs::get(const std::string& id) {
     const auto found = jobs_.find(id);
     if (found == jobs_.end()) return std::nullopt;
     return job_json(found->second);
+}
+
+std::optional<CallbackUrl> Jobs::callback_of(const std::string& id) {
+    auto text = store_.request(id);
+    if (!text) return std::nullopt;
+    const json request = json::parse(*text, nullptr, false);
+    if (!request.is_object() || !request.contains("callback") || !request["callback"].is_string()) {
+        return std::nullopt;
+    }
+    auto url = parse_callback_url(request["callback"].get<std::string>());
+    if (!url) return std::nullopt;
+    return *url;
+}
+
+void Jobs::call_back(const Job& job, const std::optional<CallbackUrl>& url) {
+    if (!url || !callbacks_) return;
+    callbacks_->post(*url, job_json(job).dump(-1, ' ', false, json::error_handler_t::replace),
+                     job.id);
 }
 
 bool Jobs::has_output(const std::string& id, const std::string& name) {
@@ -517,6 +537,7 @@ std::pair<int, json> Jobs::cancel(const std::string& id) {
         metrics_.ended("cancelled", 0);
         log_line("job", {{"id", id}, {"status", "cancelled"}});
         changed(job);
+        call_back(job, callback_of(id));
         return {200, job_json(job)};
     }
     job.cancel->store(true);
@@ -593,6 +614,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         OutputInfo output;
         std::map<std::string, OutputInfo> extras;
     };
+    std::optional<CallbackUrl> callback;
     const auto outcome = [&]() -> Expected<Kept> {
         auto text = store_.request(id);
         if (!text) return text.error();
@@ -601,6 +623,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
             return Error{refused->body["error"]["message"].get<std::string>()};
         }
         const JobRequest& request = std::get<JobRequest>(parsed);
+        callback = request.callback;
         auto planned = plan_job(request, def_.limits);
         if (auto* refused = std::get_if<Refusal>(&planned)) {
             return Error{refused->body["errors"][0]["message"].get<std::string>()};
@@ -727,6 +750,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
     if (job.error) fields["error"] = *job.error;
     log_line("job", fields);
     changed(job);
+    call_back(job, callback);
 }
 
 }  // namespace discreel::serve

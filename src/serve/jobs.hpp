@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "discreel/serve.hpp"
+#include "callbacks.hpp"
 #include "metrics.hpp"
 #include "request.hpp"
 #include "store.hpp"
@@ -144,6 +145,11 @@ private:
     std::atomic<bool> stopping_{false};
     std::vector<std::thread> workers_;
     std::thread sweeper_;
+    std::unique_ptr<Callbacks> callbacks_;
+    // The job's callback, from its stored request; nullopt when it has none.
+    std::optional<CallbackUrl> callback_of(const std::string& id);
+    // Hands a job that reached a final status to its callback; with mutex_ held.
+    void call_back(const Job& job, const std::optional<CallbackUrl>& url);
     std::condition_variable sweeper_wake_;
     std::uint64_t last_seq_ = 0;
 };

@@ -1,6 +1,7 @@
 #include "request.hpp"
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -31,7 +32,7 @@ std::optional<std::string> type_problem(const std::string& key, const json& valu
         return "field '" + key + "' must be " + what;
     };
     if (key == "scene" || key == "output" || key == "size" || key == "preset" ||
-        key == "frames") {
+        key == "frames" || key == "callback") {
         if (!value.is_string()) return must_be("a string");
     } else if (key == "outputs") {
         if (!value.is_array() || value.empty()) return must_be("a list of output names");
@@ -57,7 +58,7 @@ std::optional<std::string> type_problem(const std::string& key, const json& valu
 
 bool known_field(const std::string& key) {
     for (const char* name : {"scene", "output", "outputs", "frame", "frames", "at", "size",
-                             "fps", "duration", "crf", "preset", "audio", "set"}) {
+                             "fps", "duration", "crf", "preset", "audio", "set", "callback"}) {
         if (key == name) return true;
     }
     return false;
@@ -77,6 +78,43 @@ std::optional<int> small_int(const json& value) {
     return static_cast<int>(v);
 }
 
+// The job layer's messages name the command line's options; a service client sends fields,
+// and cannot pass the options only the server's operator sets. The same advice in its terms.
+std::string in_service_terms(std::string message) {
+    static const std::array<std::pair<const char*, const char*>, 14> words{{
+        {"; PNG, GIF and --pix-fmt yuv444p take any size", "; PNG and GIF take any size"},
+        {"(raise the limit with --max-duration)", "(the server's --max-duration)"},
+        {"(raise it with --max-substeps)", "(the server's --max-substeps)"},
+        {"(raise it with --max-scene-bytes)", "(the server's --max-scene-bytes)"},
+        {"--frames", "'frames'"},
+        {"--frame", "'frame'"},
+        {"--at", "'at'"},
+        {"--size", "'size'"},
+        {"--fps", "'fps'"},
+        {"--duration", "'duration'"},
+        {"--crf", "'crf'"},
+        {"--preset", "'preset'"},
+        {"--audio", "'audio'"},
+        {"a numbered .png name writes every frame", "'output' png is one still"},
+    }};
+    for (const auto& [from, to] : words) {
+        const std::string_view f = from;
+        for (auto at = message.find(f); at != std::string::npos; at = message.find(f, at)) {
+            // "--frame" must not take the start of "--frames".
+            const std::size_t end = at + f.size();
+            if (f.rfind("--", 0) == 0 && end < message.size() &&
+                (std::isalnum(static_cast<unsigned char>(message[end])) != 0 ||
+                 message[end] == '-')) {
+                at = end;
+                continue;
+            }
+            message.replace(at, f.size(), to);
+            at += std::string_view(to).size();
+        }
+    }
+    return message;
+}
+
 json one_error(const json& line, const json& column, const std::string& message) {
     return json{{"line", line}, {"column", column}, {"message", message}};
 }
@@ -88,7 +126,7 @@ json placed(const std::vector<scene::Diagnostic>& diagnostics) {
         if (d.line <= 0 && d.file != "scene") {   // one of `set`'s values: no place in the scene
             list.push_back(one_error(nullptr, nullptr, d.file + ": " + d.message));
         } else {
-            list.push_back(one_error(d.line, d.column, d.message));
+            list.push_back(one_error(d.line, d.column, in_service_terms(d.message)));
         }
     }
     return list;
@@ -145,7 +183,7 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
         if (!known_field(key)) {
             return refusal(400, "unknown field '" + key + "'; the fields are scene, output, "
                                 "outputs, frame, frames, at, size, fps, duration, crf, preset, "
-                                "audio and set");
+                                "audio, set and callback");
         }
         if (auto problem = type_problem(key, value)) return refusal(400, *problem);
     }
@@ -218,6 +256,11 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
         }
     }
     if (parsed.contains("audio")) render.audio = parsed["audio"].get<bool>();
+    if (parsed.contains("callback")) {
+        auto url = parse_callback_url(parsed["callback"].get<std::string>());
+        if (!url) return refusal(400, "field 'callback': " + url.error().message);
+        request.callback = *url;
+    }
     if (parsed.contains("size")) {
         const auto size = parse_size(parsed["size"].get<std::string>());
         if (!size) return refusal(400, "field 'size' must be WIDTHxHEIGHT, e.g. \"320x180\"");
@@ -242,8 +285,9 @@ std::variant<PlannedJob, Refusal> plan_job(const JobRequest& request,
     json warnings = placed(loaded.warnings);
     auto plan = job::plan_render(std::move(loaded.scene), request.render, limits);
     if (!plan) {
-        return Refusal{422, json{{"errors", json::array({one_error(nullptr, nullptr,
-                                                                   plan.error().message)})}}};
+        return Refusal{422, json{{"errors", json::array({one_error(
+                                                nullptr, nullptr,
+                                                in_service_terms(plan.error().message))})}}};
     }
     return PlannedJob{std::move(*plan), std::move(warnings)};
 }

@@ -2,6 +2,7 @@
 // A render request's JSON body: checked field by field, turned into the render-job layer's
 // request, and named by an id derived from discreel's version, the scene and the options.
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -9,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "callbacks.hpp"
 #include "discreel/render_plan.hpp"
 #include "discreel/scene.hpp"
 
@@ -33,6 +35,7 @@ struct JobRequest {
     // `outputs` beside the main one: "trace", "events", "joints", "shapes", "camera", "masks",
     // "boxes", in the order given (side_outputs names them all).
     std::vector<std::string> extras;
+    std::optional<CallbackUrl> callback;   // POSTed the job when it ends
     std::string id;                  // 32 hex digits
     std::string stored() const;      // the JSON kept in the store: options plus the scene
 };

@@ -442,10 +442,26 @@ http::Response Server::Impl::route(http::Request& req) {
     return refuse(404, "no such resource");
 }
 
+// A callback only to a host the operator allowed: else any client could make the server
+// send requests into networks only it reaches.
+std::optional<http::Response> refuse_callback(const JobRequest& request, const ServeDef& def) {
+    if (!request.callback) return std::nullopt;
+    for (const std::string& allowed : def.callback_allow) {
+        if (lower(allowed) == request.callback->host) return std::nullopt;
+    }
+    if (def.callback_allow.empty()) {
+        return refuse(400, "field 'callback': this server sends no callbacks (serve "
+                           "--callback-allow HOST allows one)");
+    }
+    return refuse(400, "field 'callback': the host '" + request.callback->host +
+                           "' is not one this server calls back (serve --callback-allow)");
+}
+
 http::Response Server::Impl::post_render(const http::Request& req) {
     auto parsed = parse_job_request(req.body, def.limits, def.version);
     if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(*refused);
     const JobRequest& request = std::get<JobRequest>(parsed);
+    if (auto refused = refuse_callback(request, def)) return *refused;
     auto planned = plan(request);
     if (auto* refused = std::get_if<Refusal>(&planned)) return reply(*refused);
     const PlannedJob& resolved = std::get<PlannedJob>(planned);
@@ -476,6 +492,7 @@ http::Response Server::Impl::post_render(const http::Request& req) {
 http::Response Server::Impl::post_validate(const http::Request& req) {
     auto parsed = parse_job_request(req.body, def.limits, def.version);
     if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(*refused);
+    if (auto refused = refuse_callback(std::get<JobRequest>(parsed), def)) return *refused;
     auto planned = plan(std::get<JobRequest>(parsed));
     if (auto* refused = std::get_if<Refusal>(&planned)) return reply(*refused);
     return reply(200, {{"ok", true}, {"warnings", std::get<PlannedJob>(planned).warnings}});

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <map>
+#include <mutex>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -239,14 +240,27 @@ TEST_F(ServeGLTest, RequestsAreCheckedWithExactAnswers) {
     EXPECT_EQ(json::parse(answer("/v1/validate",
                                  json{{"scene", scene_text()}, {"fps", 500}}.dump()).second),
               json::parse(R"({"errors": [{"line": null, "column": null,
-                             "message": "--fps must be between 1 and 240"}]})"));
+                             "message": "'fps' must be between 1 and 240"}]})"));
+    // Advice names the request's fields, never an option the service does not take.
+    const auto advice = [&](const json& body) {
+        return json::parse(answer("/v1/validate", body.dump()).second)["errors"][0]["message"]
+            .get<std::string>();
+    };
+    EXPECT_EQ(advice(json{{"scene", scene_text()}, {"output", "mp4"}, {"size", "161x91"}}),
+              "'size' 161x91: mp4 video (yuv420p) stores colour at half resolution, so its "
+              "width and height must be even; PNG and GIF take any size");
+    EXPECT_EQ(advice(json{{"scene", scene_text()}, {"output", "png"}, {"frame", 2}, {"at", 0.5}}),
+              "give either 'frame' or 'at', not both");
+    EXPECT_EQ(advice(json{{"scene", scene_text()}, {"output", "mp4"}, {"frames", "5-2"}}),
+              "'frames' 5-2 ends before it starts; give the first frame first");
     EXPECT_EQ(answer("/v1/renders", "{\"scene\": ").first, 400);
     EXPECT_EQ(answer("/v1/renders", "[1, 2]"),
               (std::pair{400, std::string("{\"error\":{\"message\":\"the body must be a "
                                           "JSON object\"}}\n")}));
     EXPECT_EQ(answer("/v1/renders", json{{"scene", scene_text()}, {"colour", "red"}}.dump()).second,
               "{\"error\":{\"message\":\"unknown field 'colour'; the fields are scene, output, "
-              "outputs, frame, frames, at, size, fps, duration, crf, preset, audio and set\"}}\n");
+              "outputs, frame, frames, at, size, fps, duration, crf, preset, audio, set and "
+              "callback\"}}\n");
     // `set` as --set: its problems name the key, with no place in the scene.
     EXPECT_EQ(json::parse(answer("/v1/validate", json{{"scene", scene_text()},
                                                       {"set", {{"physics.sede", 3}}}}
@@ -384,6 +398,77 @@ TEST_F(ServeGLTest, SideOutputsAreTheCommandLinesFiles) {
     EXPECT_EQ(json::parse(refused->body)["error"]["message"],
               "field 'outputs': unknown output 'depth'; the outputs are mp4, webm, mkv, gif, png, "
               "wav (one of them) and trace, events, joints, shapes, camera, masks, boxes");
+}
+
+// "callback": the job's final state POSTed once to the app's server, retried after a failure,
+// to allowed hosts only.
+TEST_F(ServeGLTest, ACallbackIsReceivedOnceAndRetriedAfterAFailure) {
+    httplib::Server receiver;
+    std::mutex mutex;
+    std::vector<std::pair<std::string, json>> received;   // path, body
+    int answered = 0;
+    receiver.Post(R"(/hooks/.*)", [&](const httplib::Request& req, httplib::Response& res) {
+        std::lock_guard lock(mutex);
+        received.emplace_back(req.path, json::parse(req.body, nullptr, false));
+        // The first delivery of the second job fails: it must come again.
+        res.status = req.path == "/hooks/flaky" && ++answered == 1 ? 500 : 204;
+    });
+    const int port = receiver.bind_to_any_port("127.0.0.1");
+    std::thread serving([&] { receiver.listen_after_bind(); });
+    struct Stop {
+        httplib::Server& server;
+        std::thread& thread;
+        ~Stop() {
+            server.stop();
+            thread.join();
+        }
+    } stop{receiver, serving};
+
+    ServeProcess server(bin, {"--data", dir / "data", "--callback-allow", "127.0.0.1"}, log);
+    auto client = client_for(server.port());
+    const std::string base = "http://127.0.0.1:" + std::to_string(port);
+    std::vector<std::string> ids;
+    for (const char* hook : {"/hooks/steady", "/hooks/flaky"}) {
+        auto accepted = post(client, "/v1/renders",
+                             json{{"scene", scene_text()}, {"output", "png"}, {"size", "64x36"},
+                                  {"callback", base + hook}});
+        ASSERT_TRUE(accepted);
+        ASSERT_EQ(accepted->status, 202) << accepted->body;
+        ids.push_back(json::parse(accepted->body)["id"]);
+        ASSERT_EQ(wait_final(client, ids.back())["status"], "succeeded");
+    }
+    // The flaky hook's second try comes a second after its first.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    for (;;) {
+        {
+            std::lock_guard lock(mutex);
+            if (received.size() >= 3 || std::chrono::steady_clock::now() > deadline) break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));   // nothing more may come
+    std::lock_guard lock(mutex);
+    ASSERT_EQ(received.size(), 3u);
+    EXPECT_EQ(std::count_if(received.begin(), received.end(),
+                            [](const auto& r) { return r.first == "/hooks/steady"; }),
+              1);
+    for (const auto& [path, body] : received) {
+        EXPECT_EQ(body["status"], "succeeded") << path;
+        EXPECT_EQ(body["id"], path == "/hooks/steady" ? ids[0] : ids[1]);
+        EXPECT_EQ(body["output"]["url"], "/v1/renders/" + body["id"].get<std::string>() + "/output");
+    }
+    // Another host is refused before anything is stored.
+    auto refused = post(client, "/v1/renders",
+                        json{{"scene", scene_text()}, {"callback", "http://10.1.2.3/hook"}});
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 400);
+    EXPECT_EQ(json::parse(refused->body)["error"]["message"],
+              "field 'callback': the host '10.1.2.3' is not one this server calls back (serve "
+              "--callback-allow)");
+    refused = post(client, "/v1/renders",
+                   json{{"scene", scene_text()}, {"callback", "https://127.0.0.1/hook"}});
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 400);
 }
 
 // An app's view of its jobs: newest first, a page at a time, by state.

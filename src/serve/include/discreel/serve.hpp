@@ -39,6 +39,11 @@ struct ServeDef {
     // queued or running, and an output being sent, are never taken. Nullopt: no such bound.
     std::optional<double> keep_seconds = 7.0 * 24 * 3600;
     std::optional<std::uint64_t> keep_bytes;
+    // Hosts a job's "callback" URL may name (as written in it: a name or an address); empty:
+    // callbacks are refused.
+    std::vector<std::string> callback_allow;
+    // Waits between a callback's tries: the first, doubled after each failure (6 tries).
+    std::chrono::milliseconds callback_retry{1000};
 };
 
 // Whether `dir` may be a server's --data: a new or empty directory, or one holding a job
