@@ -191,6 +191,9 @@ TEST_F(GoldenCliGLTest, ASceneSetsItsOwnThresholds) {
     EXPECT_EQ(golden({"--max-diff-ratio", "0.1"}).exit_code, 1);   // the tighter decides
     write_file(scene_, blue + "golden:\n  tolerance: 1\n");
     EXPECT_EQ(golden({}).exit_code, 0);
+    // --set reaches the same block: one run made lenient without touching the file.
+    write_file(scene_, blue);
+    EXPECT_EQ(golden({"--set", "golden.max_diff_ratio=0.1"}).exit_code, 0);
     write_file(scene_, blue + "golden:\n  tolerance: 2\n");
     const auto bad = golden({});
     EXPECT_EQ(bad.exit_code, 2);
