@@ -4,14 +4,8 @@
 //     dataset_bench [--scenes 100] [--jobs 1,2] [--repeat 1]
 // Prints a Markdown table and appends one row per --jobs to bench/results/dataset_bench.csv:
 // scenes per second and CPU seconds per scene (the median of --repeat runs).
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -21,24 +15,15 @@
 #include <vector>
 
 #include "bench_results.hpp"
-
-extern char** environ;
+#include "child_process.hpp"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
 
 [[noreturn]] void die(const std::string& message) {
     std::cerr << "dataset_bench: " << message << '\n';
     std::exit(1);
-}
-
-double children_cpu_seconds() {
-    rusage usage{};
-    getrusage(RUSAGE_CHILDREN, &usage);
-    const auto seconds = [](const timeval& t) { return t.tv_sec + t.tv_usec / 1e6; };
-    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
 }
 
 // Discs and polygons scattered by the seed, falling in a box onto a slope: 60 frames.
@@ -54,32 +39,11 @@ bodies:
                       size: [0.12, 0.25], speed: [0, 2]}
 )";
 
-struct Run {
-    double seconds = 0, cpu_seconds = 0;
-};
+using discreel::bench::ChildRun;
 
-Run run_batch(const std::string& manifest, int jobs, const std::string& err_path) {
-    const std::vector<std::string> args{DISCREEL_BIN, "batch", manifest, "--all", "--jobs",
-                                        std::to_string(jobs)};
-    std::vector<char*> argv;
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const double cpu_before = children_cpu_seconds();
-    const auto start = Clock::now();
-    pid_t pid = -1;
-    int status = 0;
-    if (posix_spawn(&pid, args[0].c_str(), &actions, nullptr, argv.data(), environ) != 0 ||
-        waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        die("discreel batch failed; see " + err_path);
-    }
-    posix_spawn_file_actions_destroy(&actions);
-    return {std::chrono::duration<double>(Clock::now() - start).count(),
-            children_cpu_seconds() - cpu_before};
+ChildRun run_batch(const std::string& manifest, int jobs, const std::string& err_path) {
+    return discreel::bench::run_child(
+        {DISCREEL_BIN, "batch", manifest, "--all", "--jobs", std::to_string(jobs)}, err_path);
 }
 
 std::vector<int> parse_list(const std::string& text) {
@@ -120,15 +84,15 @@ int main(int argc, char** argv) {
                           "cpu_s_per_scene"});
     std::cout << "| jobs | seconds | scenes/s | CPU s per scene |\n|---|---|---|---|\n";
     for (const int j : jobs) {
-        std::vector<Run> runs;
+        std::vector<ChildRun> runs;
         for (int r = 0; r < repeat; ++r) {
             fs::remove_all(dir / "out");
             runs.push_back(run_batch((dir / "manifest.txt").string(), j,
                                      (dir / "batch.err").string()));
         }
         std::sort(runs.begin(), runs.end(),
-                  [](const Run& a, const Run& b) { return a.seconds < b.seconds; });
-        const Run& run = runs[runs.size() / 2];
+                  [](const ChildRun& a, const ChildRun& b) { return a.seconds < b.seconds; });
+        const ChildRun& run = runs[runs.size() / 2];
         const double per_s = scenes / run.seconds, cpu = run.cpu_seconds / scenes;
         std::cout << "| " << j << " | " << discreel::bench::csv_number(run.seconds, 2) << " | "
                   << discreel::bench::csv_number(per_s, 2) << " | "

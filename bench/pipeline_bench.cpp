@@ -15,7 +15,6 @@
 // Each row is also appended to bench/results/pipeline_bench.csv (bench_results.hpp); the
 // 1080p run is a row of its own with only the pipeline's fps and peak memory.
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -35,13 +34,12 @@
 #include <vector>
 
 #include "bench_results.hpp"
+#include "child_process.hpp"
 #include "gas_scene.hpp"
 #include "discreel/encode.hpp"
 #include "discreel/job.hpp"
 #include "discreel/render.hpp"
 #include "discreel/scene.hpp"
-
-extern char** environ;
 
 namespace {
 
@@ -171,42 +169,6 @@ Run median(std::vector<Run> runs) {
     return runs[runs.size() / 2];
 }
 
-struct ProcessRun {
-    double seconds = 0;
-    double peak_mib = 0;
-};
-
-// The discreel binary with --verbose; the peak memory is its own VmHWM report.
-ProcessRun run_discreel(const std::vector<std::string>& args, const std::string& err_path) {
-    std::vector<char*> argv;
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const auto start = Clock::now();
-    pid_t pid = -1;
-    int status = 0;
-    if (posix_spawn(&pid, DISCREEL_BIN, &actions, nullptr, argv.data(), environ) != 0 ||
-        waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        std::cerr << "discreel failed; see " << err_path << '\n';
-        std::exit(1);
-    }
-    ProcessRun run{.seconds = seconds_since(start)};
-    posix_spawn_file_actions_destroy(&actions);
-    std::ifstream err(err_path);
-    std::string line;
-    const std::string marker = "peak memory: ";
-    while (std::getline(err, line)) {
-        if (auto at = line.find(marker); at != std::string::npos) {
-            run.peak_mib = std::stod(line.substr(at + marker.size()));
-        }
-    }
-    return run;
-}
-
 Settings parse(int argc, char** argv) {
     Settings s;
     for (int i = 1; i + 1 < argc; i += 2) {
@@ -314,7 +276,7 @@ int main(int argc, char** argv) {
             const double piped_seconds =
                 render_into_ffmpeg(loaded.scene, frames, (dir / "piped.mp4").string());
             piped.push_back({piped_seconds, cpu_ms_per_frame()});
-            const ProcessRun pipeline = run_discreel(
+            const discreel::bench::ChildRun pipeline = discreel::bench::run_child(
                 {DISCREEL_BIN, "render", scene_path, "-o", (dir / "pipe.mp4").string(), "--crf",
                  "23", "--preset", "veryfast", "--verbose"},
                 (dir / "pipe.err").string());
@@ -346,8 +308,8 @@ int main(int argc, char** argv) {
     if (settings.hd_seconds > 0) {
         const std::string scene_path = (dir / "hd.yaml").string();
         std::ofstream(scene_path) << gas_scene(1000, 1920, 1080, settings.hd_seconds * 60);
-        const ProcessRun hd =
-            run_discreel({DISCREEL_BIN, "render", scene_path, "-o", (dir / "hd.mp4").string(),
+        const discreel::bench::ChildRun hd =
+            discreel::bench::run_child({DISCREEL_BIN, "render", scene_path, "-o", (dir / "hd.mp4").string(),
                           "--crf", "23", "--preset", "veryfast", "--verbose"},
                          (dir / "hd.err").string());
         std::printf("\n1920x1080, 1 000 discs, %d s (%d frames): %.1f fps, peak memory %.0f MiB\n",

@@ -6,10 +6,6 @@
 // --repeat K runs every column K times in turn and reports each one's median. Prints a Markdown
 // table and appends one row per column to bench/results/segments_bench.csv: wall fps, the
 // ratio to ffmpeg, CPU ms per frame and discreel's peak memory (its --verbose VmHWM).
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,72 +21,23 @@
 #include <vector>
 
 #include "bench_results.hpp"
+#include "child_process.hpp"
 #include "discreel/job.hpp"
 #include "discreel/render.hpp"
 #include "discreel/scene.hpp"
 #include "gas_scene.hpp"
 
-extern char** environ;
-
 namespace {
 
 using namespace discreel;
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double children_cpu_seconds() {
-    rusage usage{};
-    getrusage(RUSAGE_CHILDREN, &usage);
-    const auto seconds = [](const timeval& t) { return t.tv_sec + t.tv_usec / 1e6; };
-    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
-}
 
 [[noreturn]] void die(const std::string& message) {
     std::cerr << "segments_bench: " << message << '\n';
     std::exit(1);
 }
 
-struct Run {
-    double seconds = 0;
-    double cpu_seconds = 0;
-    double peak_mib = 0;   // discreel only
-};
-
-// Runs argv with stderr into err_path; the wall time, its CPU time and any "peak memory: X"
-// it reported.
-Run run_process(const std::vector<std::string>& args, const std::string& err_path) {
-    std::vector<char*> argv;
-    argv.reserve(args.size() + 1);
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const double cpu_before = children_cpu_seconds();
-    const auto start = Clock::now();
-    pid_t pid = -1;
-    int status = 0;
-    if (posix_spawnp(&pid, args[0].c_str(), &actions, nullptr, argv.data(), environ) != 0 ||
-        waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        die(args[0] + " failed; see " + err_path);
-    }
-    Run run{.seconds = seconds_since(start), .cpu_seconds = children_cpu_seconds() - cpu_before};
-    posix_spawn_file_actions_destroy(&actions);
-    std::ifstream err(err_path);
-    const std::string marker = "peak memory: ";
-    for (std::string line; std::getline(err, line);) {
-        if (auto at = line.find(marker); at != std::string::npos) {
-            run.peak_mib = std::stod(line.substr(at + marker.size()));
-        }
-    }
-    return run;
-}
+using Run = discreel::bench::ChildRun;
+using discreel::bench::run_child;
 
 Run median(std::vector<Run> runs) {
     std::sort(runs.begin(), runs.end(),
@@ -163,9 +110,9 @@ int main(int argc, char** argv) {
     }
     std::vector<std::vector<Run>> discreel_runs(columns.size());
     for (int r = 0; r < repeat; ++r) {
-        ffmpeg_runs.push_back(run_process(ffmpeg, (dir / "ffmpeg.err").string()));
+        ffmpeg_runs.push_back(run_child(ffmpeg, (dir / "ffmpeg.err").string()));
         for (std::size_t c = 0; c < columns.size(); ++c) {
-            discreel_runs[c].push_back(run_process(
+            discreel_runs[c].push_back(run_child(
                 {DISCREEL_BIN, "render", scene_path, "-o", (dir / "out.mp4").string(), "--crf",
                  "23", "--preset", "veryfast", "--jobs", std::to_string(columns[c].first),
                  columns[c].second ? "--audio" : "--no-audio", "--verbose"},
