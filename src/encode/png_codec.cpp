@@ -169,7 +169,7 @@ Expected<Gray16Image> decode_png_gray16(std::span<const std::uint8_t> png_bytes)
                          static_cast<std::size_t>(frame.height));
     for (int row = 0; row < frame.height; ++row) {
         const std::uint8_t* p = frame.data[0] + static_cast<std::ptrdiff_t>(row) * frame.linesize[0];
-        for (int x = 0; x < frame.width; ++x) {
+        for (std::size_t x = 0; x < static_cast<std::size_t>(frame.width); ++x) {
             image.values.push_back(static_cast<std::uint16_t>((p[2 * x] << 8) | p[2 * x + 1]));
         }
     }

@@ -23,12 +23,12 @@ double distance_to_segment(Point p, Point a, Point b) {
 // Distance from `p` to a convex outline (counter-clockwise, 1..8 points; 1 is a point, 2 a
 // segment), 0 inside it.
 double distance_to_outline(Point p, const PolygonGeom& g) {
-    const int n = g.count;
+    const auto n = static_cast<std::size_t>(std::clamp(g.count, 0, 8));
     if (n == 1) return std::hypot(p.x - g.vertices[0], p.y - g.vertices[1]);
     bool inside = n >= 3;
     double nearest = HUGE_VAL;
-    for (int i = 0; i < n; ++i) {
-        const int j = (i + 1) % n;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t j = (i + 1) % n;
         const Point a{g.vertices[2 * i], g.vertices[2 * i + 1]};
         const Point b{g.vertices[2 * j], g.vertices[2 * j + 1]};
         if ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) < 0) inside = false;
@@ -106,7 +106,7 @@ std::vector<std::uint16_t> draw_mask(const FrameScene& frame, int width, int hei
     for (const PolygonGeom& g : frame.polygons) {
         if (g.mask_id == 0 || g.fill.a <= 0 || g.count < 1) continue;
         double reach = 0;
-        for (int k = 0; k < g.count; ++k)
+        for (std::size_t k = 0; k < static_cast<std::size_t>(std::min(g.count, 8)); ++k)
             reach = std::max<double>(reach, std::hypot(g.vertices[2 * k], g.vertices[2 * k + 1]));
         const double rounding = std::max<double>(g.rounding, g.count <= 2 ? least : 0.0);
         const double c = std::cos(static_cast<double>(g.angle));
