@@ -37,6 +37,28 @@ struct LoadedScene {
     scene::Scene scene;
 };
 
+// The directory of a failure's files and report: --results, else golden-results beside --dir.
+fs::path results_dir(const GoldenOptions& o) {
+    if (o.results) return *o.results;
+    // Beside the goldens, however --dir is written: "goldens/" and "." name a directory too.
+    fs::path dir = fs::path(o.dir).lexically_normal();
+    if (dir.filename().empty()) dir = dir.parent_path();
+    if (dir.empty() || dir.filename() == "." || dir.filename() == "..") {
+        dir = fs::absolute(dir.empty() ? fs::path(".") : dir).lexically_normal();
+        if (dir.filename().empty()) dir = dir.parent_path();
+    }
+    return dir.parent_path() / "golden-results";
+}
+
+// Whether `inner` is `outer` or inside it, through links and relative spellings.
+bool inside(const fs::path& inner, const fs::path& outer) {
+    std::error_code ignored;
+    const fs::path a = fs::weakly_canonical(inner, ignored);
+    const fs::path b = fs::weakly_canonical(outer, ignored);
+    auto [ai, bi] = std::mismatch(a.begin(), a.end(), b.begin(), b.end());
+    return bi == b.end() || (std::next(bi) == b.end() && bi->empty());
+}
+
 std::optional<std::string> check_options(const GoldenOptions& o) {
     if (o.dir.empty()) return "--dir is required: the directory that holds the goldens";
     if (!(o.tolerance >= 0 && o.tolerance <= 1))
@@ -47,6 +69,10 @@ std::optional<std::string> check_options(const GoldenOptions& o) {
         return "--max-diff-ratio must be between 0 and 1";
     if (o.shards < 1 || o.shard < 1 || o.shard > o.shards)
         return "--shard takes K/N with 1 <= K <= N, e.g. 2/4";
+    if (o.results && inside(*o.results, o.dir)) {
+        return "--results '" + *o.results + "' is inside --dir '" + o.dir +
+               "': a failure's files never go among the goldens; give a directory beside it";
+    }
     return std::nullopt;
 }
 
@@ -72,12 +98,6 @@ std::size_t keep_shard(std::vector<LoadedScene>& scenes, int shard, int shards) 
     }
     scenes = std::move(kept);
     return index;
-}
-
-// The directory of a failure's files and report: --results, else golden-results beside --dir.
-fs::path results_dir(const GoldenOptions& o) {
-    if (o.results) return *o.results;
-    return fs::path(o.dir).lexically_normal().parent_path() / "golden-results";
 }
 
 // One scene's thresholds: its `golden:` block's where it sets them, the command line's else.

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <spawn.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -363,9 +364,24 @@ static int run_batch_processes(const BatchOptions& b, IndexRange range) {
         }
         running.push_back(pid);
     }
-    for (const pid_t pid : running) {
+    // A stop signal sent to this process only (a pod's PID 1, Slurm's scancel of the batch
+    // step) is passed on: the shares end as a render ends, nothing half-written left behind.
+    bool passed_on = false;
+    while (!running.empty()) {
+        if (stop_signal() != 0 && !passed_on) {
+            for (const pid_t pid : running) kill(pid, stop_signal());
+            passed_on = true;
+        }
         int status = 0;
-        const bool ended = waitpid(pid, &status, 0) == pid && WIFEXITED(status);
+        const pid_t pid = waitpid(-1, &status, WNOHANG);
+        if (pid <= 0) {
+            usleep(50'000);
+            continue;
+        }
+        const auto found = std::find(running.begin(), running.end(), pid);
+        if (found == running.end()) continue;
+        running.erase(found);
+        const bool ended = WIFEXITED(status);
         worst = std::max(worst, ended ? WEXITSTATUS(status) : static_cast<int>(exit_runtime_failure));
     }
     return worst;

@@ -132,6 +132,11 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
                           "--masks, --boxes) belong to a whole render, not to one segment");
         return exit_bad_input;
     }
+    if (output.format == "wav" && (files.trace || files.events || files.joints || truth)) {
+        report_error(err, "a .wav soundtrack has no frames: --trace, --events, --joints and "
+                          "the ground truth come with a video or images");
+        return exit_bad_input;
+    }
     if ((files.masks || files.boxes) && scene.bodies.size() >= render::wall_mask_id) {
         report_error(err, "--masks and --boxes number bodies in 16 bits: at most " +
                               std::to_string(render::wall_mask_id - 1) + " bodies, and the scene "

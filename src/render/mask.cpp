@@ -97,6 +97,7 @@ std::vector<std::uint16_t> draw_mask(const FrameScene& frame, int width, int hei
     Grid grid(frame, width, height, ids);
     const double least = grid.half_pixel();   // every shape is drawn at least a pixel wide
     for (const CapsuleGeom& c : frame.capsules) {
+        if (c.color.a <= 0) continue;   // a transparent wall hides nothing
         const Point a{c.ax, c.ay}, b{c.bx, c.by};
         const double r = std::max<double>(c.radius, least);
         grid.fill(0.5 * (a.x + b.x), 0.5 * (a.y + b.y),

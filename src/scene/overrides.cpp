@@ -1,6 +1,6 @@
-// Overrides are parsed as YAML of their own, preceded by enough blank lines that their marks
-// fall past the file's last line: every reader then reports them at a line that Diagnostics
-// maps back to the option, without a second way of locating problems.
+// Overrides are parsed as YAML of their own, all in one text whose lines start past the file's
+// last line: every reader then reports them at a line that Diagnostics maps back to the
+// option, without a second way of locating problems.
 #include "overrides.hpp"
 
 #include <algorithm>
@@ -46,47 +46,24 @@ std::string single_quoted(const std::string& text) {
     return out + "'";
 }
 
-// Lines an override's text spans.
-int lines_of(const Override& o) {
-    return 1 + static_cast<int>(std::count(o.path.begin(), o.path.end(), '\n') +
-                                std::count(o.value.begin(), o.value.end(), '\n'));
+// The value as YAML of its own: what cannot be on a command line made explicit. Nothing reads
+// as the empty text (YAML's null has no place to report it at; an empty text has), and a
+// colour as text (YAML would take its '#' for a comment).
+std::string value_text(const Override& o) {
+    const auto first = o.value.find_first_not_of(" \t");
+    if (first == std::string::npos) return "''";
+    if (o.value[first] == '#') return single_quoted(o.value);
+    return o.value;
+}
+
+int lines_in(const std::string& text) {
+    return 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
 }
 
 struct Parsed {
     std::vector<YAML::Node> keys;   // one per segment of the path
     YAML::Node value;
 };
-
-// The path's segments and the value, as nodes whose marks are on 0-based line `line`.
-std::optional<Parsed> parse_at(const Override& o, const std::vector<std::string>& segments,
-                               int line, Location where, Diagnostics& d) {
-    const std::string blank(static_cast<std::size_t>(line), '\n');
-    std::string keys = blank + "[";
-    for (std::size_t k = 0; k < segments.size(); ++k) {
-        if (k > 0) keys += ", ";
-        keys += single_quoted(segments[k]);
-    }
-    keys += "]";
-    // What cannot be YAML of its own on a command line: nothing (YAML's null has no place to
-    // report it at; an empty text has), and a colour, which YAML would take for a comment.
-    std::string value = o.value;
-    const auto first = value.find_first_not_of(" \t");
-    if (first == std::string::npos) {
-        value = "''";
-    } else if (value[first] == '#') {
-        value = single_quoted(value);
-    }
-    Parsed parsed;
-    try {
-        const YAML::Node list = YAML::Load(keys);
-        for (const YAML::Node& key : list) parsed.keys.push_back(key);
-        parsed.value = YAML::Load(blank + value);
-    } catch (const YAML::Exception& e) {
-        d.error(where, "invalid YAML in the value: " + e.msg);
-        return std::nullopt;
-    }
-    return parsed;
-}
 
 // The child of `map` under `key`'s name, or an invalid node.
 YAML::Node child_of(const YAML::Node& map, const std::string& key) {
@@ -96,18 +73,9 @@ YAML::Node child_of(const YAML::Node& map, const std::string& key) {
     return YAML::Node(YAML::NodeType::Undefined);
 }
 
-void apply_one(YAML::Node& document, const Override& o, int line, Diagnostics& d) {
-    const Location where{line + 1, 1};
-    const std::vector<std::string> segments = split_path(o.path);
-    for (const std::string& segment : segments) {
-        if (segment.empty()) {
-            d.error(where, "the key '" + o.path + "' has an empty part; write a dotted path "
-                           "such as physics.seed or discs.0.radius");
-            return;
-        }
-    }
-    auto parsed = parse_at(o, segments, line, where, d);
-    if (!parsed) return;
+// Puts `parsed` at the path `segments` into `document`.
+void apply_one(YAML::Node& document, const std::vector<std::string>& segments, Parsed* parsed,
+               Location where, Diagnostics& d) {
     YAML::Node node;
     node.reset(document);
     std::string walked;   // the path so far, for messages
@@ -151,11 +119,73 @@ void apply_one(YAML::Node& document, const Override& o, int line, Diagnostics& d
 
 void apply_overrides(YAML::Node& document, std::span<const Override> overrides, int first_line,
                      Diagnostics& diagnostics) {
-    int line = first_line - 1;   // 0-based, as marks are
+    // Every override takes a block of lines past the file's end: its path as a flow list of
+    // keys on the first, its value (continuation lines indented) after. One YAML parse of them
+    // all, however many there are, so the cost is the file's lines once plus the overrides.
+    struct Block {
+        std::vector<std::string> segments;
+        std::string value;
+        int line = 0;         // 1-based, of the keys
+        bool usable = true;   // its path and value passed the checks of their own
+    };
+    std::vector<Block> blocks;
+    int line = first_line;
+    std::string text(static_cast<std::size_t>(std::max(first_line - 1, 0)), '\n');
     for (const Override& o : overrides) {
-        diagnostics.add_source(line + 1, o.label);
-        apply_one(document, o, line, diagnostics);
-        line += lines_of(o);
+        Block b{split_path(o.path), value_text(o), line, true};
+        diagnostics.add_source(line, o.label);
+        const Location where{line, 1};
+        for (const std::string& segment : b.segments) {
+            if (segment.empty() && b.usable) {
+                diagnostics.error(where, "the key '" + o.path + "' has an empty part; write a "
+                                         "dotted path such as physics.seed or discs.0.radius");
+                b.usable = false;
+            }
+        }
+        if (b.usable) {
+            try {
+                (void)YAML::Load(b.value);
+            } catch (const YAML::Exception& e) {
+                diagnostics.error(where, "invalid YAML in the value: " + e.msg);
+                b.usable = false;
+            }
+        }
+        if (b.usable) {
+            text += "- [";
+            for (std::size_t k = 0; k < b.segments.size(); ++k) {
+                if (k > 0) text += ", ";
+                text += single_quoted(b.segments[k]);
+            }
+            text += "]\n- ";
+            for (const char c : b.value) {
+                text += c;
+                if (c == '\n') text += "  ";
+            }
+            text += '\n';
+        } else {
+            text.append(static_cast<std::size_t>(1 + lines_in(b.value)), '\n');
+        }
+        line += 1 + lines_in(b.value);
+        blocks.push_back(std::move(b));
+    }
+    YAML::Node all;
+    try {
+        all = YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+        // Each value parsed on its own; together they still may not (a value that ends a
+        // block it did not open): the whole set is refused, at the first.
+        diagnostics.error(Location{first_line, 1}, "invalid YAML in the values: " + e.msg);
+        return;
+    }
+    std::size_t item = 0;
+    for (std::size_t k = 0; k < blocks.size(); ++k) {
+        if (!blocks[k].usable) continue;
+        Parsed parsed;
+        for (const YAML::Node& key : all[item]) parsed.keys.push_back(key);
+        parsed.value = all[item + 1];
+        item += 2;
+        apply_one(document, blocks[k].segments, &parsed, Location{blocks[k].line, 1},
+                  diagnostics);
     }
 }
 

@@ -19,6 +19,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+constexpr std::size_t max_pending = 10'000;   // deliveries waiting, retries included
+
 // A connected socket to host:port within `timeout`, or -1.
 int connect_within(const std::string& host, int port, std::chrono::milliseconds timeout) {
     addrinfo hints{};
@@ -50,6 +52,14 @@ int connect_within(const std::string& host, int port, std::chrono::milliseconds 
 }
 
 }  // namespace
+
+std::string lower_host(std::string host) {
+    if (host.size() >= 2 && host.front() == '[' && host.back() == ']') {
+        host = host.substr(1, host.size() - 2);
+    }
+    for (char& c : host) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return host;
+}
 
 Expected<CallbackUrl> parse_callback_url(const std::string& url) {
     const std::string scheme = "http://";
@@ -86,8 +96,7 @@ Expected<CallbackUrl> parse_callback_url(const std::string& url) {
         out.path.find_first_of(" \t\r\n") != std::string::npos) {
         return Error{"'" + url + "' is not a valid callback URL"};
     }
-    for (char& c : host) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    out.host = host;
+    out.host = lower_host(host);
     return out;
 }
 
@@ -111,6 +120,11 @@ void Callbacks::post(const CallbackUrl& url, std::string body, std::string job_i
     {
         std::lock_guard lock(mutex_);
         if (stopping_) return;
+        // Receivers that never answer could otherwise grow the queue without end.
+        if (pending_.size() >= max_pending) {
+            log_line("callback_dropped", {{"id", job_id}, {"reason", "too many pending"}});
+            return;
+        }
         pending_.push_back({url, std::move(body), std::move(job_id), 0, Clock::now()});
     }
     wake_.notify_all();

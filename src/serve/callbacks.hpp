@@ -22,6 +22,9 @@ struct CallbackUrl {
     std::string path;      // "/..." with any query
 };
 
+// A host as callbacks compare it: lower case, an IPv6 address without its brackets.
+std::string lower_host(std::string host);
+
 // "http://host[:port][/path]"; an error names what is wrong with it.
 Expected<CallbackUrl> parse_callback_url(const std::string& url);
 

@@ -343,6 +343,15 @@ std::optional<CallbackUrl> Jobs::callback_of(const std::string& id) {
 
 void Jobs::call_back(const Job& job, const std::optional<CallbackUrl>& url) {
     if (!url || !callbacks_) return;
+    // The allowance of this server, not the one that accepted the job (a restart may narrow it).
+    const bool allowed = std::any_of(def_.callback_allow.begin(), def_.callback_allow.end(),
+                                     [&](const std::string& host) {
+                                         return lower_host(host) == url->host;
+                                     });
+    if (!allowed) {
+        log_line("callback_refused", {{"id", job.id}, {"host", url->host}});
+        return;
+    }
     callbacks_->post(*url, job_json(job).dump(-1, ' ', false, json::error_handler_t::replace),
                      job.id);
 }
@@ -396,7 +405,8 @@ json Jobs::list(const std::optional<JobStatus>& state, std::size_t limit,
     auto from = all.begin();
     if (before) {
         from = std::find_if(all.begin(), all.end(), [&](const Job* j) { return j->id == *before; });
-        if (from != all.end()) ++from;
+        if (from == all.end()) return nullptr;   // no such job (any more)
+        ++from;
     }
     json page = json::array();
     std::optional<std::string> last;
@@ -438,6 +448,7 @@ void Jobs::forget(const std::string& id, Swept& swept) {
 }
 
 bool Jobs::referenced(const OutputInfo& info) const {
+    if (storing_.count(info.sha256 + "." + info.extension) > 0) return true;
     const auto same = [&](const OutputInfo& other) {
         return other.sha256 == info.sha256 && other.extension == info.extension;
     };
@@ -542,9 +553,15 @@ std::pair<int, json> Jobs::cancel(const std::string& id) {
     }
     job.cancel->store(true);
     // The worker stops within a physics step; a slow one is waited for, but not for ever.
-    changed_.wait_for(lock, std::chrono::seconds(5),
-                      [&] { return is_final(jobs_.at(id).status) || stopping_; });
-    return {is_final(jobs_.at(id).status) ? 200 : 202, job_json(jobs_.at(id))};
+    // The sweeper may forget it as soon as it is final: looked up again, never assumed.
+    const auto final_or_gone = [&] {
+        const auto now = jobs_.find(id);
+        return now == jobs_.end() || is_final(now->second.status);
+    };
+    changed_.wait_for(lock, std::chrono::seconds(5), [&] { return final_or_gone() || stopping_; });
+    const auto now = jobs_.find(id);
+    if (now == jobs_.end()) return {200, {{"id", id}, {"status", "cancelled"}}};
+    return {is_final(now->second.status) ? 200 : 202, job_json(now->second)};
 }
 
 std::optional<Jobs::Snapshot> Jobs::snapshot(const std::string& id) {
@@ -583,14 +600,22 @@ void Jobs::worker_loop() {
     }
 }
 
-Expected<OutputInfo> Jobs::keep_output(const std::string& tmp, const std::string& extension) {
+Expected<OutputInfo> Jobs::keep_output(const std::string& tmp, const std::string& extension,
+                                       std::vector<std::string>& stored) {
     auto sha = sha256_hex_of_file(tmp);
     if (!sha) return sha.error();
     std::error_code failed;
     const auto bytes = std::filesystem::file_size(tmp, failed);
     if (failed) return Error{"cannot read the output: " + failed.message()};
-    // Content-addressed: the same bytes are kept once, whichever job made them.
-    const std::filesystem::path target = outputs_ / (*sha + "." + extension);
+    // Content-addressed: the same bytes are kept once, whichever job made them. Named as being
+    // stored before the rename: a sweep that forgets another job of the same bytes keeps it.
+    const std::string name = *sha + "." + extension;
+    {
+        std::lock_guard lock(mutex_);
+        ++storing_[name];
+    }
+    stored.push_back(name);
+    const std::filesystem::path target = outputs_ / name;
     std::filesystem::rename(tmp, target, failed);
     if (failed) return Error{"cannot keep the output: " + failed.message()};
     sync_directory(outputs_);
@@ -615,6 +640,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         std::map<std::string, OutputInfo> extras;
     };
     std::optional<CallbackUrl> callback;
+    std::vector<std::string> stored_files;   // names in storing_, released below
     const auto outcome = [&]() -> Expected<Kept> {
         auto text = store_.request(id);
         if (!text) return text.error();
@@ -694,11 +720,11 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
                 }
                 file = tmp + "/masks.tar";
             }
-            auto extra = keep_output(file, extension_of(name));
+            auto extra = keep_output(file, extension_of(name), stored_files);
             if (!extra) return extra.error();
             kept.extras[name] = *extra;
         }
-        auto output = keep_output(def.output.path, request.format);
+        auto output = keep_output(def.output.path, request.format, stored_files);
         if (!output) return output.error();
         kept.output = *output;
         return kept;
@@ -708,6 +734,10 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
     std::filesystem::remove_all(tmp, ignored);
 
     std::lock_guard lock(mutex_);
+    // Recorded below (or failed): the sweeper judges these files by the jobs from now on.
+    for (const std::string& name : stored_files) {
+        if (--storing_[name] == 0) storing_.erase(name);
+    }
     Job& job = jobs_.at(id);
     if (stopping_ && !outcome && !timed_out) {
         // Shutting down: the store still says running, so the next server renders it again.

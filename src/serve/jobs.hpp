@@ -83,7 +83,8 @@ public:
     // `name`: "output" for the main one, or a side output's name.
     std::optional<OpenOutput> open_output(const std::string& id, const std::string& name);
     // GET /v1/renders: jobs newest first, at most `limit`, only of `state` when given, only
-    // those listed after the job `before` (the previous page's "next").
+    // those listed after the job `before` (the previous page's "next"); null when there is no
+    // job `before`.
     nlohmann::json list(const std::optional<JobStatus>& state, std::size_t limit,
                         const std::optional<std::string>& before);
     // One pass of the sweeper at `now` (Unix seconds); what it deleted.
@@ -122,7 +123,10 @@ private:
     void run_job(const std::string& id, std::optional<render::Renderer>& warm);
     void changed(Job& job);      // with mutex_ held
     void counted();              // with mutex_ held: queued_count_, running_count_ from the queue
-    Expected<OutputInfo> keep_output(const std::string& tmp, const std::string& extension);
+    // Moves a finished file into outputs/ under its hash; `stored` gains its name, which the
+    // sweeper leaves alone until the job is recorded (storing_).
+    Expected<OutputInfo> keep_output(const std::string& tmp, const std::string& extension,
+                                     std::vector<std::string>& stored);
 
     ServeDef def_;
     Metrics& metrics_;
@@ -152,6 +156,9 @@ private:
     void call_back(const Job& job, const std::optional<CallbackUrl>& url);
     std::condition_variable sweeper_wake_;
     std::uint64_t last_seq_ = 0;
+    // Outputs moved into outputs/ by jobs not yet recorded as succeeded, by file name: the
+    // sweeper must not take a file another job shares while that job is still storing it.
+    std::map<std::string, int> storing_;
 };
 
 }  // namespace discreel::serve

@@ -1,5 +1,6 @@
 #include "request.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
@@ -7,6 +8,7 @@
 #include <optional>
 
 #include "digest.hpp"
+#include "discreel/render.hpp"
 #include "discreel/parse_number.hpp"
 
 namespace discreel::serve {
@@ -21,6 +23,9 @@ constexpr std::array<const char*, 6> formats{"mp4", "webm", "mkv", "gif", "png",
 // parsing, before it is built, so no body can make the parser or the value's destructor
 // recurse deeply.
 constexpr int max_depth = 4;
+
+// More values in `set` than any variant of a scene needs: the rest belongs in the scene.
+constexpr std::size_t max_set_values = 256;
 
 // How a problem with one of `set`'s values is named (Override::label).
 std::string set_label(const std::string& key) { return "set '" + key + "'"; }
@@ -42,6 +47,10 @@ std::optional<std::string> type_problem(const std::string& key, const json& valu
     } else if (key == "set") {
         if (!value.is_object()) return must_be("an object of scene paths and values, e.g. "
                                                "{\"physics.seed\": 3}");
+        if (value.size() > max_set_values) {
+            return "field 'set' holds " + std::to_string(value.size()) + " values; at most " +
+                   std::to_string(max_set_values);
+        }
         for (const auto& [path, v] : value.items()) {
             if (v.is_object()) return "field 'set': the value of '" + path + "' is an object; "
                                       "set its keys one by one ('" + path + ".KEY')";
@@ -124,7 +133,7 @@ json placed(const std::vector<scene::Diagnostic>& diagnostics) {
     json list = json::array();
     for (const scene::Diagnostic& d : diagnostics) {
         if (d.line <= 0 && d.file != "scene") {   // one of `set`'s values: no place in the scene
-            list.push_back(one_error(nullptr, nullptr, d.file + ": " + d.message));
+            list.push_back(one_error(nullptr, nullptr, d.file + ": " + in_service_terms(d.message)));
         } else {
             list.push_back(one_error(d.line, d.column, in_service_terms(d.message)));
         }
@@ -233,6 +242,10 @@ std::variant<JobRequest, Refusal> parse_job_request(std::string_view body,
         }
         if (media) request.format = *media;
     }
+    if (request.format == "wav" && !request.extras.empty()) {
+        return refusal(400, "field 'outputs': a wav soundtrack has no frames: trace, events, "
+                            "joints and the ground truth come with a video or images");
+    }
     parsed.erase("scene");
     parsed["output"] = request.format;
     job::RenderRequest& render = request.render;
@@ -283,6 +296,17 @@ std::variant<PlannedJob, Refusal> plan_job(const JobRequest& request,
                                request.overrides);
     if (!loaded.ok()) return Refusal{422, json{{"errors", placed(loaded.diagnostics)}}};
     json warnings = placed(loaded.warnings);
+    const bool masked = std::any_of(request.extras.begin(), request.extras.end(),
+                                    [](const std::string& e) { return e == "masks" || e == "boxes"; });
+    if (masked && loaded.scene.bodies.size() >= render::wall_mask_id) {
+        return Refusal{422, json{{"errors", json::array({one_error(
+                                                nullptr, nullptr,
+                                                "'outputs' masks and boxes number bodies in 16 "
+                                                "bits: at most " +
+                                                    std::to_string(render::wall_mask_id - 1) +
+                                                    " bodies, and the scene has " +
+                                                    std::to_string(loaded.scene.bodies.size()))})}}};
+    }
     auto plan = job::plan_render(std::move(loaded.scene), request.render, limits);
     if (!plan) {
         return Refusal{422, json{{"errors", json::array({one_error(

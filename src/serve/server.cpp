@@ -447,7 +447,7 @@ http::Response Server::Impl::route(http::Request& req) {
 std::optional<http::Response> refuse_callback(const JobRequest& request, const ServeDef& def) {
     if (!request.callback) return std::nullopt;
     for (const std::string& allowed : def.callback_allow) {
-        if (lower(allowed) == request.callback->host) return std::nullopt;
+        if (lower_host(allowed) == request.callback->host) return std::nullopt;
     }
     if (def.callback_allow.empty()) {
         return refuse(400, "field 'callback': this server sends no callbacks (serve "
@@ -547,7 +547,12 @@ http::Response Server::Impl::list_renders(const http::Request& req) {
                                "limit and before");
         }
     }
-    return reply(200, jobs->list(state, limit, before));
+    json page = jobs->list(state, limit, before);
+    if (page.is_null()) {
+        return refuse(400, "no job '" + *before + "' to list after (it may have been deleted "
+                           "by the sweeper); start again from the first page");
+    }
+    return reply(200, page);
 }
 
 http::Response Server::Impl::get_output(const http::Request& req, const std::string& id,

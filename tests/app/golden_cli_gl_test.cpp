@@ -178,6 +178,22 @@ TEST_F(GoldenCliGLTest, TolerancesLetAChangeThrough) {
     EXPECT_EQ(golden({"--tolerance", "1"}).exit_code, 0);
 }
 
+// However --dir is written (a trailing slash, as tab completion leaves it), a failure's files
+// land beside the goldens; --results inside --dir is refused.
+TEST_F(GoldenCliGLTest, ResultsNeverLandAmongTheGoldens) {
+    ASSERT_EQ(golden({"--update"}).exit_code, 0);
+    write_file(scene_, replace_all(scene_text_, "\"#e4572e\"", "\"#2040ff\""));
+    const auto run = run_command({bin, "golden", scene_, "--dir", goldens_ + "/"});
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_TRUE(fs::exists(results_ + "/ball/frame_0.actual.png"));
+    EXPECT_FALSE(fs::exists(goldens_ + "/golden-results"));
+    const auto inside = golden({"--results", goldens_ + "/ball/out"});
+    EXPECT_EQ(inside.exit_code, 2);
+    EXPECT_EQ(inside.err, "discreel: --results '" + goldens_ + "/ball/out' is inside --dir '" +
+                              goldens_ + "': a failure's files never go among the goldens; give "
+                              "a directory beside it\n");
+}
+
 // A scene's `golden:` block sets its own thresholds, which win over the command line's.
 TEST_F(GoldenCliGLTest, ASceneSetsItsOwnThresholds) {
     ASSERT_EQ(golden({"--update"}).exit_code, 0);

@@ -167,6 +167,17 @@ TEST_F(GroundTruthGLTest, TheSameBytesForAnyJobsAndShapesSayWhatEachBodyIs) {
     EXPECT_EQ(shapes["walls"][0]["kind"], "box");
 }
 
+// A soundtrack has no frames to go with: ground truth beside a .wav is a bad command line,
+// refused before any directory is made.
+TEST_F(GroundTruthGLTest, ASoundtrackTakesNoGroundTruth) {
+    const auto run = run_command({bin, "render", scene_, "-o", dir_ / "s.wav", "--masks",
+                                  dir_ / "m"});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "discreel: a .wav soundtrack has no frames: --trace, --events, --joints "
+                       "and the ground truth come with a video or images\n");
+    EXPECT_FALSE(fs::exists(dir_ / "m"));
+}
+
 // A respawning generator's sets are entries of their own, each with its time span.
 TEST(GroundTruthShapesGLTest, EachRespawnedSetHasItsOwnEntries) {
     TempDir dir;

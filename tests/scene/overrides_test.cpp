@@ -89,6 +89,17 @@ TEST(Overrides, PathsThatLeadNowhereSayWhy) {
                     "found"});
 }
 
+// A value over several lines shifts nothing: the next override's problem is still its own.
+TEST(Overrides, AValueOverSeveralLinesKeepsTheOthersApart) {
+    const LoadResult loaded = load_with(two_discs, {"video.size=[64,\n  48]", "video.fps=25"});
+    ASSERT_TRUE(loaded.ok());
+    EXPECT_EQ(loaded.scene.video.width, 64);
+    EXPECT_EQ(loaded.scene.video.height, 48);
+    EXPECT_EQ(loaded.scene.video.fps, 25);
+    EXPECT_EQ(problems_with(two_discs, {"video.size=[64,\n  48]", "video.fps=fast"}),
+              Lines{"--set video.fps=fast: video.fps: expected a whole number, got 'fast'"});
+}
+
 TEST(Overrides, FileProblemsKeepTheirLinesAndComeFirst) {
     const std::string bad = std::string(two_discs) + "walls: 3\n";
     const Lines lines = problems_with(bad, {"physics.sede=3"});

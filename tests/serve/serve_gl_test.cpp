@@ -391,6 +391,10 @@ TEST_F(ServeGLTest, SideOutputsAreTheCommandLinesFiles) {
     auto absent = client.Get("/v1/renders/" + done["id"].get<std::string>() + "/joints");
     ASSERT_TRUE(absent);
     EXPECT_EQ(absent->status, 404);
+    auto wav = post(client, "/v1/renders",
+                    json{{"scene", scene_text()}, {"outputs", {"wav", "trace"}}});
+    ASSERT_TRUE(wav);
+    EXPECT_EQ(wav->status, 400);
     auto refused = post(client, "/v1/renders",
                         json{{"scene", scene_text()}, {"outputs", {"mp4", "depth"}}});
     ASSERT_TRUE(refused);
@@ -509,6 +513,9 @@ TEST_F(ServeGLTest, JobsAreListedNewestFirstAPageAtATime) {
     EXPECT_EQ(json::parse(bad->body)["error"]["message"],
               "state must be queued, running, succeeded, failed or cancelled, not 'done'");
     bad = client.Get("/v1/renders?limit=0");
+    ASSERT_TRUE(bad);
+    EXPECT_EQ(bad->status, 400);
+    bad = client.Get("/v1/renders?before=0123456789abcdef0123456789abcdef");
     ASSERT_TRUE(bad);
     EXPECT_EQ(bad->status, 400);
 }

@@ -134,10 +134,10 @@ PixelTransform pixel_transform(const Camera& camera, int width, int height);
 inline constexpr std::uint16_t wall_mask_id = 65535;
 
 // Which geometry is drawn on top at each pixel of the frame, width x height, top row first:
-// a disc's or polygon's mask_id, wall_mask_id for capsules, 0 for nothing. No anti-aliasing:
+// a disc's or polygon's mask_id, wall_mask_id for capsules (walls), 0 for nothing. No anti-aliasing:
 // a pixel belongs to a shape when its centre is inside it (a shape thinner than a pixel as
 // wide as the renderer draws it). In the renderer's order, later on top; geometry with mask_id
-// 0 or a transparent fill is left out (it hides nothing). The same frame gives the same ids.
+// 0 or a transparent colour is left out (it hides nothing). The same frame gives the same ids.
 std::vector<std::uint16_t> draw_mask(const FrameScene& frame, int width, int height);
 
 // How many threads of its own llvmpipe rasterizes on (Mesa's LP_NUM_THREADS), for the whole
