@@ -163,7 +163,8 @@ void apply_overrides(YAML::Node& document, std::span<const Override> overrides, 
             }
             text += '\n';
         } else {
-            text.append(static_cast<std::size_t>(1 + lines_in(b.value)), '\n');
+            const int lines = 1 + lines_in(b.value);
+            text.append(static_cast<std::size_t>(lines), '\n');
         }
         line += 1 + lines_in(b.value);
         blocks.push_back(std::move(b));

@@ -290,8 +290,10 @@ TEST(CliGLTest, BadSceneLeavesAnExistingOutputUntouched) {
                             std::filesystem::directory_iterator()), 2);
 }
 
-TEST(CliGLTest, MissingOutputDirectoryIsARunTimeFailure) {
+// A missing directory is made (FaultsGLTest); a file in its place cannot be.
+TEST(CliGLTest, AFileWhereTheOutputDirectoryShouldBeIsARunTimeFailure) {
     TempDir dir;
+    testing::write_file(dir / "nowhere", "");
     const auto run = run_command({bin, "render", short_scene, "-o", dir / "nowhere/c.mp4"});
     EXPECT_EQ(run.exit_code, 3);
     EXPECT_NE(run.err.find(dir / "nowhere"), std::string::npos) << run.err;

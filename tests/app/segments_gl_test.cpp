@@ -257,8 +257,8 @@ TEST(SegmentsGLTest, MistakesAreNamed) {
                     scene.dir / "t.csv"});
     EXPECT_EQ(run.exit_code, 2);
     EXPECT_EQ(run.err,
-              "discreel: --trace, --events and --joints belong to a whole render, not to one "
-              "segment\n");
+              "discreel: --trace, --events, --joints and the ground truth (--shapes, --camera, "
+              "--masks, --boxes) belong to a whole render, not to one segment\n");
 
     const std::string dir = scene.dir / "parts";
     for (const std::string k : {"0", "1", "3", "4"}) {
