@@ -60,8 +60,8 @@ void append_body(std::string& out, const scene::Body& body, std::size_t index, d
                  double to) {
     out += "    {\"id\": ";
     append_string(out, body.id);
-    out += ", \"index\": " + std::to_string(index) + ", \"kind\": \"" + kind_of(body) + "\"";
     const std::string kind = kind_of(body);
+    out += ", \"index\": " + std::to_string(index) + ", \"kind\": \"" + kind + "\"";
     if (kind == "circle") {
         out += ", \"radius\": ";
         append_number(out, body.shape ? body.shape->radius : body.radius);
