@@ -349,9 +349,10 @@ std::optional<std::vector<LoadedScene>> load_scenes(const GoldenOptions& o, std:
 struct PendingGoldens {
     std::vector<OutputFile> images;
     std::vector<AtomicTextFile> metadata;
-    std::vector<fs::path> stale;   // what an earlier failing check left beside a new golden
-    std::vector<fs::path> removed; // goldens of frames their scene no longer lists, and theirs
-    std::size_t removed_goldens = 0;
+    // Deleted once the rest is committed: what an earlier failing check left of a frame now
+    // written, and the goldens (with their results) of frames their scene no longer lists.
+    std::vector<fs::path> stale;
+    std::size_t removed_goldens = 0;   // of those goldens
 
     Status commit() {
         std::vector<OutputFile*> files;
@@ -359,7 +360,6 @@ struct PendingGoldens {
         for (AtomicTextFile& text : metadata) files.push_back(&text.file());
         if (Status committed = commit_together(files); !committed) return committed;
         for (const fs::path& path : stale) remove_if_present(path);
-        for (const fs::path& path : removed) remove_if_present(path);
         return {};
     }
 };
@@ -513,9 +513,9 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
     if (writes && o.shards == 1) {
         for (const int frame : goldens_not_listed(scene_dir, frames)) {
             const std::string stem = "frame_" + std::to_string(frame);
-            pending.removed.push_back(scene_dir / (stem + ".png"));
-            pending.removed.push_back(results_dir(o) / scene.name / (stem + ".actual.png"));
-            pending.removed.push_back(results_dir(o) / scene.name / (stem + ".diff.png"));
+            pending.stale.push_back(scene_dir / (stem + ".png"));
+            pending.stale.push_back(results_dir(o) / scene.name / (stem + ".actual.png"));
+            pending.stale.push_back(results_dir(o) / scene.name / (stem + ".diff.png"));
             ++pending.removed_goldens;
             out << printable(scene.name) << " frame " << frame << ": removed "
                 << printable((scene_dir / (stem + ".png")).string())
