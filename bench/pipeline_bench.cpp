@@ -87,19 +87,19 @@ double draw_all(const scene::Scene& scene, int frames, Each each) {
     }
     job::Playback playback(scene);
     double draw_seconds = 0;
-    for (int frame = 0; frame < frames; ++frame) {
-        if (Status stepped = playback.advance_to(frame); !stepped) {
-            std::cerr << stepped.error().message << '\n';
-            std::exit(1);
-        }
-        const auto start = Clock::now();
-        auto image = renderer->draw(playback.frame_scene(frame));
-        draw_seconds += seconds_since(start);
-        if (!image) {
-            std::cerr << image.error().message << '\n';
-            std::exit(1);
-        }
-        each(*image);
+    const Status played = playback.play(
+        {.last = frames - 1, .drawn = {}, .look = true, .should_stop = {}},
+        [&](const job::ShownFrame& shown) -> Status {
+            const auto start = Clock::now();
+            auto image = renderer->draw(*shown.view);
+            draw_seconds += seconds_since(start);
+            if (!image) return image.error();
+            each(*image);
+            return {};
+        });
+    if (!played) {
+        std::cerr << played.error().message << '\n';
+        std::exit(1);
     }
     return draw_seconds;
 }

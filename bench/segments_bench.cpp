@@ -53,13 +53,14 @@ void write_raw_frames(const scene::Scene& scene, const std::string& path) {
     if (!renderer) die(renderer.error().message);
     std::ofstream raw(path, std::ios::binary);
     job::Playback playback(scene);
-    for (int frame = 0; frame < scene.video.frame_count(); ++frame) {
-        if (Status stepped = playback.advance_to(frame); !stepped) die(stepped.error().message);
-        auto image = renderer->draw(playback.frame_scene(frame));
-        if (!image) die(image.error().message);
+    const Status played = playback.play({}, [&](const job::ShownFrame& shown) -> Status {
+        auto image = renderer->draw(*shown.view);
+        if (!image) return image.error();
         raw.write(reinterpret_cast<const char*>(image->rgba.data()),
                   static_cast<std::streamsize>(image->rgba.size()));
-    }
+        return {};
+    });
+    if (!played) die(played.error().message);
     if (!raw.flush()) die("cannot write " + path);
 }
 

@@ -446,21 +446,10 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
     std::sort(frames.begin(), frames.end());
     frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
     job::Playback playback(scene);
-    int next_frame = 0;
     bool wrote_any = false;
-    for (const int frame : frames) {
-        const auto case_started = std::chrono::steady_clock::now();
-        // Trails and the follow camera remember earlier frames: show them every one.
-        for (; next_frame < frame; ++next_frame) {
-            if (stop_signal() != 0) return Error{"interrupted"};
-            if (Status stepped = playback.advance_to(next_frame); !stepped) return stepped.error();
-            playback.observe(next_frame);
-            progress.frame_done();
-        }
-        if (Status stepped = playback.advance_to(frame); !stepped) return stepped.error();
-        next_frame = frame + 1;
-        progress.frame_done();
-        auto image = renderer->draw(playback.frame_scene(frame));
+    auto case_started = std::chrono::steady_clock::now();
+    const auto check_one = [&](int frame, const render::FrameScene& view) -> Status {
+        auto image = renderer->draw(view);
         if (!image) return image.error();
         if (stop_signal() != 0) return Error{"interrupted"};
         FrameCheck check;
@@ -507,7 +496,21 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
                           .actual_image = std::move(check.actual_image),
                           .diff_image = std::move(check.diff_image)});
         results.push_back(std::move(result));
-    }
+        case_started = std::chrono::steady_clock::now();
+        return {};
+    };
+    // Trails and the follow camera remember earlier frames: the playback shows them every one.
+    const Status played = frames.empty() ? Status{} : playback.play(
+        {.last = frames.back(),
+         .drawn = [&](int frame) { return std::binary_search(frames.begin(), frames.end(), frame); },
+         .look = true,
+         .should_stop = [] { return stop_signal() != 0; }},
+        [&](const job::ShownFrame& shown) -> Status {
+            progress.frame_done();
+            return shown.view != nullptr ? check_one(shown.frame, *shown.view) : Status{};
+        });
+    if (stop_signal() != 0) return Error{"interrupted"};
+    if (!played) return played.error();
     // An update leaves no golden of a frame the scene no longer lists (a shard sees only part
     // of the frames, so it leaves them).
     if (writes && o.shards == 1) {

@@ -1,3 +1,6 @@
+// Playback: the frame loop every front end shares, and going back to a frame through
+// checkpoints of the whole state.
+#include <algorithm>
 #include <utility>
 
 #include "build_world.hpp"
@@ -7,49 +10,150 @@
 #include "timeline.hpp"
 
 namespace discreel::job {
+namespace {
 
-struct Playback::Impl {
-    explicit Impl(const scene::Scene& s)
-        : timeline{s.video.fps, s.physics.rate, s.video.frame_count()},
-          world(build_world(s)),
-          stepper(world, timeline, s),
-          builder(s) {}
+// Everything a frame depends on: the world, the stepper's memory (last contacts, bodies
+// kept in their walls) and the look's (trails, follow camera), as after showing the frames
+// before `next`.
+struct State {
+    State(const scene::Scene& s, const Timeline& timeline)
+        : world(build_world(s)), stepper(world, timeline, s), builder(s) {}
+    State(const State& other)
+        : world(other.world), stepper(other.stepper, world), builder(other.builder),
+          next(other.next), unseen(other.unseen) {}
+    State& operator=(const State&) = delete;
+    State(State&&) = delete;
+    State& operator=(State&&) = delete;
+    ~State() = default;
 
-    Timeline timeline;
     physics::World world;
     FrameStepper stepper;
     FrameSceneBuilder builder;
+    int next = 0;           // the first frame not shown
+    bool unseen = false;    // frames were played without their look: none can be drawn
 };
 
-Playback::Playback(const scene::Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
+}  // namespace
+
+struct Playback::Impl {
+    Impl(const scene::Scene& s, PlaybackDef d)
+        : def(d), timeline{s.video.fps, s.physics.rate, s.video.frame_count()},
+          live(std::make_unique<State>(s, timeline)) {}
+
+    // Steps the live state to `frame` (not yet shown), counting the steps.
+    Status advance(int frame, const std::function<bool()>& should_stop) {
+        const std::int64_t before = live->world.step_count();
+        Status done = live->stepper.advance_to(frame, should_stop);
+        steps_taken += live->world.step_count() - before;
+        return done;
+    }
+
+    // Before showing `frame` (the live state's next): a checkpoint where one is due.
+    void keep_checkpoint(int frame) {
+        if (def.checkpoint_every <= 0 || frame % def.checkpoint_every != 0) return;
+        if (!checkpoints.empty() && checkpoints.back()->next >= frame) return;
+        checkpoints.push_back(std::make_unique<State>(*live));
+    }
+
+    // Back to the latest checkpoint at or before `frame`.
+    Status go_back(int frame) {
+        const auto after = std::upper_bound(
+            checkpoints.begin(), checkpoints.end(), frame,
+            [](int f, const std::unique_ptr<State>& c) { return f < c->next; });
+        if (after == checkpoints.begin()) {
+            return Error{"frame " + std::to_string(frame) + " comes before frame " +
+                         std::to_string(live->next) + ", shown already: frames go forward only"};
+        }
+        live = std::make_unique<State>(**std::prev(after));
+        return {};
+    }
+
+    PlaybackDef def;
+    Timeline timeline;
+    std::unique_ptr<State> live;
+    std::vector<std::unique_ptr<State>> checkpoints;   // by frame, ascending
+    std::int64_t steps_taken = 0;
+};
+
+Playback::Playback(const scene::Scene& scene, PlaybackDef def)
+    : impl_(std::make_unique<Impl>(scene, def)) {}
 Playback::~Playback() = default;
 Playback::Playback(Playback&&) noexcept = default;
 Playback& Playback::operator=(Playback&&) noexcept = default;
 
-Status Playback::advance_to(int frame, const std::function<bool()>& should_stop) {
-    return impl_->stepper.advance_to(frame, should_stop);
+Expected<const render::FrameScene*> Playback::show(int frame, bool drawn,
+                                                  const std::function<bool()>& should_stop) {
+    Impl& p = *impl_;
+    if (frame < 0 || frame >= p.timeline.frame_count) {
+        return Error{"frame " + std::to_string(frame) + " is not in the clip, which has " +
+                     std::to_string(p.timeline.frame_count) + " frames"};
+    }
+    if (frame < p.live->next) {
+        if (Status back = p.go_back(frame); !back) return back.error();
+    }
+    if (drawn && p.live->unseen) {
+        return Error{"this playback played frames without their look and draws none"};
+    }
+    // Trails and the follow camera remember earlier frames: each is observed, in order.
+    for (;;) {
+        State& s = *p.live;
+        const int f = s.next;
+        if (Status advanced = p.advance(f, should_stop); !advanced) return advanced.error();
+        p.keep_checkpoint(f);
+        s.builder.respawned(s.world.respawns_applied());
+        s.next = f + 1;
+        if (f == frame && drawn) {
+            return &s.builder.build(f, s.world.bodies(), s.stepper.last_contacts());
+        }
+        s.builder.observe(f, s.world.bodies());
+        if (f == frame) return nullptr;
+    }
 }
 
-void Playback::observe(int frame) {
-    impl_->builder.respawned(impl_->world.respawns_applied());
-    impl_->builder.observe(frame, impl_->world.bodies());
+Status Playback::play(const PlayDef& def, const std::function<Status(const ShownFrame&)>& each) {
+    Impl& p = *impl_;
+    const int last = def.last < 0 ? p.timeline.frame_count - 1 : def.last;
+    for (int frame = p.live->next; frame <= last; ++frame) {
+        const render::FrameScene* view = nullptr;
+        if (def.look) {
+            const bool drawn = !def.drawn || def.drawn(frame);
+            auto shown = show(frame, drawn, def.should_stop);
+            if (!shown) return shown.error();
+            view = *shown;
+        } else {
+            if (Status advanced = p.advance(frame, def.should_stop); !advanced) return advanced;
+            p.live->next = frame + 1;
+            p.live->unseen = true;
+        }
+        if (Status done = each({.frame = frame, .t = p.timeline.time_of_frame(frame),
+                                .view = view});
+            !done) {
+            return done;
+        }
+    }
+    return {};
 }
 
-const render::FrameScene& Playback::frame_scene(int frame) {
-    impl_->builder.respawned(impl_->world.respawns_applied());
-    return impl_->builder.build(frame, impl_->world.bodies(), impl_->stepper.last_contacts());
+std::span<const physics::BodyState> Playback::bodies() const {
+    return impl_->live->world.bodies();
 }
 
-std::span<const physics::BodyState> Playback::bodies() const { return impl_->world.bodies(); }
+std::vector<physics::ContactEvent> Playback::take_events() {
+    return impl_->live->stepper.take_events();
+}
 
-std::vector<physics::ContactEvent> Playback::take_events() { return impl_->stepper.take_events(); }
+std::vector<std::string> Playback::take_warnings() { return impl_->live->stepper.take_warnings(); }
 
-std::vector<std::string> Playback::take_warnings() { return impl_->stepper.take_warnings(); }
-
-const physics::World& Playback::world() const { return impl_->world; }
+const physics::World& Playback::world() const { return impl_->live->world; }
 
 int Playback::frame_count() const { return impl_->timeline.frame_count; }
 
 double Playback::time_of_frame(int frame) const { return impl_->timeline.time_of_frame(frame); }
+
+int Playback::next_frame() const { return impl_->live->next; }
+
+std::size_t Playback::checkpoints() const { return impl_->checkpoints.size(); }
+
+std::int64_t Playback::steps_taken() const { return impl_->steps_taken; }
 
 }  // namespace discreel::job

@@ -152,21 +152,20 @@ Expected<RenderSummary> render(const RenderDef& def) {
     Status simulated;   // the physics' failure, which stops the run like a cancellation
     const PipelineStages stages{
         .simulate = [&](int frame) -> const render::FrameScene* {
-            simulated = playback.advance_to(frame, def.should_stop);
-            if (!simulated) return nullptr;
+            auto shown = playback.show(frame, frame >= range.first, def.should_stop);
+            if (!shown) {
+                simulated = shown.error();
+                return nullptr;
+            }
             warnings.say(playback.take_warnings());
             outputs->record(frame, playback.time_of_frame(frame), playback.world(),
                             playback.take_events());
-            if (frame < range.first) {
-                playback.observe(frame);   // trails and the follow camera
-                return nullptr;
-            }
-            const render::FrameScene& view = playback.frame_scene(frame);
+            if (*shown == nullptr) return nullptr;   // before the range: observed only
             if (outputs->views_wanted()) {
-                simulated = outputs->record_view(frame, playback.time_of_frame(frame), view);
+                simulated = outputs->record_view(frame, playback.time_of_frame(frame), **shown);
                 if (!simulated) return nullptr;
             }
-            return &view;
+            return *shown;
         },
         .encode =
             [&](const ImageView& image) {

@@ -102,7 +102,6 @@ private:
 
     void work(render::Renderer* warm) {
         Playback playback(def_.scene);
-        int next_frame = 0;   // the first frame playback has not shown yet
         std::optional<render::Renderer> own;
         for (;;) {
             const std::size_t j = next_.fetch_add(1);
@@ -115,10 +114,9 @@ private:
                 warm = &*own;
             }
             const FrameRange piece = segment_frames(def_.scene.video, range_, wanted_[j]);
-            if (Status done = encode_segment(playback, next_frame, piece, *warm, j); !done) {
+            if (Status done = encode_segment(playback, piece, *warm, j); !done) {
                 return fail(as_output_error(done.error(), j));
             }
-            next_frame = piece.last + 1;
         }
     }
 
@@ -131,7 +129,7 @@ private:
         return write_error(def_.output.path, error.message.substr(prefix.size()));
     }
 
-    Status encode_segment(Playback& playback, int next_frame, FrameRange piece,
+    Status encode_segment(Playback& playback, FrameRange piece,
                           render::Renderer& renderer, std::size_t j) {
         encode::SinkDef sink_def = sink_;
         sink_def.path = paths_[j];
@@ -142,15 +140,14 @@ private:
         int reported = 0;
         const PipelineStages stages{
             .simulate = [&](int frame) -> const render::FrameScene* {
-                simulated = playback.advance_to(frame, def_.should_stop);
-                if (!simulated) return nullptr;
-                warnings_.say(playback.take_warnings());
-                playback.take_events();   // the recorder writes them; here they are not kept
-                if (frame < piece.first) {
-                    playback.observe(frame);   // trails and the follow camera
+                auto shown = playback.show(frame, frame >= piece.first, def_.should_stop);
+                if (!shown) {
+                    simulated = shown.error();
                     return nullptr;
                 }
-                return &playback.frame_scene(frame);
+                warnings_.say(playback.take_warnings());
+                playback.take_events();   // the recorder writes them; here they are not kept
+                return *shown;            // null before the segment: observed only
             },
             .encode = [&](const ImageView& image) { return (*sink)->write(image); },
             .encoded =
@@ -161,7 +158,7 @@ private:
             .should_stop = [&] { return !simulated || stopping(); },
         };
         const PipelineResult run = run_pipeline(
-            {.first_frame = next_frame,
+            {.first_frame = playback.next_frame(),
              .frame_count = piece.last + 1,
              .renderer = renderer.def(),
              .warm_renderer = &renderer,
@@ -198,24 +195,22 @@ private:
     // The trace and events of the whole clip, from a playback of their own.
     void record(SideOutputs& outputs) {
         Playback playback(def_.scene);
-        for (int frame = 0; frame <= range_.last && !stopping(); ++frame) {
-            if (Status advanced = playback.advance_to(frame, def_.should_stop); !advanced) {
-                return fail(advanced.error());
-            }
-            warnings_.say(playback.take_warnings());
-            outputs.record(frame, playback.time_of_frame(frame), playback.world(),
-                           playback.take_events());
-            // The drawn frames' views, as the segments draw them: every earlier frame
-            // observed (trails, the follow camera).
-            if (!outputs.views_wanted()) continue;
-            if (frame < range_.first) {
-                playback.observe(frame);
-            } else if (Status viewed = outputs.record_view(frame, playback.time_of_frame(frame),
-                                                           playback.frame_scene(frame));
-                       !viewed) {
-                return fail(viewed.error());
-            }
-        }
+        // The drawn frames' views as the segments draw them, every earlier frame observed
+        // (trails, the follow camera); without views, the physics alone.
+        const bool views = outputs.views_wanted();
+        const Status played = playback.play(
+            {.last = range_.last,
+             .drawn = [&](int frame) { return frame >= range_.first; },
+             .look = views,
+             .should_stop = [&] { return stopping(); }},
+            [&](const ShownFrame& shown) -> Status {
+                warnings_.say(playback.take_warnings());
+                outputs.record(shown.frame, shown.t, playback.world(), playback.take_events());
+                if (shown.view == nullptr) return {};
+                return outputs.record_view(shown.frame, shown.t, *shown.view);
+            });
+        // Stopped because another worker failed: that failure is the story.
+        if (!played && !failed_.load()) fail(played.error());
     }
 
     const RenderDef& def_;

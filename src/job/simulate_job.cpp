@@ -22,21 +22,22 @@ Expected<SimulateSummary> simulate(const SimulateDef& def) {
     SimulateSummary summary;
     summary.frames = playback.frame_count();
     summary.energy_start = playback.world().energy();
-    for (int frame = 0; frame < summary.frames; ++frame) {
-        if (def.should_stop && def.should_stop()) return Error{"cancelled; nothing was written"};
-        if (Status stepped = playback.advance_to(frame, def.should_stop); !stepped) {
-            return stepped.error();
-        }
-        warnings.say(playback.take_warnings());
-        const std::vector<physics::ContactEvent> events = playback.take_events();
-        summary.contacts += static_cast<std::size_t>(
-            std::count_if(events.begin(), events.end(), [](const physics::ContactEvent& e) {
-                return e.kind == physics::ContactEvent::Kind::contact;
-            }));
-        outputs->record(frame, playback.time_of_frame(frame), playback.world(), events);
-        const physics::WorldStats stats = playback.world().stats();
-        if (stats.max_overlap > summary.deepest.max_overlap) summary.deepest = stats;
-    }
+    const Status played = playback.play(
+        {.last = -1, .drawn = {}, .look = false, .should_stop = def.should_stop},
+        [&](const ShownFrame& shown) -> Status {
+            warnings.say(playback.take_warnings());
+            const std::vector<physics::ContactEvent> events = playback.take_events();
+            summary.contacts += static_cast<std::size_t>(
+                std::count_if(events.begin(), events.end(), [](const physics::ContactEvent& e) {
+                    return e.kind == physics::ContactEvent::Kind::contact;
+                }));
+            outputs->record(shown.frame, shown.t, playback.world(), events);
+            const physics::WorldStats stats = playback.world().stats();
+            if (stats.max_overlap > summary.deepest.max_overlap) summary.deepest = stats;
+            return {};
+        });
+    if (!played) return played.error();
+    if (def.should_stop && def.should_stop()) return Error{"cancelled; nothing was written"};
     Status done = outputs->seal();
     if (done) done = commit_together(outputs->files());
     if (!done) return done.error();

@@ -66,34 +66,36 @@ Status write_soundtrack(const scene::Scene& scene, FrameRange range, const Sampl
     const double g = std::hypot(scene.physics.gravity.x, scene.physics.gravity.y);
     const double settling = 4.0 * g / scene.physics.rate;
     Playback playback(scene);
-    for (int frame = 0; frame < frame_count && position < end; ++frame) {
-        if (should_stop && should_stop()) return Error{"cancelled; nothing was written"};
-        if (Status advanced = playback.advance_to(frame, should_stop); !advanced) {
-            return advanced.error();
-        }
-        const render::Camera camera = playback.frame_scene(frame).camera;
-        const double half_width = camera.height * aspect / 2;
-        for (const physics::ContactEvent& event : playback.take_events()) {
-            // A sensor's overlaps are silent: nothing struck.
-            if (event.kind != physics::ContactEvent::Kind::contact) continue;
-            const Body& body = bodies[event.a];
-            const bool disc = event.other_kind == physics::ContactEvent::Other::body;
-            const Body other = disc ? bodies[event.other]
-                                    : Body{body.size, std::numeric_limits<double>::infinity()};
-            // The lighter body's change of speed: what makes the contact loud, at any scale.
-            const double lighter = std::min(body.mass, other.mass);
-            const double x = playback.bodies()[event.a].position.x;
-            const double speed = std::isfinite(lighter) ? event.impulse / lighter : 0.0;
-            if (speed < settling) continue;
-            synth.add({.t = event.t,
-                       .speed = speed,
-                       .size = std::min(body.size, other.size),
-                       .pan = std::clamp((x - camera.center_x) / half_width, -1.0, 1.0)});
-        }
-        if (!synth.render_until(synth.frame_of(playback.time_of_frame(frame)), write)) {
-            return written.error();
-        }
-    }
+    // The frames up to the one whose time ends the wanted sound (or the clip's last).
+    const int last_needed = std::min(frame_count - 1, range.last + 1);
+    const Status played = playback.play(
+        {.last = last_needed, .drawn = {}, .look = true, .should_stop = should_stop},
+        [&](const ShownFrame& shown) -> Status {
+            if (position >= end) return {};
+            const render::Camera camera = shown.view->camera;
+            const double half_width = camera.height * aspect / 2;
+            for (const physics::ContactEvent& event : playback.take_events()) {
+                // A sensor's overlaps are silent: nothing struck.
+                if (event.kind != physics::ContactEvent::Kind::contact) continue;
+                const Body& body = bodies[event.a];
+                const bool disc = event.other_kind == physics::ContactEvent::Other::body;
+                const Body other = disc ? bodies[event.other]
+                                        : Body{body.size, std::numeric_limits<double>::infinity()};
+                // The lighter body's change of speed: what makes the contact loud, at any
+                // scale.
+                const double lighter = std::min(body.mass, other.mass);
+                const double x = playback.bodies()[event.a].position.x;
+                const double speed = std::isfinite(lighter) ? event.impulse / lighter : 0.0;
+                if (speed < settling) continue;
+                synth.add({.t = event.t,
+                           .speed = speed,
+                           .size = std::min(body.size, other.size),
+                           .pan = std::clamp((x - camera.center_x) / half_width, -1.0, 1.0)});
+            }
+            if (!synth.render_until(synth.frame_of(shown.t), write)) return written.error();
+            return {};
+        });
+    if (!played) return played.error();
     if (position < end && !synth.finish(write)) return written.error();
     return {};
 }

@@ -31,6 +31,16 @@ public:
         }
     }
 
+    // A copy of `other`'s memory stepping `world`, a copy of other's world (a checkpoint).
+    FrameStepper(const FrameStepper& other, physics::World& world)
+        : world_(world), timeline_(other.timeline_), scene_(other.scene_), events_(other.events_),
+          last_contact_(other.last_contact_), kept_(other.kept_), warnings_(other.warnings_) {}
+    FrameStepper(const FrameStepper&) = delete;
+    FrameStepper& operator=(const FrameStepper&) = delete;
+    FrameStepper(FrameStepper&&) = delete;
+    FrameStepper& operator=(FrameStepper&&) = delete;
+    ~FrameStepper() = default;
+
     // Steps the world until it shows frame `frame` (frames must not go backwards). Fails, naming
     // the body and the time, once the world's state is no longer finite; fails with
     // stopped_message when `should_stop`, asked before every physics step, says so (a frame

@@ -4,6 +4,7 @@
 // resting contact (contact_solver.cpp), direct islands (disc_islands.cpp) and position
 // projection (projection.cpp). Its fixed bodies are one per wall feature (geometry.hpp).
 #include <cstddef>
+#include <memory>
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +24,11 @@ public:
     // Appends the wall features' fixed bodies to `bodies`, which hold the definition's.
     DiscStepper(const WorldDef& def, int substeps, std::vector<Body>& bodies);
 
+    std::unique_ptr<Stepper> clone() const override {
+        auto copy = std::make_unique<DiscStepper>(*this);
+        copy->set_profile(nullptr);
+        return copy;
+    }
     int iterations() const override { return iterations_; }
     void step(std::vector<Body>& bodies, double t0, double t1, bool thrown,
               std::vector<PairTouch>& began) override;

@@ -4,6 +4,7 @@
 // a capsule per segment and the four slabs around a box's inside; it keeps every body's shape
 // beside it, in the same order.
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "body_solver.hpp"
@@ -17,6 +18,11 @@ public:
     // Appends the walls' fixed bodies to `bodies`, which hold the definition's.
     ShapeStepper(const WorldDef& def, int substeps, std::vector<Body>& bodies);
 
+    std::unique_ptr<Stepper> clone() const override {
+        auto copy = std::make_unique<ShapeStepper>(*this);
+        copy->set_profile(nullptr);
+        return copy;
+    }
     int iterations() const override { return solver_.def().iterations; }
     void step(std::vector<Body>& bodies, double t0, double t1, bool thrown,
               std::vector<PairTouch>& began) override;

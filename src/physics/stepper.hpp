@@ -5,6 +5,7 @@
 // (docs/physics.md). Two solvers answer: the disc solver (disc_stepper.hpp) for worlds of plain
 // discs, the manifold solver (shape_stepper.hpp) once any body has a shape.
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -17,6 +18,9 @@ namespace discreel::physics::detail {
 class Stepper {
 public:
     virtual ~Stepper() = default;
+    // A copy of the whole state (contacts, warm starts, caches), stepping on exactly as this
+    // one would; its profile is unset (set_profile).
+    virtual std::unique_ptr<Stepper> clone() const = 0;
     // Velocity iterations per substep (WorldDef::iterations, or the solver's own for 0).
     virtual int iterations() const = 0;
     // The step from t0 to t1 (seconds; 1 / WorldDef::rate apart); `thrown`: a throw changed a

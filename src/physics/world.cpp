@@ -75,6 +75,19 @@ struct World::Impl {
         if (const auto i = stepper->end_step(bodies, 0.0)) failure = NonFiniteState{*i, 0.0};
     }
 
+    // A copy that steps on exactly as `other` would; not profiled.
+    Impl(const Impl& other)
+        : rate(other.rate), substeps(other.substeps), gravity(other.gravity),
+          body_count(other.body_count), manifold(other.manifold), bodies(other.bodies),
+          throws(other.throws), kinematics(other.kinematics), respawns(other.respawns),
+          respawns_applied(other.respawns_applied), stepper(other.stepper->clone()),
+          events(other.events), states(other.states), published_steps(other.published_steps),
+          steps(other.steps), failure(other.failure), profiled(false) {}
+    Impl& operator=(const Impl&) = delete;
+    Impl(Impl&&) = delete;
+    Impl& operator=(Impl&&) = delete;
+    ~Impl() = default;
+
     void step();
     void respawn(double t0);
     void add_events(double t);
@@ -168,6 +181,7 @@ void World::Impl::add_events(double t) {
 World::World(const WorldDef& def) : impl_(std::make_unique<Impl>(def)) {}
 World::~World() = default;
 World::World(World&&) noexcept = default;
+World::World(const World& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
 World& World::operator=(World&&) noexcept = default;
 
 void World::step() { impl_->step(); }

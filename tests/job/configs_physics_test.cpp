@@ -45,11 +45,12 @@ void run_frames(const std::filesystem::path& path, bool with_throws,
         }
     }
     job::Playback playback(s);
-    look(0, playback.world());
-    for (int frame = 1; frame < playback.frame_count(); ++frame) {
-        ASSERT_TRUE(playback.advance_to(frame)) << "frame " << frame;
-        look(frame, playback.world());
-    }
+    const Status played = playback.play({.last = -1, .drawn = {}, .look = false, .should_stop = {}},
+                                        [&](const job::ShownFrame& shown) -> Status {
+                                            look(shown.frame, playback.world());
+                                            return {};
+                                        });
+    ASSERT_TRUE(played) << played.error().message;
 }
 
 TEST(ConfigsEnergyTest, EnergyNeverRisesBetweenFramesWithoutThrows) {

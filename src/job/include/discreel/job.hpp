@@ -23,34 +23,77 @@
 
 namespace discreel::job {
 
-// A scene played forward frame by frame: its physics world on the scene's timeline (frame n
-// shows t = n / fps) and what each frame looks like. Frames go forward only.
+struct FrameRange {
+    int first = 0;           // inclusive
+    int last = -1;           // inclusive; negative: the clip's last frame
+};
+
+struct PlaybackDef {
+    // Keep a checkpoint of the whole state (physics, trails, camera) every this many frames
+    // as they are first shown, so that show() can go back to any frame by stepping on from the
+    // nearest one before it; 0: none, frames go forward only. A checkpoint costs about the
+    // world's memory (docs/serve.md, "Studio").
+    int checkpoint_every = 0;
+};
+
+// A frame as Playback::play hands it over.
+struct ShownFrame {
+    int frame = 0;
+    double t = 0;                                 // seconds: frame / fps
+    const render::FrameScene* view = nullptr;     // the frame's look; null when not drawn
+};
+
+// What Playback::play plays.
+struct PlayDef {
+    int last = -1;                                // inclusive; negative: the clip's last
+    // Which frames are drawn (their view built); frames not drawn are still observed, so
+    // trails and the follow camera see them. Empty: every frame.
+    std::function<bool(int frame)> drawn;
+    // false: the physics only, nothing drawn or observed; such a playback draws no frame
+    // after it (a caller that never draws: simulate, tests).
+    bool look = true;
+    // Asked before every physics step; true stops with "cancelled; nothing was written".
+    std::function<bool()> should_stop;
+};
+
+// A scene played frame by frame: its physics world on the scene's timeline (frame n shows
+// t = n / fps) and what each frame looks like. This is the one road from a scene to frames:
+// every render, segment, golden check, soundtrack, bench and the studio show frames through it.
 class Playback {
 public:
-    explicit Playback(const scene::Scene& scene);   // keeps a reference to `scene`
+    explicit Playback(const scene::Scene& scene, PlaybackDef def = {});   // keeps `scene`
     ~Playback();
     Playback(Playback&&) noexcept;
     Playback& operator=(Playback&&) noexcept;
 
-    // Steps the physics until it shows `frame`; fails, naming the body and the time, once the
-    // state is no longer finite, and with "cancelled; nothing was written" as soon as
-    // `should_stop` (asked before every physics step) says so.
-    [[nodiscard]] Status advance_to(int frame, const std::function<bool()>& should_stop = {});
-    // Shows the current frame to the look's memory (trails, follow camera) without drawing it:
-    // every frame before a drawn one must be observed or drawn, in order.
-    void observe(int frame);
-    // The current frame's description for the renderer (and observe()); valid until the next
-    // call.
-    const render::FrameScene& frame_scene(int frame);
+    // Shows `frame`: steps the physics to it, showing the look every frame since the last one
+    // shown, in order. `drawn`: returns the frame's description for the renderer (valid until
+    // the next call); otherwise observes it and returns null. A frame at or before the last
+    // one shown goes back to the nearest checkpoint (PlaybackDef::checkpoint_every) and steps
+    // on from there; without checkpoints that is an error. Fails, naming the body and the
+    // time, once the state is no longer finite, and with "cancelled; nothing was written" as
+    // soon as `should_stop` (asked before every physics step) says so.
+    [[nodiscard]] Expected<const render::FrameScene*> show(
+        int frame, bool drawn, const std::function<bool()>& should_stop = {});
+
+    // Shows every frame from the next one to def.last and hands each to `each`, in order;
+    // the first error (its own or `each`'s) ends it.
+    [[nodiscard]] Status play(const PlayDef& def,
+                              const std::function<Status(const ShownFrame&)>& each);
 
     std::span<const physics::BodyState> bodies() const;
-    std::vector<physics::ContactEvent> take_events();   // new contacts since the last call
+    // New contacts (and sensor overlaps) since the last call, in the order they happened;
+    // frames shown again after going back report theirs again.
+    std::vector<physics::ContactEvent> take_events();
     // What went wrong without stopping the run, since the last call: a body that left the box
     // of walls it started in (once per body, at the first frame that shows it outside).
     std::vector<std::string> take_warnings();
     const physics::World& world() const;
     int frame_count() const;                  // round(duration * fps)
     double time_of_frame(int frame) const;    // seconds
+    int next_frame() const;                   // the first frame not shown yet
+    std::size_t checkpoints() const;          // how many are kept
+    std::int64_t steps_taken() const;         // physics steps, counting those taken again
 
 private:
     struct Impl;
@@ -61,11 +104,6 @@ struct Progress {
     int frames_done = 0;     // encoded (render) or simulated (simulate)
     int frames_total = 0;
     double elapsed = 0;      // seconds since the job started
-};
-
-struct FrameRange {
-    int first = 0;           // inclusive
-    int last = -1;           // inclusive; negative: the clip's last frame
 };
 
 struct StageSeconds {        // time each stage spent working, not waiting

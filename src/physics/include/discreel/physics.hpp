@@ -291,6 +291,10 @@ public:
     ~World();
     World(World&&) noexcept;
     World& operator=(World&&) noexcept;
+    // A checkpoint: the copy steps on to the same bytes as this world would (contacts, warm
+    // starts and caches copied too). Not profiled.
+    World(const World& other);
+    World& operator=(const World&) = delete;
 
     void step();                   // advance by exactly 1/rate seconds; nothing once failed
     std::int64_t step_count() const;
