@@ -129,6 +129,10 @@ Expected<Gray16Image> read_png_gray16(const std::string& path) {
     return image;
 }
 
+Expected<std::vector<std::uint8_t>> png_bytes(const ImageView& image) {
+    return encode_png(image);
+}
+
 Expected<std::string> png_data_uri(const ImageView& image) {
     auto png = encode_png(image);
     if (!png) return png.error();

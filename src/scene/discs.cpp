@@ -173,6 +173,8 @@ void add_disc(Loader& loader, Body disc, const Value& item, const std::optional<
         source.velocity_where = velocity_value->where;
         source.velocity_path = velocity_value->path;
     }
+    disc.line = item.where.line;
+    disc.column = item.where.column;
     loader.scene.bodies.push_back(std::move(disc));
     loader.sources.push_back(std::move(source));
 }

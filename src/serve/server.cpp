@@ -15,11 +15,13 @@
 
 #include "discreel/render.hpp"
 #include "discreel/serve.hpp"
+#include "digest.hpp"
 #include "discreel_web.hpp"
 #include "http.hpp"
 #include "jobs.hpp"
 #include "metrics.hpp"
 #include "request.hpp"
+#include "studio.hpp"
 
 namespace discreel::serve {
 namespace {
@@ -184,6 +186,7 @@ struct Server::Impl final : http::Handler {
     ServeDef def;
     Metrics metrics;
     std::unique_ptr<Jobs> jobs;
+    std::unique_ptr<Studio> studio;
     std::unique_ptr<http::Server> http;
     std::atomic<int> streams{0};
     std::counting_semaphore<concurrent_loads> loading{concurrent_loads};
@@ -220,6 +223,7 @@ struct Server::Impl final : http::Handler {
                               const std::string& name);
     http::Response list_renders(const http::Request& req);
     http::Response get_events(const std::string& id);
+    http::Response post_studio(const http::Request& req, std::string_view what);
 };
 
 bool Server::Impl::allowed_host(std::string_view host) const {
@@ -256,7 +260,8 @@ void Server::Impl::add_cors(const http::Request& request, http::Response& res) c
     if (!allowed_origin(origin)) return;
     res.set("Access-Control-Allow-Origin", std::string(origin));
     res.set("Access-Control-Expose-Headers",
-            "Location, ETag, Content-Range, Content-Disposition, Retry-After");
+            "Location, ETag, Content-Range, Content-Disposition, Retry-After, X-Discreel-Frame, "
+            "X-Discreel-Frames, X-Discreel-Fps, X-Discreel-Steps");
 }
 
 // A browser's preflight (OPTIONS with Access-Control-Request-Method) for a /v1 route, answered
@@ -404,6 +409,12 @@ http::Response Server::Impl::route(http::Request& req) {
         if (req.method != "POST") return only("POST");
         return post_validate(req);
     }
+    for (const std::string_view what : {"frame", "timeline", "body"}) {
+        if (path == "/v1/studio/" + std::string(what)) {
+            if (req.method != "POST") return only("POST");
+            return post_studio(req, what);
+        }
+    }
     // /v1/renders/<32 lowercase hex digits>[/output|/events]; anything else is no resource.
     constexpr std::string_view prefix = "/v1/renders/";
     if (path.rfind(prefix, 0) != 0 || path.size() < prefix.size() + 32) {
@@ -496,6 +507,64 @@ http::Response Server::Impl::post_validate(const http::Request& req) {
     auto planned = plan(std::get<JobRequest>(parsed));
     if (auto* refused = std::get_if<Refusal>(&planned)) return reply(*refused);
     return reply(200, {{"ok", true}, {"warnings", std::get<PlannedJob>(planned).warnings}});
+}
+
+// A studio request: a still's request (scene, set, size, frame or at) and, for "body", the
+// pixel "pick": [x, y] of the preview. Answered from the scene's studio session.
+http::Response Server::Impl::post_studio(const http::Request& req, std::string_view what) {
+    json body = json::parse(req.body, nullptr, false);
+    std::optional<std::pair<int, int>> pick;
+    if (body.is_object()) {
+        if (body.contains("output")) {
+            return refuse(400, "field 'output': the studio answers PNG previews; leave it out");
+        }
+        if (const auto found = body.find("pick"); found != body.end()) {
+            const json& p = *found;
+            if (!p.is_array() || p.size() != 2 || !p[0].is_number_integer() ||
+                !p[1].is_number_integer()) {
+                return refuse(400, "field 'pick' must be [x, y], a pixel of the preview");
+            }
+            pick = std::pair{p[0].get<int>(), p[1].get<int>()};
+            body.erase(found);
+        }
+        body["output"] = "png";
+    }
+    if (what == "body" && body.is_object() && !pick) {
+        return refuse(400, "field 'pick' is missing: [x, y], a pixel of the preview");
+    }
+    auto parsed = parse_job_request(body.is_object() ? body.dump() : req.body, def.limits,
+                                    def.version);
+    if (auto* refused = std::get_if<Refusal>(&parsed)) return reply(*refused);
+    const JobRequest& request = std::get<JobRequest>(parsed);
+    if (request.callback || !request.extras.empty()) {
+        return refuse(400, "the studio takes no 'callback' or 'outputs'");
+    }
+    auto planned = plan(request);
+    if (auto* refused = std::get_if<Refusal>(&planned)) return reply(*refused);
+    job::RenderPlan& plan = std::get<PlannedJob>(planned).plan;
+    // The session is the scene with its overrides and size, whatever the frame.
+    json options = request.options;
+    options.erase("frame");
+    options.erase("at");
+    const std::string key = sha256_hex(options.dump() + "\n" + request.scene);
+    if (what == "frame") {
+        auto frame = studio->frame(key, std::move(plan));
+        if (!frame) return refuse(422, frame.error().message);
+        http::Response res;
+        res.set("Content-Type", "image/png");
+        res.set("Cache-Control", "no-store");
+        res.set("X-Discreel-Frame", std::to_string(frame->frame));
+        res.set("X-Discreel-Frames", std::to_string(frame->frames));
+        res.set("X-Discreel-Fps", std::to_string(frame->fps));
+        res.set("X-Discreel-Steps", std::to_string(frame->steps));
+        res.body.assign(frame->png.begin(), frame->png.end());
+        return res;
+    }
+    auto answer = what == "timeline"
+                      ? studio->timeline(key, std::move(plan))
+                      : studio->body_at(key, std::move(plan), pick->first, pick->second);
+    if (!answer) return refuse(422, answer.error().message);
+    return reply(200, *answer);
 }
 
 // The query's parameters, in order; nullopt when one is not name=value.
@@ -686,6 +755,8 @@ Expected<Server> Server::open(const ServeDef& def) {
     auto jobs = Jobs::open(def, impl->metrics);
     if (!jobs) return jobs.error();
     impl->jobs = std::move(*jobs);
+    impl->studio = std::make_unique<Studio>(
+        StudioDef{.sessions = def.studio_sessions, .timeout = def.job_timeout});
     auto bound = http::Server::bind(def.host, def.port, limits, *impl);
     if (!bound) return bound.error();
     impl->http = std::move(*bound);

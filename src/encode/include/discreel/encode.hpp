@@ -169,6 +169,8 @@ struct Gray16Image {
 // A 16-bit grey PNG written and sealed under a temporary name, for commit_together().
 Expected<OutputFile> prepare_png_gray16(const std::string& path, const Gray16View& image);
 Expected<Gray16Image> read_png_gray16(const std::string& path);
+// The PNG bytes a still of `image` is written as, in memory (the studio's previews).
+Expected<std::vector<std::uint8_t>> png_bytes(const ImageView& image);
 // "data:image/png;base64,...": the image as a PNG an HTML page can carry inside itself.
 Expected<std::string> png_data_uri(const ImageView& image);
 

@@ -238,6 +238,8 @@ struct Body {
     std::uint32_t category = physics::default_category;
     std::uint32_t collides = physics::all_categories;
     bool sensor = false;           // overlaps reported, nothing pushed
+    // Where the file gives it (its list item, or its generator's): 1-based; 0 for none.
+    int line = 0, column = 0;
 };
 
 struct Waypoint {

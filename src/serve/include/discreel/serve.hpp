@@ -29,6 +29,9 @@ struct ServeDef {
     std::optional<std::string> token;        // if set, every /v1 request must bear it
     scene::Limits limits;                    // bound every scene, as on the command line
     double job_timeout = 600;                // seconds one job may render before it fails
+    // Scenes the studio keeps playing between requests (/v1/studio, docs/serve.md "Studio"),
+    // each with its checkpoints and a renderer of its preview size.
+    std::size_t studio_sessions = 4;
     std::string version;                     // discreel's, part of every job id
     bool log_requests = true;                // one JSON line per request and job transition
     // Web origins ("https://app.example.com") whose pages may call the API from a browser:

@@ -1,0 +1,187 @@
+// The studio's API end to end (docs/serve.md, "Studio"): previews that are `discreel render`'s
+// stills byte for byte in any order of frames, going back from a checkpoint rather than from
+// t = 0, the clip's contacts as `simulate --events` lists them, and the body under a pixel.
+// A real server process on 127.0.0.1, stopped by pid; GL, as the server draws.
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "serve_client.hpp"
+#include "serve_process.hpp"
+#include "test_support.hpp"
+
+namespace discreel {
+namespace {
+
+using nlohmann::json;
+using testing::client_for;
+using testing::post;
+using testing::read_file;
+using testing::run_command;
+using testing::ServeProcess;
+using testing::TempDir;
+
+const std::string bin = DISCREEL_BIN;
+
+std::string config(const std::string& name) {
+    return read_file(std::string(DISCREEL_SOURCE_DIR) + "/configs/" + name);
+}
+
+class StudioGLTest : public ::testing::Test {
+protected:
+    TempDir dir;
+    std::string log = dir / "serve.log";
+
+    std::string cli(const std::string& scene, const std::vector<std::string>& options) {
+        testing::write_file(dir / "cli.yaml", scene);
+        std::vector<std::string> argv{bin, "render", dir / "cli.yaml", "-o", dir / "cli.png", "-q"};
+        argv.insert(argv.end(), options.begin(), options.end());
+        const auto run = run_command(argv);
+        EXPECT_EQ(run.exit_code, 0) << run.err;
+        return read_file(dir / "cli.png");
+    }
+};
+
+TEST_F(StudioGLTest, APreviewIsTheCliStillInAnyOrderOfFrames) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    const std::string scene = config("polygons.yaml");
+    std::int64_t from_start = 0;
+    // Forward, back past a checkpoint, the same frame again, and a time.
+    for (const int frame : {40, 130, 100, 100, 7}) {
+        SCOPED_TRACE(frame);
+        auto answer = post(client, "/v1/studio/frame",
+                           {{"scene", scene}, {"size", "320x180"}, {"frame", frame}});
+        ASSERT_TRUE(answer);
+        ASSERT_EQ(answer->status, 200) << answer->body;
+        EXPECT_EQ(answer->get_header_value("Content-Type"), "image/png");
+        EXPECT_EQ(answer->get_header_value("X-Discreel-Frame"), std::to_string(frame));
+        EXPECT_EQ(answer->body,
+                  cli(scene, {"--size", "320x180", "--frame", std::to_string(frame)}));
+        const std::int64_t steps = std::stoll(answer->get_header_value("X-Discreel-Steps"));
+        const int fps = std::stoi(answer->get_header_value("X-Discreel-Fps"));
+        if (frame == 40) from_start = steps;
+        // Going back steps on from the checkpoint a second (fps frames) before, at most.
+        if (frame == 100 || frame == 7) {
+            EXPECT_LE(steps, from_start * fps / 40);
+        }
+    }
+    auto at = post(client, "/v1/studio/frame", {{"scene", scene}, {"size", "320x180"}, {"at", 1.5}});
+    ASSERT_TRUE(at);
+    ASSERT_EQ(at->status, 200) << at->body;
+    EXPECT_EQ(at->body, cli(scene, {"--size", "320x180", "--at", "1.5"}));
+}
+
+TEST_F(StudioGLTest, TheTimelineHasTheContactsSimulateLists) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    const std::string scene = config("billiards.yaml");
+    // A preview first: the timeline goes on from the session's playback.
+    auto first = post(client, "/v1/studio/frame", {{"scene", scene}, {"size", "160x90"}, {"frame", 30}});
+    ASSERT_TRUE(first);
+    ASSERT_EQ(first->status, 200);
+    auto answer = post(client, "/v1/studio/timeline", {{"scene", scene}, {"size", "160x90"}});
+    ASSERT_TRUE(answer);
+    ASSERT_EQ(answer->status, 200) << answer->body;
+    const json timeline = json::parse(answer->body);
+
+    testing::write_file(dir / "s.yaml", scene);
+    const auto run = run_command({bin, "simulate", dir / "s.yaml", "--events", dir / "e.csv"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::istringstream csv(read_file(dir / "e.csv"));
+    std::string line;
+    std::getline(csv, line);   // t,a,b,impulse,kind
+    std::vector<std::pair<double, std::string>> contacts;
+    while (std::getline(csv, line)) {
+        if (line.size() < 8 || line.substr(line.size() - 8) != ",contact") continue;
+        contacts.emplace_back(std::stod(line), line.substr(line.find(',') + 1));
+    }
+    ASSERT_FALSE(contacts.empty());
+    const json& events = timeline["events"];
+    ASSERT_EQ(events.size(), contacts.size());
+    const int fps = timeline["fps"];
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+        EXPECT_NEAR(events[k]["t"].get<double>(), contacts[k].first, 1e-6) << k;
+        EXPECT_EQ(contacts[k].second.rfind(events[k]["a"].get<std::string>() + ",", 0), 0U)
+            << contacts[k].second;
+        // The first frame that shows it.
+        const int frame = events[k]["frame"];
+        EXPECT_GE(frame * 1.0 / fps, contacts[k].first - 1e-9);
+        EXPECT_LT((frame - 1) * 1.0 / fps, contacts[k].first);
+    }
+}
+
+TEST_F(StudioGLTest, APickedPixelNamesTheBodyDrawnThere) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    // Walls centred on (1.6, 0.9): the fitted camera puts that point at the frame's centre.
+    const std::string scene =
+        "version: 1\n"
+        "video: {size: [320, 180], fps: 30, duration: 1}\n"
+        "physics: {gravity: [0, 0]}\n"
+        "walls:\n"
+        "  - box: [[0, 0], [3.2, 1.8]]\n"
+        "discs:\n"
+        "  - id: cue\n"
+        "    position: [1.6, 0.9]\n"
+        "    velocity: [0.5, 0]\n"
+        "    radius: 0.3\n"
+        "    mass: 2\n";
+    auto hit = post(client, "/v1/studio/body", {{"scene", scene}, {"frame", 15}, {"pick", {175, 90}}});
+    ASSERT_TRUE(hit);
+    ASSERT_EQ(hit->status, 200) << hit->body;
+    const json body = json::parse(hit->body)["body"];
+    EXPECT_EQ(body["id"], "cue");
+    EXPECT_EQ(body["index"], 0);
+    EXPECT_EQ(body["line"], 7);   // "  - id: cue"
+    EXPECT_EQ(body["kind"], "dynamic");
+    EXPECT_DOUBLE_EQ(body["mass"].get<double>(), 2.0);
+    EXPECT_NEAR(body["position"][0].get<double>(), 1.6 + 0.5 * 0.5, 1e-9);   // t = 15 / 30
+    EXPECT_NEAR(body["velocity"][0].get<double>(), 0.5, 1e-12);
+    EXPECT_DOUBLE_EQ(json::parse(hit->body)["t"].get<double>(), 0.5);
+
+    auto miss = post(client, "/v1/studio/body", {{"scene", scene}, {"frame", 15}, {"pick", {40, 90}}});
+    ASSERT_TRUE(miss);
+    ASSERT_EQ(miss->status, 200) << miss->body;
+    EXPECT_EQ(json::parse(miss->body)["body"], nullptr);
+
+    auto outside = post(client, "/v1/studio/body", {{"scene", scene}, {"pick", {320, 0}}});
+    ASSERT_TRUE(outside);
+    EXPECT_EQ(outside->status, 422);
+    EXPECT_EQ(json::parse(outside->body)["error"]["message"],
+              "the pixel (320, 0) is outside the 320x180 frame");
+}
+
+TEST_F(StudioGLTest, MistakesAreAnsweredAsTheRenderRoutesAnswerThem) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    auto client = client_for(server.port());
+    const auto message = [](const httplib::Result& r) {
+        return json::parse(r->body)["error"]["message"].get<std::string>();
+    };
+    auto bad = post(client, "/v1/studio/frame", {{"scene", "video: {fps: 0}\n"}});
+    ASSERT_TRUE(bad);
+    EXPECT_EQ(bad->status, 422);
+    EXPECT_EQ(json::parse(bad->body)["errors"][0]["line"], 1) << bad->body;
+    auto output = post(client, "/v1/studio/frame", {{"scene", config("demo.yaml")}, {"output", "mp4"}});
+    ASSERT_TRUE(output);
+    EXPECT_EQ(output->status, 400);
+    EXPECT_EQ(message(output), "field 'output': the studio answers PNG previews; leave it out");
+    auto pick = post(client, "/v1/studio/body", {{"scene", config("demo.yaml")}, {"pick", "here"}});
+    ASSERT_TRUE(pick);
+    EXPECT_EQ(pick->status, 400);
+    EXPECT_EQ(message(pick), "field 'pick' must be [x, y], a pixel of the preview");
+    auto past = post(client, "/v1/studio/frame", {{"scene", config("demo.yaml")}, {"frame", 100000}});
+    ASSERT_TRUE(past);
+    EXPECT_EQ(past->status, 422) << past->body;
+    auto get = client.Get("/v1/studio/frame");
+    ASSERT_TRUE(get);
+    EXPECT_EQ(get->status, 405);
+    EXPECT_EQ(get->get_header_value("Allow"), "POST");
+}
+
+}  // namespace
+}  // namespace discreel
