@@ -5,6 +5,8 @@
 namespace discreel::render {
 
 void OsmesaContext::Deleter::operator()(osmesa_context* context) const {
+    // Not left current on this thread: its next context would be bound over a freed one.
+    if (OSMesaGetCurrentContext() == context) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
     OSMesaDestroyContext(context);
 }
 
@@ -29,6 +31,10 @@ Expected<OsmesaContext> OsmesaContext::create() {
         return current.error();
     }
     return result;
+}
+
+void OsmesaContext::release() {
+    if (OSMesaGetCurrentContext() == context_.get()) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
 }
 
 Status OsmesaContext::make_current() {

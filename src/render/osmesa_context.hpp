@@ -14,6 +14,8 @@ public:
     static Expected<OsmesaContext> create();
 
     Status make_current();
+    // Unbinds it from the calling thread if it is current there.
+    void release();
 
 private:
     struct Deleter {

@@ -286,6 +286,8 @@ Expected<ImageView> Renderer::draw_into(const FrameScene& frame, std::span<std::
 
 std::string Renderer::renderer_info() const { return impl_->info; }
 
+void Renderer::release() { impl_->context.release(); }
+
 RendererDef Renderer::def() const {
     return {.width = impl_->width, .height = impl_->height, .font = impl_->font_path};
 }

@@ -38,8 +38,15 @@ struct Studio::Session {
             renderer.emplace(std::move(*made));
         }
         auto view = show(frame, true, stop);
-        if (!view) return view.error();
-        return renderer->draw(**view);
+        if (!view) {
+            renderer->release();
+            return view.error();
+        }
+        auto image = renderer->draw(**view);
+        // The next request may come on another thread, and an evicted session's renderer is
+        // destroyed on whichever thread evicts it.
+        renderer->release();
+        return image;
     }
 
     std::mutex mutex;                 // one request at a time draws on it

@@ -174,6 +174,11 @@ public:
     std::string renderer_info() const;   // GL_RENDERER and GL_VERSION, for golden metadata
     RendererDef def() const;             // the size it draws
 
+    // Unbinds its GL context from the calling thread. A renderer that threads draw with in
+    // turn (under the caller's lock) is released after each draw: a thread must not keep a
+    // context current that another thread then binds or destroys.
+    void release();
+
 private:
     struct Impl;
     explicit Renderer(std::unique_ptr<Impl> impl);

@@ -1,0 +1,221 @@
+#!/usr/bin/env python3
+"""End-to-end test of the studio on the `discreel serve` page, in headless Chromium.
+
+    python3 tests/serve/studio_browser_test.py DISCREEL_BIN WORK_DIR
+
+Types a scene and sees the preview change; scrubs to a frame and compares the preview's bytes
+with `discreel render --at` at the same size; plays and sees frames advance; steps with the
+keyboard; clicks a body and sees its data and its line; restarts the server and sees the page
+reconnect. Writes WORK_DIR/studio.png, the screenshot docs/serve.md shows. Exit 0 on pass.
+The server, Chromium and the DevTools plumbing are browser_test.py's.
+"""
+import base64
+import os
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import browser_test as bt  # noqa: E402
+
+SCENE = """version: 1
+video:
+  size: [320, 180]
+  fps: 30
+  duration: 2.0
+  background: "#0f1419"
+physics:
+  gravity: [0, -9.81]
+  restitution: 0.7
+walls:
+  - box: [[0, 0], [3.2, 1.8]]
+    thickness: 0.05
+discs:
+  - id: peg
+    position: [1.6, 0.9]
+    radius: 0.25
+    static: true
+    color: "#888888"
+  - id: ball
+    position: [0.6, 1.4]
+    velocity: [2.5, 0]
+    radius: 0.15
+    color: "#f4d35e"
+  - position: [2.6, 1.2]
+    velocity: [-1, 0.5]
+    radius: 0.2
+    color: "#17bebb"
+"""
+PEG_LINE = SCENE.split("\n").index("  - id: peg") + 1
+SIZE = "480x270"
+
+FRAME_JS = "document.getElementById('preview').dataset.frame"
+# The preview's PNG bytes, base64, once it has loaded.
+PREVIEW_BYTES_JS = """(async () => {
+    const img = document.getElementById('preview');
+    if (!img.src || !img.complete || !img.naturalWidth) return null;
+    const bytes = new Uint8Array(await (await fetch(img.src)).arrayBuffer());
+    let text = '';
+    for (const b of bytes) text += String.fromCharCode(b);
+    return {frame: img.dataset.frame, png: btoa(text), width: img.naturalWidth};
+})()"""
+
+
+def preview(cdp, frame=None):
+    """The preview once it shows `frame` (any frame if None) at the preview size."""
+    def probe():
+        got = cdp.eval(PREVIEW_BYTES_JS)
+        if got and got["width"] == 480 and (frame is None or got["frame"] == str(frame)):
+            return got
+        return None
+    return bt.wait_for(f"the preview of frame {frame}", probe, 15)
+
+
+def key(cdp, name, code, shift=False):
+    modifiers = 8 if shift else 0
+    for kind in ("keyDown", "keyUp"):
+        cdp.call("Input.dispatchKeyEvent", type=kind, key=name, code=code,
+                 windowsVirtualKeyCode={"ArrowRight": 39, "ArrowLeft": 37, " ": 32}[name],
+                 modifiers=modifiers)
+
+
+def run(cdp, base, binary, work, stop_server, start_server):
+    cdp.call("Runtime.enable")
+    # The page's CSP keeps blob: out of connect-src; the test reads the preview's bytes back.
+    cdp.call("Page.setBypassCSP", enabled=True)
+    cdp.call("Emulation.setDeviceMetricsOverride", width=1280, height=720, deviceScaleFactor=1,
+             mobile=False)
+    cdp.call("Page.navigate", url=base + "/")
+    bt.wait_for("the page to load", lambda: cdp.eval(
+        "document.readyState === 'complete' && !!document.getElementById('preview')"), 15)
+
+    # 1. Typed: the preview follows the text.
+    shown = preview(cdp, 0)   # the page's own scene
+    cdp.replace_text(SCENE)
+    first = bt.wait_for("the preview of the typed scene", lambda: (lambda p: p if p and p[
+        "png"] != shown["png"] else None)(cdp.eval(PREVIEW_BYTES_JS)), 10)
+    cdp.replace_text(SCENE.replace('"#888888"', '"#d03030"'))
+    bt.wait_for("the preview to change with the text",
+                lambda: (cdp.eval(PREVIEW_BYTES_JS) or first)["png"] != first["png"], 10)
+    cdp.replace_text(SCENE)
+    bt.wait_for("the preview to come back", lambda: (cdp.eval(PREVIEW_BYTES_JS) or {}).get(
+        "png") == first["png"], 10)
+
+    # 2. Scrubbed to frame 20: the bytes `discreel render --at` writes at this size.
+    cdp.eval("(() => { const s = document.getElementById('scrub'); s.value = 20;"
+             " s.dispatchEvent(new Event('input')); })()")
+    scrubbed = preview(cdp, 20)
+    with open(os.path.join(work, "studio.yaml"), "w") as f:
+        f.write(SCENE)
+    cli = os.path.join(work, "cli.png")
+    subprocess.run([binary, "render", os.path.join(work, "studio.yaml"), "--at", str(20 / 30),
+                    "--size", SIZE, "-o", cli, "-q"], check=True, timeout=30)
+    with open(cli, "rb") as f:
+        if base64.b64decode(scrubbed["png"]) != f.read():
+            raise bt.Failure("the preview of frame 20 differs from `discreel render --at`")
+
+    # 3. The keyboard: a frame on, a second back (Shift), outside the editor.
+    cdp.eval("document.activeElement.blur()")
+    key(cdp, "ArrowRight", "ArrowRight")
+    preview(cdp, 21)
+    key(cdp, "ArrowLeft", "ArrowLeft", shift=True)
+    preview(cdp, 0)
+
+    # 4. Played: frames advance on their own, to the end of the clip.
+    key(cdp, " ", "Space")
+    seen = set()
+
+    def advancing():
+        frame = cdp.eval(FRAME_JS)
+        seen.add(frame)
+        return len(seen) >= 10 and frame
+    bt.wait_for("ten frames while playing", advancing, 15)
+    bt.wait_for("the play to end at the last frame", lambda: cdp.eval(
+        "document.getElementById('play').textContent === 'Play'") and cdp.eval(FRAME_JS) == "59",
+        15)
+
+    # 5. The contacts' ticks and a click on the peg at the frame's centre.
+    cdp.eval("(() => { const s = document.getElementById('scrub'); s.value = 10;"
+             " s.dispatchEvent(new Event('input')); })()")
+    preview(cdp, 10)
+    box = cdp.eval("(() => { const r = document.getElementById('preview')"
+                   ".getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; })()")
+    x, y = box[0] + box[2] / 2, box[1] + box[3] / 2
+    for kind in ("mousePressed", "mouseReleased"):
+        cdp.call("Input.dispatchMouseEvent", type=kind, x=x, y=y, button="left", clickCount=1)
+    picked = bt.wait_for("the peg's data", lambda: "peg (static)" in (cdp.eval(
+        "document.getElementById('picked').textContent") or "") and cdp.eval(
+        "document.getElementById('picked').textContent"), 10)
+    if "velocity (0.000, 0.000) m/s" not in picked or f"line {PEG_LINE} " not in picked:
+        raise bt.Failure(f"the picked body's data is wrong: {picked!r}")
+    if not cdp.eval(f"!!document.querySelector('#gutter .pick[data-line=\"{PEG_LINE}\"]')"):
+        raise bt.Failure(f"the peg's line {PEG_LINE} is not marked in the gutter")
+    ticks = bt.wait_for("the contacts' ticks", lambda: cdp.eval(
+        "events.length"), 10)
+
+    shot = cdp.call("Page.captureScreenshot", format="png")
+    with open(os.path.join(work, "studio.png"), "wb") as f:
+        f.write(base64.b64decode(shot["data"]))
+
+    # 6. The server goes away while the page asks for a frame, and comes back: the page says it
+    # is reconnecting, asks again, and shows the frame.
+    stop_server()
+    cdp.eval("(() => { const s = document.getElementById('scrub'); s.value = 33;"
+             " s.dispatchEvent(new Event('input')); })()")
+    bt.wait_for("'Reconnecting' in the status", lambda: "Reconnecting" in (cdp.eval(
+        bt.STATUS_JS) or ""), 10)
+    start_server()
+    preview(cdp, 33)
+    bt.wait_for("'Connected again' in the status", lambda: "Connected again" in (cdp.eval(
+        bt.STATUS_JS) or ""), 10)
+    return ticks
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(f"usage: {sys.argv[0]} DISCREEL_BIN WORK_DIR")
+    binary, work = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    os.makedirs(work, exist_ok=True)
+    server = browser = cdp = None
+    try:
+        server, base = bt.start_server(binary, work)
+        port = base.rsplit(":", 1)[1]
+
+        def stop_server():
+            bt.stop(server, "the server")
+
+        def start_server():   # on the same port and store
+            nonlocal server
+            with open(os.path.join(work, "serve2.log"), "wb") as log:
+                server = subprocess.Popen(
+                    [binary, "serve", "--listen", "127.0.0.1:" + port, "--data",
+                     os.path.join(work, "data")], stdin=subprocess.DEVNULL,
+                    stdout=subprocess.DEVNULL, stderr=log, start_new_session=True)
+
+        browser, ws_url = bt.start_chromium(work)
+        cdp = bt.Cdp(ws_url)
+        ticks = run(cdp, base, binary, work, stop_server, start_server)
+        print(f"studio_browser_test: ok: {ticks} contacts on the timeline; "
+              f"{time.monotonic() - bt.START:.1f} s in all")
+        return 0
+    except Exception as e:
+        print(f"studio_browser_test: FAILED: {e}", file=sys.stderr)
+        if cdp is not None:
+            try:
+                print("page #status:", repr(cdp.eval(bt.STATUS_JS)), file=sys.stderr)
+            except Exception as inner:
+                print(f"(could not read the page: {inner})", file=sys.stderr)
+            for event in cdp.events:
+                print("page event:", str(event.get("params"))[:500], file=sys.stderr)
+        print("--- serve.log (tail) ---\n" + bt.tail(os.path.join(work, "serve.log")),
+              file=sys.stderr)
+        return 1
+    finally:
+        if cdp is not None:
+            cdp.close()
+        bt.stop(browser, "chromium")
+        bt.stop(server, "the server")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
