@@ -97,11 +97,14 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         report_error(err, plan.error().message);
         return exit_bad_input;
     }
-    scene::Scene& scene = plan->scene;
-    const encode::OutputDescription& output = plan->output;
-    const encode::SinkDef& sink_def = plan->sink;
-    const std::optional<int> gif_fps_from = plan->gif_fps_from;
-    if (plan->drawn_opaque && !o.quiet) {
+    // The plan is the job's: the render reads it from the RenderDef.
+    job::RenderDef def;
+    def.plan = std::move(*plan);
+    const scene::Scene& scene = def.plan.scene;
+    const encode::OutputDescription& output = def.plan.output;
+    const encode::SinkDef& sink_def = def.plan.sink;
+    const std::optional<int> gif_fps_from = def.plan.gif_fps_from;
+    if (def.plan.drawn_opaque && !o.quiet) {
         err << "discreel: note: " << output.format
             << " has no alpha channel; the background is drawn opaque (write .png stills "
                "or a frame_%04d.png sequence for transparency)\n";
@@ -113,21 +116,21 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     }
     const bool still = output.one_frame;
     const job::FrameRange frames =
-        plan->segment ? job::segment_frames(scene.video, plan->frames, *plan->segment)
-                      : plan->frames;
+        def.plan.segment ? job::segment_frames(scene.video, def.plan.frames, *def.plan.segment)
+                         : def.plan.frames;
     if (o.dry_run) {
         // For scripts (deploy/slurm/clip.sh asks how many segment tasks to submit).
         out << "output=" << printable(output.path) << "\nformat=" << output.format
             << "\nsize=" << scene.video.width << 'x' << scene.video.height
             << "\nfps=" << scene.video.fps << "\nframes=" << frames.first << '-' << frames.last
-            << "\nsegments=" << (job::segmented(output) ? plan->segments : 0)
+            << "\nsegments=" << (job::segmented(output) ? def.plan.segments : 0)
             << "\nsegment_frames=" << (job::segmented(output) ? scene.video.segment_frames() : 0)
-            << "\naudio=" << (plan->audio || output.format == "wav" ? "yes" : "no") << '\n';
+            << "\naudio=" << (def.plan.audio || output.format == "wav" ? "yes" : "no") << '\n';
         return standard_output_ok(out, err) ? exit_ok : exit_runtime_failure;
     }
     const OutputFiles& files = o.files;
     const bool truth = files.shapes || files.camera || files.masks || files.boxes;
-    if (plan->segment && (files.trace || files.events || files.joints || truth)) {
+    if (def.plan.segment && (files.trace || files.events || files.joints || truth)) {
         report_error(err, "--trace, --events, --joints and the ground truth (--shapes, --camera, "
                           "--masks, --boxes) belong to a whole render, not to one segment");
         return exit_bad_input;
@@ -144,7 +147,7 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         return exit_bad_input;
     }
     // Tasks of one render share the directory of its segments, and make it if need be.
-    if (plan->segment) {
+    if (def.plan.segment) {
         std::error_code error;
         std::filesystem::create_directories(o.request.output, error);
         if (error && !std::filesystem::is_directory(o.request.output)) {
@@ -188,30 +191,25 @@ int run_render(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             << describe_encoder(sink_def, job::segmented(output)) << "; "
             << (o.sequential ? "one thread" : "simulate, render and encode threads");
         if (job::segmented(output)) {
-            err << "; " << plan->segments << (plan->segments == 1 ? " segment" : " segments")
+            err << "; " << def.plan.segments
+                << (def.plan.segments == 1 ? " segment" : " segments")
                 << " of " << scene.video.segment_frames() << " frames";
         }
         err << '\n';
     }
 
-    const scene::Video video = scene.video;   // the scene itself moves into the job
+    const scene::Video& video = scene.video;
     ProgressMeter progress(err,
                            pick_progress_style(o.quiet, o.progress, isatty(STDERR_FILENO) == 1),
                            to_write);
     // --jobs beyond what memory holds would only swap or be killed: the job cuts it, and says.
     const int memory_holds = job::segments_memory_holds(video.width, video.height);
-    if (o.jobs > memory_holds && job::segmented(output) && plan->segments > memory_holds &&
+    if (o.jobs > memory_holds && job::segmented(output) && def.plan.segments > memory_holds &&
         !o.quiet) {
         err << "discreel: --jobs " << o.jobs << ": rendering " << memory_holds
             << " segments at once, as many as the available memory holds at "
             << video.width << 'x' << video.height << '\n';
     }
-    job::RenderDef def;
-    def.scene = std::move(scene);
-    def.output = sink_def;
-    def.frames = plan->frames;
-    def.segment = plan->segment;
-    def.audio = plan->audio;
     def.jobs = o.jobs;
     def.trace = o.files.trace;
     def.events = o.files.events;

@@ -65,9 +65,9 @@ FrameRange segment_frames(const scene::Video& video, FrameRange frames, int inde
 
 Expected<RenderSummary> render(const RenderDef& def) {
     const auto started = Clock::now();
-    const scene::Scene& scene = def.scene;
+    const scene::Scene& scene = def.plan.scene;
     const int count = scene.video.frame_count();
-    const FrameRange range{def.frames.first, def.frames.last < 0 ? count - 1 : def.frames.last};
+    const FrameRange range{def.plan.frames.first, def.plan.frames.last < 0 ? count - 1 : def.plan.frames.last};
     if (range.first < 0 || range.first > range.last || range.last >= count) {
         return Error{"frames " + std::to_string(range.first) + ".." + std::to_string(range.last) +
                      " are not in the clip, which has " + std::to_string(count) + " frames"};
@@ -86,7 +86,7 @@ Expected<RenderSummary> render(const RenderDef& def) {
     // Best effort (a kernel without the setting just keeps the default).
     prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
 
-    encode::SinkDef sink_def = def.output;
+    encode::SinkDef sink_def = def.plan.sink;
     sink_def.width = scene.video.width;
     sink_def.height = scene.video.height;
     sink_def.fps = scene.video.fps;
@@ -96,11 +96,11 @@ Expected<RenderSummary> render(const RenderDef& def) {
     if (!output) return output.error();
     if (output->format == "wav") return render_soundtrack(def, range);
     if (segmented(*output)) return render_segments(def, range, sink_def, output->format);
-    if (def.segment) return Error{"only video files (.mp4, .mkv, .webm) are made of segments"};
+    if (def.plan.segment) return Error{"only video files (.mp4, .mkv, .webm) are made of segments"};
 
     auto outputs = SideOutputs::open(def.trace, def.events, def.joints, scene, def.truth);
     if (!outputs) return outputs.error();
-    sink_def.sound = def.audio;
+    sink_def.sound = def.plan.audio;
     auto sink = encode::open_sink(sink_def);
     if (!sink) return sink.error();
 
@@ -109,7 +109,7 @@ Expected<RenderSummary> render(const RenderDef& def) {
     std::optional<SampleQueue> samples;
     std::thread sound_thread;
     Status sounded;
-    if (def.audio) {
+    if (def.plan.audio) {
         samples.emplace(std::size_t{2} * 2 * sound_rate);
         sound_thread = std::thread([&] {
             sounded = write_soundtrack(

@@ -66,7 +66,7 @@ public:
         : def_(def), range_(range), sink_(sink), wanted_(std::move(wanted)),
           paths_(std::move(paths)), files_(wanted_.size()), started_(Clock::now()) {
         for (int k : wanted_) {
-            const FrameRange piece = segment_frames(def_.scene.video, range_, k);
+            const FrameRange piece = segment_frames(def_.plan.scene.video, range_, k);
             frames_total_ += piece.last - piece.first + 1;
         }
     }
@@ -101,19 +101,19 @@ private:
     }
 
     void work(render::Renderer* warm) {
-        Playback playback(def_.scene);
+        Playback playback(def_.plan.scene);
         std::optional<render::Renderer> own;
         for (;;) {
             const std::size_t j = next_.fetch_add(1);
             if (j >= wanted_.size() || stopping()) return;
             if (warm == nullptr) {
                 auto made = render::Renderer::create(
-                    {.width = def_.scene.video.width, .height = def_.scene.video.height});
+                    {.width = def_.plan.scene.video.width, .height = def_.plan.scene.video.height});
                 if (!made) return fail(made.error());
                 own = std::move(*made);
                 warm = &*own;
             }
-            const FrameRange piece = segment_frames(def_.scene.video, range_, wanted_[j]);
+            const FrameRange piece = segment_frames(def_.plan.scene.video, range_, wanted_[j]);
             if (Status done = encode_segment(playback, piece, *warm, j); !done) {
                 return fail(as_output_error(done.error(), j));
             }
@@ -123,10 +123,10 @@ private:
     // A segment of a whole render is a temporary file of the output's: its write errors are
     // the output's, and name it.
     Error as_output_error(Error error, std::size_t j) const {
-        if (def_.segment) return error;
+        if (def_.plan.segment) return error;
         const std::string prefix = write_error(paths_[j], "").message;
         if (error.message.rfind(prefix, 0) != 0) return error;
-        return write_error(def_.output.path, error.message.substr(prefix.size()));
+        return write_error(def_.plan.sink.path, error.message.substr(prefix.size()));
     }
 
     Status encode_segment(Playback& playback, FrameRange piece,
@@ -163,7 +163,7 @@ private:
              .renderer = renderer.def(),
              .warm_renderer = &renderer,
              .threaded = def_.threaded,
-             .slots = slots_for(def_.scene.video.width, def_.scene.video.height),
+             .slots = slots_for(def_.plan.scene.video.width, def_.plan.scene.video.height),
              .encoder_first = true},
             stages);
         {
@@ -194,7 +194,7 @@ private:
 
     // The trace and events of the whole clip, from a playback of their own.
     void record(SideOutputs& outputs) {
-        Playback playback(def_.scene);
+        Playback playback(def_.plan.scene);
         // The drawn frames' views as the segments draw them, every earlier frame observed
         // (trails, the follow camera); without views, the physics alone.
         const bool views = outputs.views_wanted();
@@ -236,18 +236,18 @@ private:
 Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
                                         const encode::SinkDef& sink, const std::string& format) {
     const auto started = Clock::now();
-    const int count = segment_count(def.scene.video, range);
+    const int count = segment_count(def.plan.scene.video, range);
     encode::SinkDef segment_sink = sink;
-    segment_sink.keyint = def.scene.video.segment_frames();
+    segment_sink.keyint = def.plan.scene.video.segment_frames();
     // One encoder thread per segment: x264's bytes depend on its thread count, and segments
     // side by side use the cores better than one encoder's frame threads.
     segment_sink.threads = 1;
 
     std::vector<int> wanted;
     std::vector<std::string> paths;
-    if (def.segment) {
-        if (*def.segment < 0 || *def.segment >= count) {
-            return Error{"segment " + std::to_string(*def.segment) + " is not in the clip, which has " +
+    if (def.plan.segment) {
+        if (*def.plan.segment < 0 || *def.plan.segment >= count) {
+            return Error{"segment " + std::to_string(*def.plan.segment) + " is not in the clip, which has " +
                          std::to_string(count) + (count == 1 ? " segment" : " segments") +
                          " (0.." + std::to_string(count - 1) + ")"};
         }
@@ -255,7 +255,7 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
             return Error{"--trace, --events and --joints belong to a whole render, not to one "
                          "segment"};
         }
-        wanted = {*def.segment};
+        wanted = {*def.plan.segment};
         paths = {sink.path};
     } else {
         // Each segment goes to a temporary file beside the output (never committed), so the
@@ -269,16 +269,16 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
     // The output's temporary file is made first: a target that cannot be written fails
     // before any work.
     std::optional<OutputFile> joined;
-    if (!def.segment) {
+    if (!def.plan.segment) {
         auto made = OutputFile::create(sink.path);
         if (!made) return made.error();
         joined.emplace(std::move(*made));
     }
     // The sound of the frames rendered: beside the segment, or a temporary file for the join.
     std::optional<encode::WavWriter> sound;
-    if (def.audio) {
+    if (def.plan.audio) {
         const std::string sound_path =
-            def.segment ? std::filesystem::path(sink.path).replace_extension(".wav").string()
+            def.plan.segment ? std::filesystem::path(sink.path).replace_extension(".wav").string()
                         : sink.path + ".sound.wav";
         auto opened = encode::WavWriter::open(sound_path, sound_rate, 2);
         if (!opened) return opened.error();
@@ -288,13 +288,13 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
     const GroundTruthPaths& truth = def.truth;
     if (def.trace || def.events || def.joints || truth.shapes || truth.camera || truth.masks ||
         truth.boxes) {
-        auto opened = SideOutputs::open(def.trace, def.events, def.joints, def.scene, truth);
+        auto opened = SideOutputs::open(def.trace, def.events, def.joints, def.plan.scene, truth);
         if (!opened) return opened.error();
         outputs.emplace(std::move(*opened));
     }
     const int asked = std::min(def.jobs > 0 ? def.jobs : usable_cores(),
-                               segments_memory_holds(def.scene.video.width,
-                                                     def.scene.video.height));
+                               segments_memory_holds(def.plan.scene.video.width,
+                                                     def.plan.scene.video.height));
     const int workers = def.threaded ? std::clamp(asked, 1, static_cast<int>(wanted.size())) : 1;
 
     SegmentRun run(def, range, segment_sink, wanted, paths);
@@ -302,10 +302,10 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
     std::thread sound_thread;
     if (sound) {
         const FrameRange heard =
-            def.segment ? segment_frames(def.scene.video, range, *def.segment) : range;
+            def.plan.segment ? segment_frames(def.plan.scene.video, range, *def.plan.segment) : range;
         sound_thread = std::thread([&, heard] {   // `heard` by value: it ends with this block
             sounded = write_soundtrack(
-                def.scene, heard,
+                def.plan.scene, heard,
                 [&](std::span<const std::int16_t> samples) { return sound->write(samples); },
                 def.should_stop);
             if (sounded) sounded = sound->seal();
@@ -317,7 +317,7 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
     if (!sounded) return sounded.error();
 
     std::vector<OutputFile*> files;
-    if (def.segment) {
+    if (def.plan.segment) {
         files.push_back(&*run.files().front());
         if (sound) files.push_back(&sound->file());
     } else {
@@ -334,7 +334,7 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
     if (def.should_stop && def.should_stop()) return cancelled;
     if (Status committed = commit_together(files); !committed) return committed.error();
     const FrameRange written =
-        def.segment ? segment_frames(def.scene.video, range, *def.segment) : range;
+        def.plan.segment ? segment_frames(def.plan.scene.video, range, *def.plan.segment) : range;
     return RenderSummary{.frames = written.last - written.first + 1,
                          .range = written,
                          .seconds = seconds_since(started),

@@ -102,12 +102,12 @@ Status write_soundtrack(const scene::Scene& scene, FrameRange range, const Sampl
 
 Expected<RenderSummary> render_soundtrack(const RenderDef& def, FrameRange range) {
     const auto started = Clock::now();
-    auto writer = encode::WavWriter::open(def.output.path, sound_rate, 2);
+    auto writer = encode::WavWriter::open(def.plan.sink.path, sound_rate, 2);
     if (!writer) return writer.error();
     const auto write = [&](std::span<const std::int16_t> samples) {
         return writer->write(samples);
     };
-    if (Status done = write_soundtrack(def.scene, range, write, def.should_stop); !done) {
+    if (Status done = write_soundtrack(def.plan.scene, range, write, def.should_stop); !done) {
         return done.error();
     }
     if (Status sealed = writer->seal(); !sealed) return sealed.error();

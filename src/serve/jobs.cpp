@@ -666,11 +666,8 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
         const auto deadline = started + std::chrono::duration_cast<Clock::duration>(
                                             std::chrono::duration<double>(def_.job_timeout));
         job::RenderDef def;
-        def.scene = std::move(plan.scene);
-        def.output = plan.sink;
-        def.output.path = tmp + "/render." + request.format;
-        def.frames = plan.frames;
-        def.audio = plan.audio;
+        def.plan = std::move(plan);
+        def.plan.sink.path = tmp + "/render." + request.format;
         def.renderer = &*warm;
         // Side outputs, each a file of the job's directory (the masks a directory, archived).
         const auto side = [&](const std::string& name) -> std::optional<std::string> {
@@ -724,7 +721,7 @@ void Jobs::run_job(const std::string& id, std::optional<render::Renderer>& warm)
             if (!extra) return extra.error();
             kept.extras[name] = *extra;
         }
-        auto output = keep_output(def.output.path, request.format, stored_files);
+        auto output = keep_output(def.plan.sink.path, request.format, stored_files);
         if (!output) return output.error();
         kept.output = *output;
         return kept;

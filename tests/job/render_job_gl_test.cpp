@@ -28,9 +28,9 @@ scene::Scene short_scene() {
 
 RenderDef mp4(const std::string& path) {
     RenderDef def;
-    def.scene = short_scene();
-    def.output.path = path;
-    def.output.preset = "ultrafast";
+    def.plan.scene = short_scene();
+    def.plan.sink.path = path;
+    def.plan.sink.preset = "ultrafast";
     return def;
 }
 
@@ -62,15 +62,15 @@ TEST(RenderJobGLTest, RendersTheClipAndReportsProgressAsValues) {
 TEST(RenderJobGLTest, ARangeIsSimulatedFromTheStartAndDrawnFromItsFirstFrame) {
     TempDir dir;
     RenderDef def = mp4(dir / "frames_%02d.png");
-    def.output.preset = "";   // an x264 setting, refused for PNG
-    def.frames = {.first = 28, .last = -1};
+    def.plan.sink.preset = "";   // an x264 setting, refused for PNG
+    def.plan.frames = {.first = 28, .last = -1};
     const auto summary = render(def);
     ASSERT_TRUE(summary.ok()) << summary.error().message;
     EXPECT_EQ(summary->frames, 2);
     EXPECT_EQ(discreel::testing::directory_entries(dir.path()),
               (std::vector<std::string>{"frames_28.png", "frames_29.png"}));
 
-    def.frames = {.first = 10, .last = 30};
+    def.plan.frames = {.first = 10, .last = 30};
     const auto outside = render(def);
     ASSERT_FALSE(outside.ok());
     EXPECT_EQ(outside.error().message,

@@ -1,7 +1,7 @@
 #pragma once
 // The render-job layer: a loaded scene played frame by frame, and the jobs every front end
 // runs on it (the CLI's commands, the bench, the tests, later the service and segments).
-//     job::RenderDef def{.scene = scene, .output = sink_def};
+//     job::RenderDef def{.plan = *job::plan_render(scene, request, limits)};
 //     Expected<job::RenderSummary> done = job::render(def);
 // It owns scene -> world, the frame timeline, the frame descriptions the renderer draws, the
 // simulate/render/encode stages and their threads, and the outputs that commit together. It
@@ -120,12 +120,27 @@ struct GroundTruthPaths {
     std::optional<std::string> boxes;    // CSV: each visible body's pixel box, per drawn frame
 };
 
-struct RenderDef {
+// What a render draws, resolved: job::plan_render's answer to the `render` command's options or
+// a service request (render_plan.hpp), or made by hand (the scene, sink.path, frames).
+struct RenderPlan {
     scene::Scene scene;                      // loaded, validated, overrides applied
+    encode::OutputDescription output;        // the format the output's name picks
     // Where and how: path, encoder settings. Size and fps are the scene's, the palette's key
     // colours and a PNG sequence's first number are filled in by the job.
-    encode::SinkDef output;
+    encode::SinkDef sink;
     FrameRange frames;                       // frames before `first` are simulated, not drawn
+    std::optional<int> gif_fps_from;         // the frame rate a GIF could not show, if lowered
+    bool drawn_opaque = false;               // a transparent background the format cannot keep
+    // Render only this segment of the frames (from 0), into sink.path (segment_file_name).
+    // No trace or events: those are the whole clip's. With `audio`, its sound goes beside it
+    // (.wav).
+    std::optional<int> segment;
+    int segments = 1;                        // how many a whole render of `frames` has
+    bool audio = false;                      // a video file gets the soundtrack (docs/sound.md)
+};
+
+struct RenderDef {
+    RenderPlan plan;                         // what to render and where
     std::optional<std::string> trace;        // CSV path, one row per disc per frame
     std::optional<std::string> events;       // CSV path, one row per new contact
     std::optional<std::string> joints;       // CSV path, one row per joint per frame
@@ -137,11 +152,6 @@ struct RenderDef {
     // The bytes never depend on it. 0: one per core the process may run on. GIFs (one palette
     // for the whole clip), streams on standard output and PNG are encoded in one pass.
     int jobs = 0;
-    // Render only this segment of the frames, into output.path (segment_file_name). No trace
-    // or events: those are the whole clip's. With `audio`, its sound goes beside it (.wav).
-    std::optional<int> segment;
-    // A video file gets the scene's soundtrack as a second stream (docs/sound.md).
-    bool audio = false;
     // A renderer of the scene's video size to draw with, kept warm between jobs by a caller
     // that renders many (its context and compiled shaders are reused); nullptr: the job
     // creates its own. Used by one job at a time. The bytes are the same either way.
@@ -173,7 +183,7 @@ int segment_count(const scene::Video& video, FrameRange frames);
 // The frames of segment `index`.
 FrameRange segment_frames(const scene::Video& video, FrameRange frames, int index);
 
-// Renders def.frames of def.scene into def.output (and the trace and events), all committed
+// Renders def.plan's frames of its scene into its sink (and the trace and events), all committed
 // together at the end, or nothing. Cancelled (should_stop), the error says so.
 Expected<RenderSummary> render(const RenderDef& def);
 

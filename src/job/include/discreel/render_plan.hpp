@@ -3,8 +3,8 @@
 // and a service request go through the same plan, so the same request gives the same bytes
 // from either front end.
 //     auto plan = job::plan_render(std::move(loaded.scene), request, limits);
-//     job::RenderDef def{.scene = std::move(plan->scene), .output = plan->sink,
-//                        .frames = plan->frames};
+//     job::RenderDef def;
+//     def.plan = std::move(*plan);
 #include <optional>
 #include <string>
 
@@ -47,17 +47,8 @@ struct RenderRequest {
     std::optional<bool> audio;               // --audio / --no-audio; none: the scene's
 };
 
-struct RenderPlan {
-    scene::Scene scene;                      // the overrides applied
-    encode::OutputDescription output;        // the format the output's name picks
-    encode::SinkDef sink;                    // checked settings
-    FrameRange frames;                       // resolved: first..last, inclusive
-    std::optional<int> gif_fps_from;         // the frame rate a GIF could not show, if lowered
-    bool drawn_opaque = false;               // a transparent background the format cannot keep
-    std::optional<int> segment;              // one segment only: sink.path is its file
-    int segments = 1;                        // how many a whole render of `frames` has
-    bool audio = false;                      // a video file with the soundtrack
-};
+// RenderPlan, what a plan resolves to, is job.hpp's: a RenderDef carries it.
+
 
 // Resolves `request` against `scene`: the format, the quality preset, the overrides, the GIF
 // frame rate, the frames to draw and the encoder settings. The error says what to change, in
