@@ -88,7 +88,7 @@ double draw_all(const scene::Scene& scene, int frames, Each each) {
     job::Playback playback(scene);
     double draw_seconds = 0;
     const Status played = playback.play(
-        {.last = frames - 1, .drawn = {}, .look = true, .should_stop = {}},
+        {.last = frames - 1, .drawn = {}, .look = true, .should_stop = {}, .until = {}},
         [&](const job::ShownFrame& shown) -> Status {
             const auto start = Clock::now();
             auto image = renderer->draw(*shown.view);

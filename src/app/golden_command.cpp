@@ -504,7 +504,8 @@ Status run_scene(const GoldenOptions& o, const LoadedScene& loaded, std::ostream
         {.last = frames.back(),
          .drawn = [&](int frame) { return std::binary_search(frames.begin(), frames.end(), frame); },
          .look = true,
-         .should_stop = [] { return stop_signal() != 0; }},
+         .should_stop = [] { return stop_signal() != 0; },
+         .until = {}},
         [&](const job::ShownFrame& shown) -> Status {
             progress.frame_done();
             return shown.view != nullptr ? check_one(shown.frame, *shown.view) : Status{};

@@ -318,7 +318,24 @@ const render::FrameScene& FrameSceneBuilder::build(int frame,
     add_arrows(frame, discs, last_contacts);
     add_clock(frame);
     add_text(frame, discs);
+    add_debug();
     return frame_;
+}
+
+void FrameSceneBuilder::add_debug() {
+    const scene::DebugDraw& debug = scene_.style.debug;
+    if (!debug.any()) return;
+    if (debug.sleep) {
+        for (std::size_t i = 0; i < slots_.size(); ++i) {
+            // flash() has set this frame's fill when the scene flashes; else the body's own.
+            render::Rgba& fill = slots_[i].polygon ? frame_.polygons[slots_[i].slot].fill
+                                                   : frame_.discs[slots_[i].slot].fill;
+            const render::Rgba base = scene_.style.flash ? fill : fill_[i];
+            const bool asleep = i < debug_.sleeping.size() && debug_.sleeping[i];
+            fill = asleep ? asleep_fill(base) : base;
+        }
+    }
+    add_debug_geometry(scene_, debug_, frame_);
 }
 
 render::Camera FrameSceneBuilder::keyed_camera(double now,

@@ -4,10 +4,12 @@
 // the builder remembers what it was shown, frame by frame.
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "discreel/physics.hpp"
 #include "discreel/render.hpp"
+#include "debug_draw.hpp"
 #include "discreel/scene.hpp"
 
 namespace discreel::job {
@@ -35,6 +37,10 @@ public:
     const render::FrameScene& build(int frame, std::span<const physics::BodyState> discs,
                                     std::span<const double> last_contacts = {});
 
+    // Whether the scene draws style.debug, and what it shows of the physics at the next build.
+    bool wants_debug() const { return scene_.style.debug.any(); }
+    void debug_state(DebugState state) { debug_ = std::move(state); }
+
     // The world has carried out the first `applied` of the scene's respawns: later frames
     // draw the new bodies' shapes and colours.
     void respawned(std::size_t applied);
@@ -60,6 +66,10 @@ private:
                        std::span<const physics::BodyState> discs) const;
     void add_joints(std::span<const physics::BodyState> discs);
     void add_zigzag(Vec2 a, Vec2 b, float half, const render::Rgba& color);
+    // style.debug: sleeping bodies greyed, and the debug lines (debug_draw.hpp).
+    void add_debug();
+
+    DebugState debug_;
 
     // Each joint's anchors (and a slider's axis) in its bodies' frames at t = 0, as physics
     // fixes them; an end without a body keeps its world point.

@@ -37,7 +37,8 @@ struct State {
 
 struct Playback::Impl {
     Impl(const scene::Scene& s, PlaybackDef d)
-        : def(d), timeline{s.video.fps, s.physics.rate, s.video.frame_count()},
+        : scene(s), def(d), every(d.checkpoint_every),
+          timeline{s.video.fps, s.physics.rate, s.video.frame_count()},
           live(std::make_unique<State>(s, timeline)) {}
 
     // Steps the live state to `frame` (not yet shown), counting the steps.
@@ -48,27 +49,37 @@ struct Playback::Impl {
         return done;
     }
 
-    // Before showing `frame` (the live state's next): a checkpoint where one is due.
+    // Before showing `frame` (the live state's next): a checkpoint where one is due. Frame 0
+    // needs none: the scene builds it again.
     void keep_checkpoint(int frame) {
-        if (def.checkpoint_every <= 0 || frame % def.checkpoint_every != 0) return;
+        if (every <= 0 || frame == 0 || frame % every != 0 || def.max_checkpoints <= 0) return;
         if (!checkpoints.empty() && checkpoints.back()->next >= frame) return;
         checkpoints.push_back(std::make_unique<State>(*live));
+        if (static_cast<int>(checkpoints.size()) <= def.max_checkpoints) return;
+        // Over the bound: every other one goes, and they come half as often.
+        every *= 2;
+        std::erase_if(checkpoints, [&](const std::unique_ptr<State>& c) {
+            return c->next % every != 0;
+        });
     }
 
-    // Back to the latest checkpoint at or before `frame`.
+    // Back to the latest checkpoint at or before `frame`, or to t = 0.
     Status go_back(int frame) {
-        const auto after = std::upper_bound(
-            checkpoints.begin(), checkpoints.end(), frame,
-            [](int f, const std::unique_ptr<State>& c) { return f < c->next; });
-        if (after == checkpoints.begin()) {
+        if (def.checkpoint_every <= 0) {
             return Error{"frame " + std::to_string(frame) + " comes before frame " +
                          std::to_string(live->next) + ", shown already: frames go forward only"};
         }
-        live = std::make_unique<State>(**std::prev(after));
+        const auto after = std::upper_bound(
+            checkpoints.begin(), checkpoints.end(), frame,
+            [](int f, const std::unique_ptr<State>& c) { return f < c->next; });
+        live = after == checkpoints.begin() ? std::make_unique<State>(scene, timeline)
+                                            : std::make_unique<State>(**std::prev(after));
         return {};
     }
 
+    const scene::Scene& scene;
     PlaybackDef def;
+    int every;                                         // frames between checkpoints, now
     Timeline timeline;
     std::unique_ptr<State> live;
     std::vector<std::unique_ptr<State>> checkpoints;   // by frame, ascending
@@ -103,6 +114,12 @@ Expected<const render::FrameScene*> Playback::show(int frame, bool drawn,
         s.builder.respawned(s.world.respawns_applied());
         s.next = f + 1;
         if (f == frame && drawn) {
+            if (s.builder.wants_debug()) {
+                const auto joints = s.world.joints();
+                s.builder.debug_state({.contacts = s.world.contact_points(),
+                                       .sleeping = s.world.sleeping(),
+                                       .joints = {joints.begin(), joints.end()}});
+            }
             return &s.builder.build(f, s.world.bodies(), s.stepper.last_contacts());
         }
         s.builder.observe(f, s.world.bodies());
@@ -114,6 +131,7 @@ Status Playback::play(const PlayDef& def, const std::function<Status(const Shown
     Impl& p = *impl_;
     const int last = def.last < 0 ? p.timeline.frame_count - 1 : def.last;
     for (int frame = p.live->next; frame <= last; ++frame) {
+        if (def.until && def.until()) return {};
         const render::FrameScene* view = nullptr;
         if (def.look) {
             const bool drawn = !def.drawn || def.drawn(frame);

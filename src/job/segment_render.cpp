@@ -202,7 +202,8 @@ private:
             {.last = range_.last,
              .drawn = [&](int frame) { return frame >= range_.first; },
              .look = views,
-             .should_stop = [&] { return stopping(); }},
+             .should_stop = [&] { return stopping(); },
+             .until = {}},
             [&](const ShownFrame& shown) -> Status {
                 warnings_.say(playback.take_warnings());
                 outputs.record(shown.frame, shown.t, playback.world(), playback.take_events());

@@ -23,7 +23,8 @@ Expected<SimulateSummary> simulate(const SimulateDef& def) {
     summary.frames = playback.frame_count();
     summary.energy_start = playback.world().energy();
     const Status played = playback.play(
-        {.last = -1, .drawn = {}, .look = false, .should_stop = def.should_stop},
+        {.last = -1, .drawn = {}, .look = false, .should_stop = def.should_stop,
+         .until = {}},
         [&](const ShownFrame& shown) -> Status {
             warnings.say(playback.take_warnings());
             const std::vector<physics::ContactEvent> events = playback.take_events();

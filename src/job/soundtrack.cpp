@@ -66,12 +66,12 @@ Status write_soundtrack(const scene::Scene& scene, FrameRange range, const Sampl
     const double g = std::hypot(scene.physics.gravity.x, scene.physics.gravity.y);
     const double settling = 4.0 * g / scene.physics.rate;
     Playback playback(scene);
-    // The frames up to the one whose time ends the wanted sound (or the clip's last).
-    const int last_needed = std::min(frame_count - 1, range.last + 1);
+    // Frames until the sound reaches the end of the range (the synthesizer gives each frame's
+    // samples a little after it, for its limiter's look-ahead), or the clip ends.
     const Status played = playback.play(
-        {.last = last_needed, .drawn = {}, .look = true, .should_stop = should_stop},
+        {.last = -1, .drawn = {}, .look = true, .should_stop = should_stop,
+         .until = [&] { return position >= end; }},
         [&](const ShownFrame& shown) -> Status {
-            if (position >= end) return {};
             const render::Camera camera = shown.view->camera;
             const double half_width = camera.height * aspect / 2;
             for (const physics::ContactEvent& event : playback.take_events()) {

@@ -193,4 +193,24 @@ void BodySolver::forget(std::vector<Body>& bodies, std::size_t first, std::size_
 
 std::size_t BodySolver::touching() const { return touches_.size() + parked_touching_; }
 
+void BodySolver::contact_points(const std::vector<Body>& bodies,
+                                std::vector<ContactPoint>& out) const {
+    for (const std::vector<PairContact>* list : {&contacts_, &parked_}) {
+        for (const PairContact& pc : *list) {
+            if (!pc.touched) continue;
+            const V2& n = pc.contact.normal;
+            for (int k = 0; k < pc.contact.count; ++k) {
+                const BlockPoint& p = pc.contact.points[static_cast<std::size_t>(k)];
+                const V2 at = bodies[pc.a].x + p.ra;
+                out.push_back({.a = pc.a,
+                               .other_kind = ContactEvent::Other::body,
+                               .other = pc.b,
+                               .point = {at.x(), at.y()},
+                               .normal = {n.x(), n.y()},
+                               .force = p.normal_impulse});
+            }
+        }
+    }
+}
+
 }  // namespace discreel::physics::detail

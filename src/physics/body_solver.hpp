@@ -139,6 +139,9 @@ public:
         std::uint32_t a = 0, b = 0;    // the pair
     };
     Overlap max_overlap(const std::vector<Body>& bodies, std::span<const Polygon> shapes) const;
+    // The points of the contacts that touched in the last step, awake ones then asleep ones
+    // (World::contact_points; `other` a body index, walls' fixed bodies included).
+    void contact_points(const std::vector<Body>& bodies, std::vector<ContactPoint>& out) const;
     // Times of impact computed during the last step (at most the budget of BodySolverDef).
     std::size_t sweeps() const { return predictions_made_; }
     // Whether the last step kept the contacts of the step before (BodySolverDef::keep_contacts).

@@ -207,4 +207,23 @@ void DiscStepper::add_stats(const std::vector<Body>& bodies, std::size_t /*body_
     stats.contact_count = contacts_last_step_;
 }
 
+void DiscStepper::contact_points(const std::vector<Body>& bodies, std::size_t /*body_count*/,
+                                 std::vector<ContactPoint>& out) const {
+    for (const Contact& c : contacts_) {
+        if (!c.touched_before) continue;   // near, but it did not push in the last step
+        const Body& a = bodies[c.a];
+        const bool wall = c.b >= disc_count_;
+        const Proximity p = wall ? disc_feature(a.x, a.radius, features_[c.b - disc_count_])
+                                 : disc_disc(a.x, a.radius, bodies[c.b].x, bodies[c.b].radius);
+        const V2 n = -p.normal;   // Proximity's points from the other towards a
+        const V2 at = a.x + n * a.radius;
+        out.push_back({.a = c.a,
+                       .other_kind = ContactEvent::Other::body,
+                       .other = c.b,
+                       .point = {at.x(), at.y()},
+                       .normal = {n.x(), n.y()},
+                       .force = c.normal_impulse});
+    }
+}
+
 }  // namespace discreel::physics::detail

@@ -38,6 +38,8 @@ public:
     std::size_t wall_of(std::size_t k) const override { return features_[k].wall; }
     void add_stats(const std::vector<Body>& bodies, std::size_t body_count,
                    WorldStats& stats) const override;
+    void contact_points(const std::vector<Body>& bodies, std::size_t body_count,
+                        std::vector<ContactPoint>& out) const override;
 
 private:
     void substep(std::vector<Body>& bodies, double h, bool last);

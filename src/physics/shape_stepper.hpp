@@ -34,6 +34,10 @@ public:
     std::size_t wall_of(std::size_t k) const override { return wall_of_[k]; }
     void add_stats(const std::vector<Body>& bodies, std::size_t body_count,
                    WorldStats& stats) const override;
+    void contact_points(const std::vector<Body>& bodies, std::size_t /*body_count*/,
+                        std::vector<ContactPoint>& out) const override {
+        solver_.contact_points(bodies, out);
+    }
     void set_profile(StepProfile* profile) override { solver_.set_profile(profile); }
     void joint_states(const std::vector<Body>& bodies,
                       std::vector<JointState>& out) const override {

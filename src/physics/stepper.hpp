@@ -45,6 +45,11 @@ public:
                               std::vector<JointState>& out) const {
         out.clear();
     }
+    // The points where bodies touch now (World::contact_points), walls' as the stepper's
+    // fixed body indices (at or past `body_count`; World names their walls), with the last
+    // substep's resting normal impulse in `force` (World divides it by the substep's time).
+    virtual void contact_points(const std::vector<Body>& bodies, std::size_t body_count,
+                                std::vector<ContactPoint>& out) const = 0;
     // Where the stages of each step add their times (stage_timer.hpp); null: not timed.
     virtual void set_profile(StepProfile* profile) { profile_ = profile; }
 

@@ -196,6 +196,28 @@ std::span<const JointState> World::joints() const {
     return impl_->joint_states;
 }
 std::size_t World::respawns_applied() const { return impl_->respawns_applied; }
+
+std::vector<ContactPoint> World::contact_points() const {
+    const Impl& w = *impl_;
+    std::vector<ContactPoint> points;
+    w.stepper->contact_points(w.bodies, w.body_count, points);
+    // The steppers give the last substep's resting impulses.
+    const double seconds = 1.0 / (static_cast<double>(w.rate) * w.substeps);
+    for (ContactPoint& p : points) {
+        p.force /= seconds;
+        if (p.other < w.body_count) continue;
+        p.other_kind = ContactEvent::Other::wall;
+        p.other = w.stepper->wall_of(p.other - w.body_count);
+    }
+    return points;
+}
+
+std::vector<bool> World::sleeping() const {
+    const Impl& w = *impl_;
+    std::vector<bool> asleep(w.body_count);
+    for (std::size_t i = 0; i < w.body_count; ++i) asleep[i] = w.bodies[i].asleep;
+    return asleep;
+}
 std::vector<ContactEvent> World::take_events() { return std::exchange(impl_->events, {}); }
 std::optional<NonFiniteState> World::failure() const { return impl_->failure; }
 

@@ -70,6 +70,7 @@ struct Renderer::Impl {
     std::vector<CapsuleInstance> capsule_instances;
     std::vector<CapsuleInstance> trail_instances;
     std::vector<CapsuleInstance> joint_instances;
+    std::vector<CapsuleInstance> debug_instances;
     std::vector<CapsuleInstance> arrow_instances;
     std::vector<PolygonInstance> polygon_instances;
     std::vector<GlyphInstance> glyph_instances;
@@ -226,6 +227,7 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     make_capsule_instances(frame, pixels_per_metre, capsule_instances);
     make_line_instances(frame, frame.trails, pixels_per_metre, trail_instances);
     make_line_instances(frame, frame.joints, pixels_per_metre, joint_instances);
+    make_line_instances(frame, frame.debug, pixels_per_metre, debug_instances);
     make_polygon_instances(frame, pixels_per_metre, polygon_instances);
     make_disc_instances(frame, pixels_per_metre, disc_instances);
     make_arrow_instances(frame, pixels_per_metre, arrow_instances);
@@ -244,6 +246,7 @@ Expected<ImageView> Renderer::Impl::draw(const FrameScene& frame, std::span<std:
     glUseProgram(capsule_program.id());
     capsule_stream->draw(joint_instances.data(), joint_instances.size());
     capsule_stream->draw(arrow_instances.data(), arrow_instances.size());
+    capsule_stream->draw(debug_instances.data(), debug_instances.size());
     glUseProgram(glyph_program.id());
     glyph_stream->draw(glyph_instances.data(), glyph_instances.size());
     target->read(out);

@@ -1,7 +1,9 @@
 // `style:` — how frames look: disc details and the optional overlays.
+#include <algorithm>
 #include <array>
 #include <string_view>
 
+#include "discreel/did_you_mean.hpp"
 #include "loader.hpp"
 
 namespace discreel::scene::detail {
@@ -104,11 +106,36 @@ void read_joint_lines(const Value& value, JointLines& lines, Diagnostics& d) {
             lines.width = *v;
 }
 
+// `debug: [contacts, normals, ...]`: each name once, in any order.
+void read_debug(const Value& value, DebugDraw& debug, Diagnostics& d) {
+    static constexpr std::array<std::string_view, 6> names{"contacts", "normals", "impulses",
+                                                           "boxes",    "joints",  "sleep"};
+    const auto items = read_list(value, d);
+    if (!items) return;
+    for (const Value& item : *items) {
+        const std::string word = item.node.IsScalar() ? item.node.Scalar() : std::string();
+        const auto known = std::find(names.begin(), names.end(), word);
+        if (!item.node.IsScalar() || known == names.end()) {
+            std::string message = item.path + ": expected one of contacts, normals, impulses, "
+                                              "boxes, joints, sleep, got " + describe(item.node);
+            if (const auto near = closest_match(word, names)) {
+                message += "; did you mean '" + *near + "'?";
+            }
+            d.error(item.where, message);
+            continue;
+        }
+        const std::array<bool*, 6> flags{&debug.contacts, &debug.normals, &debug.impulses,
+                                         &debug.boxes,    &debug.joints,  &debug.sleep};
+        *flags[static_cast<std::size_t>(known - names.begin())] = true;
+    }
+}
+
 }  // namespace
 
 void read_style(Loader& loader, const Value& value) {
-    static constexpr std::array<std::string_view, 7> known{
-        "outline", "spin_marker", "velocity_arrows", "trails", "clock", "joints", "flash"};
+    static constexpr std::array<std::string_view, 8> known{
+        "outline", "spin_marker", "velocity_arrows", "trails", "clock", "joints", "flash",
+        "debug"};
     auto& d = loader.diagnostics;
     Style& style = loader.scene.style;
     const auto fields = Fields::open(value, known, d);
@@ -124,6 +151,7 @@ void read_style(Loader& loader, const Value& value) {
     if (const auto joints = fields->get("joints")) read_joint_lines(*joints, style.joints, d);
     if (const auto flash = fields->get("flash"))
         if (const auto v = read_up_to(*flash, max_arrow_fade, d)) style.flash = *v;
+    if (const auto debug = fields->get("debug")) read_debug(*debug, style.debug, d);
 }
 
 }  // namespace discreel::scene::detail

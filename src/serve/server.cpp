@@ -190,6 +190,8 @@ struct Server::Impl final : http::Handler {
     std::unique_ptr<http::Server> http;
     std::atomic<int> streams{0};
     std::counting_semaphore<concurrent_loads> loading{concurrent_loads};
+    static constexpr std::ptrdiff_t studio_at_once = 2;
+    std::counting_semaphore<studio_at_once> studio_slots{studio_at_once};
 
     // plan_job with at most concurrent_loads scenes in memory at once; a large scene's memory
     // goes back to the system afterwards (glibc keeps freed memory in per-thread arenas).
@@ -512,6 +514,16 @@ http::Response Server::Impl::post_validate(const http::Request& req) {
 // A studio request: a still's request (scene, set, size, frame or at) and, for "body", the
 // pixel "pick": [x, y] of the preview. Answered from the scene's studio session.
 http::Response Server::Impl::post_studio(const http::Request& req, std::string_view what) {
+    // Two at once: the other blocking threads stay free for renders, validation and cancels.
+    if (!studio_slots.try_acquire()) {
+        http::Response res = refuse(429, "the studio is busy with other previews; try again");
+        res.set("Retry-After", "1");
+        return res;
+    }
+    struct Release {
+        std::counting_semaphore<studio_at_once>& slots;
+        ~Release() { slots.release(); }
+    } release{studio_slots};
     json body = json::parse(req.body, nullptr, false);
     std::optional<std::pair<int, int>> pick;
     if (body.is_object()) {
@@ -520,8 +532,11 @@ http::Response Server::Impl::post_studio(const http::Request& req, std::string_v
         }
         if (const auto found = body.find("pick"); found != body.end()) {
             const json& p = *found;
-            if (!p.is_array() || p.size() != 2 || !p[0].is_number_integer() ||
-                !p[1].is_number_integer()) {
+            const auto pixel = [](const json& v) {
+                return v.is_number_integer() && v.get<std::int64_t>() >= -(1 << 20) &&
+                       v.get<std::int64_t>() <= (1 << 20);
+            };
+            if (!p.is_array() || p.size() != 2 || !pixel(p[0]) || !pixel(p[1])) {
                 return refuse(400, "field 'pick' must be [x, y], a pixel of the preview");
             }
             pick = std::pair{p[0].get<int>(), p[1].get<int>()};
@@ -756,7 +771,9 @@ Expected<Server> Server::open(const ServeDef& def) {
     if (!jobs) return jobs.error();
     impl->jobs = std::move(*jobs);
     impl->studio = std::make_unique<Studio>(
-        StudioDef{.sessions = def.studio_sessions, .timeout = def.job_timeout});
+        StudioDef{.sessions = def.studio_sessions,
+                  .timeout = std::min(def.job_timeout, 60.0),
+                  .checkpoint_bytes = 256.0 * (1 << 20)});
     auto bound = http::Server::bind(def.host, def.port, limits, *impl);
     if (!bound) return bound.error();
     impl->http = std::move(*bound);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "discreel/encode.hpp"
 #include "discreel/job.hpp"
@@ -12,11 +13,24 @@ namespace discreel::serve {
 
 using Clock = std::chrono::steady_clock;
 
+namespace {
+
+// About what a checkpoint of a world costs per body, walls included (studio_bench: 2.8 MiB for
+// galton's 605 discs and 31 walls), bytes.
+constexpr double checkpoint_bytes_per_body = 4600;
+
+}  // namespace
+
 struct Studio::Session {
-    explicit Session(scene::Scene s)
+    Session(scene::Scene s, double budget)
         : scene(std::move(s)),
-          // A checkpoint a second: going back re-simulates at most a second of physics.
-          playback(scene, {.checkpoint_every = scene.video.fps}) {}
+          // A checkpoint a second: going back re-simulates at most a second of physics, while
+          // the memory allows.
+          playback(scene, {.checkpoint_every = scene.video.fps,
+                           .max_checkpoints = static_cast<int>(std::min(
+                               4096.0, budget / (checkpoint_bytes_per_body *
+                                                 static_cast<double>(scene.bodies.size() +
+                                                                     scene.walls.size() + 1))))}) {}
 
     // Shows `frame`, recording the contact events of frames never shown before.
     Expected<const render::FrameScene*> show(int frame, bool drawn,
@@ -69,6 +83,17 @@ std::function<bool()> deadline_after(double seconds) {
 }  // namespace
 
 Studio::Studio(StudioDef def) : def_(def) {}
+
+std::function<bool()> Studio::deadline() const { return deadline_after(def_.timeout); }
+
+// A request stopped by its deadline says so, in the studio's terms.
+Error Studio::too_long(const Error& error) const {
+    if (error.message != "cancelled; nothing was written") return error;
+    std::ostringstream text;
+    text << "the preview took longer than the studio's " << def_.timeout
+         << " s; play less of the clip, or render it (POST /v1/renders)";
+    return Error{text.str()};
+}
 Studio::~Studio() = default;
 
 std::size_t Studio::sessions() const {
@@ -77,17 +102,35 @@ std::size_t Studio::sessions() const {
 }
 
 std::shared_ptr<Studio::Session> Studio::session(const std::string& key, job::RenderPlan& plan) {
-    std::lock_guard lock(mutex_);
-    const auto found = std::find_if(sessions_.begin(), sessions_.end(),
-                                    [&](const auto& entry) { return entry.first == key; });
-    if (found != sessions_.end()) {
-        sessions_.splice(sessions_.begin(), sessions_, found);
-        return sessions_.front().second;
+    {
+        std::lock_guard lock(mutex_);
+        const auto found = std::find_if(sessions_.begin(), sessions_.end(),
+                                        [&](const auto& entry) { return entry.first == key; });
+        if (found != sessions_.end()) {
+            sessions_.splice(sessions_.begin(), sessions_, found);
+            return sessions_.front().second;
+        }
     }
-    sessions_.emplace_front(key, std::make_shared<Session>(std::move(plan.scene)));
-    // A session in use stays alive through its shared_ptr until that request ends.
-    while (sessions_.size() > std::max<std::size_t>(1, def_.sessions)) sessions_.pop_back();
-    return sessions_.front().second;
+    // Built (the world, its walls) and evicted (checkpoints, a GL context) outside the lock:
+    // other requests go on meanwhile. A session in use stays alive through its shared_ptr.
+    auto made = std::make_shared<Session>(std::move(plan.scene), def_.checkpoint_bytes);
+    std::list<std::pair<std::string, std::shared_ptr<Session>>> evicted;
+    std::shared_ptr<Session> kept;
+    {
+        std::lock_guard lock(mutex_);
+        const auto found = std::find_if(sessions_.begin(), sessions_.end(),
+                                        [&](const auto& entry) { return entry.first == key; });
+        if (found != sessions_.end()) {   // another request made it meanwhile
+            sessions_.splice(sessions_.begin(), sessions_, found);
+        } else {
+            sessions_.emplace_front(key, std::move(made));
+        }
+        kept = sessions_.front().second;
+        while (sessions_.size() > std::max<std::size_t>(1, def_.sessions)) {
+            evicted.splice(evicted.end(), sessions_, std::prev(sessions_.end()));
+        }
+    }
+    return kept;
 }
 
 Expected<StudioFrame> Studio::frame(const std::string& key, job::RenderPlan plan) {
@@ -95,8 +138,8 @@ Expected<StudioFrame> Studio::frame(const std::string& key, job::RenderPlan plan
     const auto s = session(key, plan);
     std::lock_guard lock(s->mutex);
     const std::int64_t before = s->playback.steps_taken();
-    auto image = s->draw(frame, deadline_after(def_.timeout));
-    if (!image) return image.error();
+    auto image = s->draw(frame, deadline());
+    if (!image) return too_long(image.error());
     auto png = encode::png_bytes(*image);
     if (!png) return png.error();
     return StudioFrame{.png = std::move(*png),
@@ -108,13 +151,20 @@ Expected<StudioFrame> Studio::frame(const std::string& key, job::RenderPlan plan
 
 Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPlan plan) {
     const auto s = session(key, plan);
-    std::lock_guard lock(s->mutex);
-    const int last = s->playback.frame_count() - 1;
-    const auto stop = deadline_after(def_.timeout);
-    // Observed, not drawn: the look goes on with the physics, so later previews step on.
-    if (s->playback.next_frame() <= last) {
-        if (auto shown = s->show(last, false, stop); !shown) return shown.error();
+    const auto stop = deadline();
+    // Played to the end a second of frames at a time, the session free between them: a
+    // preview asked for meanwhile waits for a second's physics at most. Observed, not drawn:
+    // the look goes on with the physics, so later previews step on from there.
+    for (;;) {
+        std::lock_guard lock(s->mutex);
+        const int last = s->playback.frame_count() - 1;
+        if (s->playback.next_frame() > last || s->recorded_until >= s->playback.time_of_frame(last)) {
+            break;
+        }
+        const int to = std::min(last, s->playback.next_frame() + s->scene.video.fps - 1);
+        if (auto shown = s->show(to, false, stop); !shown) return too_long(shown.error());
     }
+    std::lock_guard lock(s->mutex);
     nlohmann::json events = nlohmann::json::array();
     const int fps = s->scene.video.fps;
     for (const physics::ContactEvent& e : s->events) {
@@ -133,16 +183,16 @@ Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPla
 Expected<nlohmann::json> Studio::body_at(const std::string& key, job::RenderPlan plan, int x,
                                          int y) {
     const int frame = plan.frames.first;
-    const auto s = session(key, plan);
-    std::lock_guard lock(s->mutex);
-    auto view = s->show(frame, true, deadline_after(def_.timeout));
-    if (!view) return view.error();
-    const int width = s->scene.video.width, height = s->scene.video.height;
+    const int width = plan.scene.video.width, height = plan.scene.video.height;
     if (x < 0 || y < 0 || x >= width || y >= height) {
         return Error{"the pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                      ") is outside the " + std::to_string(width) + "x" + std::to_string(height) +
                      " frame"};
     }
+    const auto s = session(key, plan);
+    std::lock_guard lock(s->mutex);
+    auto view = s->show(frame, true, deadline());
+    if (!view) return too_long(view.error());
     // The instance mask: exactly what the frame shows at that pixel, occlusion included.
     const std::vector<std::uint16_t> mask = render::draw_mask(**view, width, height);
     const std::uint16_t id =
@@ -150,16 +200,23 @@ Expected<nlohmann::json> Studio::body_at(const std::string& key, job::RenderPlan
              static_cast<std::size_t>(x)];
     if (id == 0 || id == render::wall_mask_id) return nlohmann::json{{"body", nullptr}};
     const std::size_t i = id - 1U;
-    const scene::Body& body = s->scene.bodies[i];
+    // The body there now: the file's, or that of the latest respawn that replaced it.
+    const scene::Body* shown = &s->scene.bodies[i];
+    const std::size_t applied = s->playback.world().respawns_applied();
+    for (std::size_t r = 0; r < applied && r < s->scene.respawns.size(); ++r) {
+        const scene::Respawn& set = s->scene.respawns[r];
+        if (i >= set.first && i - set.first < set.bodies.size()) shown = &set.bodies[i - set.first];
+    }
+    const scene::Body& body = *shown;
     const physics::BodyState& state = s->playback.bodies()[i];
-    const bool fixed = body.is_static;
+    const bool fixed = body.is_static || body.kinematic.has_value();
     return nlohmann::json{
         {"body",
          {{"index", i},
           {"id", body.id},
           {"line", body.line > 0 ? nlohmann::json(body.line) : nlohmann::json(nullptr)},
           {"column", body.column > 0 ? nlohmann::json(body.column) : nlohmann::json(nullptr)},
-          {"kind", body.kinematic ? "kinematic" : fixed ? "static" : "dynamic"},
+          {"kind", body.kinematic ? "kinematic" : body.is_static ? "static" : "dynamic"},
           {"mass", fixed ? nlohmann::json(nullptr) : nlohmann::json(body.mass)},
           {"position", {state.position.x, state.position.y}},
           {"velocity", {state.velocity.x, state.velocity.y}},

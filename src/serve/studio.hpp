@@ -25,7 +25,10 @@ namespace discreel::serve {
 
 struct StudioDef {
     std::size_t sessions = 4;        // scenes kept warm at once
-    double timeout = 600;            // seconds one request may simulate
+    double timeout = 60;             // seconds one request may simulate
+    // What a session's checkpoints may hold, bytes (estimated from its bodies): beyond it they
+    // are thinned out, every other one dropped, and kept half as often.
+    double checkpoint_bytes = 256.0 * (1 << 20);
 };
 
 struct StudioFrame {
@@ -56,6 +59,9 @@ public:
 private:
     struct Session;
     std::shared_ptr<Session> session(const std::string& key, job::RenderPlan& plan);
+    // A request's deadline, and the error of a request that ran past it.
+    std::function<bool()> deadline() const;
+    Error too_long(const Error& error) const;
 
     StudioDef def_;
     mutable std::mutex mutex_;       // guards sessions_

@@ -76,6 +76,31 @@ TEST(SoundGLTest, OnsetsAreTheContactsTimesWithinOneMillisecond) {
     EXPECT_EQ(read_file(dir / "again.wav"), read_file(dir / "s.wav"));
 }
 
+// A range of frames is heard as in the whole clip: its samples are the whole soundtrack's
+// between its first frame and the one after its last, also where a hit rings across the cut.
+TEST(SoundGLTest, ARangeOfFramesIsASliceOfTheWholeSoundtrack) {
+    TempDir dir;
+    write_file(dir / "s.yaml", "version: 1\nvideo: {size: [160, 90], fps: 30, duration: 4}\n"
+                               "physics: {gravity: [0, 0], restitution: 1}\n"
+                               "walls:\n  - box: [[0, 0], [4, 2.25]]\n"
+                               "discs:\n  - {position: [2, 1], velocity: [3, 0], radius: 0.1}\n");
+    ASSERT_EQ(run_command({bin, "render", dir / "s.yaml", "-o", dir / "all.wav", "-q"}).exit_code,
+              0);
+    // Frames 40..79: the hit at 1.27 s (frame 38) still rings at the start, the next (2.6 s,
+    // frame 78) comes just before the end.
+    ASSERT_EQ(run_command({bin, "render", dir / "s.yaml", "--frames", "40-79", "-o",
+                           dir / "part.wav", "-q"})
+                  .exit_code,
+              0);
+    const auto all = samples_of(dir / "all.wav");
+    const auto part = samples_of(dir / "part.wav");
+    ASSERT_EQ(part.size(), 2u * 40 * 1600);   // 40 frames of 1 600 samples, two channels
+    const std::vector<std::int16_t> slice(all.begin() + 2 * 40 * 1600,
+                                          all.begin() + 2 * 80 * 1600);
+    EXPECT_TRUE(part == slice);
+    EXPECT_TRUE(std::any_of(part.begin(), part.end(), [](std::int16_t v) { return v != 0; }));
+}
+
 TEST(SoundGLTest, NoContactsIsDigitalSilence) {
     TempDir dir;
     write_file(dir / "s.yaml", "version: 1\nvideo: {duration: 1}\naudio: {volume: 1}\n"

@@ -45,11 +45,12 @@ void run_frames(const std::filesystem::path& path, bool with_throws,
         }
     }
     job::Playback playback(s);
-    const Status played = playback.play({.last = -1, .drawn = {}, .look = false, .should_stop = {}},
-                                        [&](const job::ShownFrame& shown) -> Status {
-                                            look(shown.frame, playback.world());
-                                            return {};
-                                        });
+    const Status played = playback.play(
+        {.last = -1, .drawn = {}, .look = false, .should_stop = {}, .until = {}},
+        [&](const job::ShownFrame& shown) -> Status {
+            look(shown.frame, playback.world());
+            return {};
+        });
     ASSERT_TRUE(played) << played.error().message;
 }
 

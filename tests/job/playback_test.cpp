@@ -73,7 +73,7 @@ TEST(PlaybackTest, AFrameShownAgainAfterGoingBackIsTheFrameFromTheStart) {
         Playback fresh(scene);
         const Seen expected = seen(fresh, earlier, scene);
 
-        Playback scrubbed(scene, {.checkpoint_every = 20});
+        Playback scrubbed(scene, {.checkpoint_every = 20, .max_checkpoints = 1 << 20});
         (void)seen(scrubbed, later, scene);
         const Seen again = seen(scrubbed, earlier, scene);
         expect_same(expected, again);
@@ -84,11 +84,11 @@ TEST(PlaybackTest, AFrameShownAgainAfterGoingBackIsTheFrameFromTheStart) {
 
 TEST(PlaybackTest, GoingBackStepsOnFromTheNearestCheckpoint) {
     const scene::Scene scene = small(fs::path(DISCREEL_SOURCE_DIR) / "configs/pyramid.yaml");
-    Playback playback(scene, {.checkpoint_every = 10});
+    Playback playback(scene, {.checkpoint_every = 10, .max_checkpoints = 1 << 20});
     ASSERT_TRUE(playback.show(100, true));
     const std::int64_t once = playback.steps_taken();
     EXPECT_EQ(once, playback.world().step_count());
-    EXPECT_EQ(11U, playback.checkpoints());   // frames 0, 10, ..., 100
+    EXPECT_EQ(10U, playback.checkpoints());   // frames 10, 20, ..., 100 (0: the scene's)
     // Frame 95: from the checkpoint at 90, five frames of steps, not ninety-five.
     ASSERT_TRUE(playback.show(95, true));
     const std::int64_t per_frame = scene.physics.rate / scene.video.fps;
@@ -97,6 +97,24 @@ TEST(PlaybackTest, GoingBackStepsOnFromTheNearestCheckpoint) {
     // The same frame twice: from its checkpoint, no steps at all.
     ASSERT_TRUE(playback.show(90, true));
     EXPECT_EQ(once + 5 * per_frame, playback.steps_taken());
+    // Before the first checkpoint: from t = 0.
+    ASSERT_TRUE(playback.show(3, true));
+    EXPECT_EQ(once + 8 * per_frame, playback.steps_taken());
+}
+
+TEST(PlaybackTest, PastTheirBoundCheckpointsAreThinnedOut) {
+    const scene::Scene scene = small(fs::path(DISCREEL_SOURCE_DIR) / "configs/demo.yaml");
+    Playback playback(scene, {.checkpoint_every = 10, .max_checkpoints = 4});
+    Playback fresh(scene);
+    ASSERT_TRUE(playback.show(100, true));
+    // 10, 20, 30, 40, 50: one too many, so 20 and 40 stay; then 60, 80, 100: one too many
+    // again, so 40 and 80 stay.
+    EXPECT_EQ(2U, playback.checkpoints());
+    const std::int64_t once = playback.steps_taken();
+    const Seen back = seen(playback, 79, scene);   // from 40: 39 frames
+    const std::int64_t per_frame = scene.physics.rate / scene.video.fps;
+    EXPECT_EQ(once + 39 * per_frame, playback.steps_taken());
+    expect_same(seen(fresh, 79, scene), back);
 }
 
 TEST(PlaybackTest, WithoutCheckpointsFramesGoForwardOnly) {
@@ -122,7 +140,7 @@ TEST(PlaybackTest, PlayHandsOverEveryFrameAndDrawsOnlyThoseAsked) {
     ASSERT_TRUE(playback.play({.last = 12,
                                .drawn = [](int f) { return f % 5 == 0; },
                                .look = true,
-                               .should_stop = {}},
+                               .should_stop = {}, .until = {}},
                               [&](const ShownFrame& shown) -> Status {
                                   frames.push_back(shown.frame);
                                   if (shown.view != nullptr) drawn.push_back(shown.frame);
@@ -153,7 +171,7 @@ TEST(PlaybackGLTest, AFrameDrawnAfterGoingBackHasTheSameBytes) {
         auto expected = renderer->draw(**view);
         ASSERT_TRUE(expected);
         const std::vector<std::uint8_t> bytes(expected->rgba.begin(), expected->rgba.end());
-        Playback scrubbed(scene, {.checkpoint_every = 25});
+        Playback scrubbed(scene, {.checkpoint_every = 25, .max_checkpoints = 1 << 20});
         ASSERT_TRUE(scrubbed.show(140, true));
         view = scrubbed.show(60, true);
         ASSERT_TRUE(view);

@@ -59,6 +59,31 @@ TEST(Style, OverlaysTakeTrueFalseAnEmptyMappingOrEnabled) {
     EXPECT_EQ(s.style.clock.corner, Corner::top_right);
 }
 
+TEST(Style, DebugDrawingNamesWhatToDraw) {
+    EXPECT_FALSE(load_ok("version: 1\n").style.debug.any());
+    const Scene s = load_ok("version: 1\nstyle: {debug: [contacts, boxes, sleep]}\n");
+    EXPECT_TRUE(s.style.debug.contacts);
+    EXPECT_FALSE(s.style.debug.normals);
+    EXPECT_FALSE(s.style.debug.impulses);
+    EXPECT_TRUE(s.style.debug.boxes);
+    EXPECT_FALSE(s.style.debug.joints);
+    EXPECT_TRUE(s.style.debug.sleep);
+    const Scene all =
+        load_ok("version: 1\nstyle: {debug: [contacts, normals, impulses, boxes, joints, sleep]}\n");
+    EXPECT_TRUE(all.style.debug.normals && all.style.debug.impulses && all.style.debug.joints);
+}
+
+TEST(Style, AnUnknownDebugDrawingSuggestsTheClosestOne) {
+    EXPECT_EQ(problems("version: 1\nstyle:\n  debug: [contacts, normal, 3]\n"),
+              (Lines{"s.yaml:3:21: style.debug[1]: expected one of contacts, normals, impulses, "
+                     "boxes, joints, sleep, got 'normal'; did you mean 'normals'?",
+                     "s.yaml:3:29: style.debug[2]: expected one of contacts, normals, impulses, "
+                     "boxes, joints, sleep, got '3'"}));
+    EXPECT_EQ(problems("version: 1\nstyle: {debug: contacts}\n"),
+              Lines{"s.yaml:2:16: style.debug: expected a list (items starting with '- '), got "
+                    "'contacts'"});
+}
+
 TEST(CameraFollow, NamesADiscByIdOrIndex) {
     Scene s = load_ok("version: 1\ncamera: {follow: cue, follow_lag: 0}\n" + std::string(two_discs));
     EXPECT_EQ(s.camera.follow, std::optional<std::size_t>{0});

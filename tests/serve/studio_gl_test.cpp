@@ -80,10 +80,14 @@ TEST_F(StudioGLTest, TheTimelineHasTheContactsSimulateLists) {
     ServeProcess server(bin, {"--data", dir / "data"}, log);
     auto client = client_for(server.port());
     const std::string scene = config("billiards.yaml");
-    // A preview first: the timeline goes on from the session's playback.
-    auto first = post(client, "/v1/studio/frame", {{"scene", scene}, {"size", "160x90"}, {"frame", 30}});
-    ASSERT_TRUE(first);
-    ASSERT_EQ(first->status, 200);
+    // Previews first, forward and back: the timeline goes on from the session's playback,
+    // and the frames played twice do not list their contacts twice.
+    for (const int frame : {100, 7}) {
+        auto shown = post(client, "/v1/studio/frame",
+                          {{"scene", scene}, {"size", "160x90"}, {"frame", frame}});
+        ASSERT_TRUE(shown);
+        ASSERT_EQ(shown->status, 200);
+    }
     auto answer = post(client, "/v1/studio/timeline", {{"scene", scene}, {"size", "160x90"}});
     ASSERT_TRUE(answer);
     ASSERT_EQ(answer->status, 200) << answer->body;

@@ -34,6 +34,10 @@ struct PlaybackDef {
     // nearest one before it; 0: none, frames go forward only. A checkpoint costs about the
     // world's memory (docs/serve.md, "Studio").
     int checkpoint_every = 0;
+    // At most this many are kept: past it every other one is dropped and they are kept half as
+    // often (going back then costs up to twice as many frames). 0: none at all, and going back
+    // plays from t = 0.
+    int max_checkpoints = 1 << 20;
 };
 
 // A frame as Playback::play hands it over.
@@ -54,6 +58,9 @@ struct PlayDef {
     bool look = true;
     // Asked before every physics step; true stops with "cancelled; nothing was written".
     std::function<bool()> should_stop;
+    // Asked before every frame; true ends the play there, successfully (the caller has what
+    // it needs). Empty: never.
+    std::function<bool()> until;
 };
 
 // A scene played frame by frame: its physics world on the scene's timeline (frame n shows
@@ -69,8 +76,9 @@ public:
     // Shows `frame`: steps the physics to it, showing the look every frame since the last one
     // shown, in order. `drawn`: returns the frame's description for the renderer (valid until
     // the next call); otherwise observes it and returns null. A frame at or before the last
-    // one shown goes back to the nearest checkpoint (PlaybackDef::checkpoint_every) and steps
-    // on from there; without checkpoints that is an error. Fails, naming the body and the
+    // one shown goes back to the nearest checkpoint before it (PlaybackDef::checkpoint_every),
+    // or to t = 0, and steps on from there; a playback without checkpoint_every goes forward
+    // only, and going back is an error. Fails, naming the body and the
     // time, once the state is no longer finite, and with "cancelled; nothing was written" as
     // soon as `should_stop` (asked before every physics step) says so.
     [[nodiscard]] Expected<const render::FrameScene*> show(

@@ -252,6 +252,19 @@ struct ContactEvent {
     double impulse = 0.0;          // N*s, total normal impulse applied in that step
 };
 
+// Where bodies touch now, for drawing (style.debug): one per point of a contact that pushed in
+// the last step (a manifold has one or two; two discs, or a disc and a wall, one).
+struct ContactPoint {
+    std::size_t a = 0;             // body index
+    ContactEvent::Other other_kind = ContactEvent::Other::body;
+    std::size_t other = 0;         // body index or index into WorldDef::walls
+    Vec2 point;                    // metres, on body a's surface
+    Vec2 normal;                   // unit, from a towards the other
+    // N along the normal: the resting push of the last substep (an impact's impulse is not in
+    // it: a contact of a bounce alone has none).
+    double force = 0.0;
+};
+
 // A snapshot of quantities the CLI's summary and tests read; O(bodies + contacts) to compute.
 struct WorldStats {
     double kinetic_energy = 0.0;    // J, translational + rotational, over non-static bodies
@@ -313,6 +326,11 @@ public:
 
     // Same order as WorldDef::joints; valid until the next step().
     std::span<const JointState> joints() const;
+
+    // The points where bodies touch now, in a deterministic order (ContactPoint).
+    std::vector<ContactPoint> contact_points() const;
+    // Per body, in definition order: whether it is part of a sleeping island (manifold solver).
+    std::vector<bool> sleeping() const;
 
     // How many of WorldDef::respawns have been carried out.
     std::size_t respawns_applied() const;

@@ -113,6 +113,9 @@ struct FrameScene {
     std::vector<DiscGeom> discs;
     std::vector<LineGeom> joints;         // over the bodies: joints' lines, springs, pins
     std::vector<ArrowGeom> arrows;
+    // The testbed's debug drawing (contact points as dots, normals, boxes), over the bodies,
+    // joints and arrows, under the text.
+    std::vector<LineGeom> debug;
     std::vector<TextGeom> texts;
     std::vector<TextLabel> labels;        // last, over everything
 };

@@ -176,6 +176,18 @@ struct JointLines {
     double width = 2.0;            // pixels, line width, 0.5..20
 };
 
+// The physics testbed's drawing over the frame (style.debug), for looking into a simulation.
+struct DebugDraw {
+    bool contacts = false;         // a dot where two bodies, or a body and a wall, touch
+    bool normals = false;          // each contact's normal, a fixed 12 pixels long
+    bool impulses = false;         // each contact's resting push on its first body: as long as
+                                   // the lighter body's radius for its weight, to two radii
+    bool boxes = false;            // every body's bounding box
+    bool joints = false;           // each joint's two anchors and the force it holds
+    bool sleep = false;            // bodies of a sleeping island drawn greyed
+    bool any() const { return contacts || normals || impulses || boxes || joints || sleep; }
+};
+
 struct Style {
     bool outline = true;           // a darker rim on discs
     bool spin_marker = true;       // a contrasting spoke on every non-static disc, so spin shows
@@ -186,6 +198,7 @@ struct Style {
     // Seconds: a body brightens at each of its contacts and fades back over this long, (0, 10];
     // unset, never.
     std::optional<double> flash;
+    DebugDraw debug;
 };
 
 struct Physics {
