@@ -77,6 +77,17 @@ struct Playback::Impl {
         return {};
     }
 
+    // Forward to the latest checkpoint at or before `frame` when it is ahead of the live
+    // state: a frame far ahead of where the playback went back to need not be played again.
+    void skip_ahead(int frame) {
+        const auto after = std::upper_bound(
+            checkpoints.begin(), checkpoints.end(), frame,
+            [](int f, const std::unique_ptr<State>& c) { return f < c->next; });
+        if (after == checkpoints.begin()) return;
+        const State& nearest = **std::prev(after);
+        if (nearest.next > live->next) live = std::make_unique<State>(nearest);
+    }
+
     const scene::Scene& scene;
     PlaybackDef def;
     int every;                                         // frames between checkpoints, now
@@ -101,6 +112,8 @@ Expected<const render::FrameScene*> Playback::show(int frame, bool drawn,
     }
     if (frame < p.live->next) {
         if (Status back = p.go_back(frame); !back) return back.error();
+    } else {
+        p.skip_ahead(frame);
     }
     if (drawn && p.live->unseen) {
         return Error{"this playback played frames without their look and draws none"};

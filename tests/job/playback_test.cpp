@@ -100,6 +100,9 @@ TEST(PlaybackTest, GoingBackStepsOnFromTheNearestCheckpoint) {
     // Before the first checkpoint: from t = 0.
     ASSERT_TRUE(playback.show(3, true));
     EXPECT_EQ(once + 8 * per_frame, playback.steps_taken());
+    // Far ahead again: from the checkpoint at 70, not from frame 4.
+    ASSERT_TRUE(playback.show(72, true));
+    EXPECT_EQ(once + 10 * per_frame, playback.steps_taken());
 }
 
 TEST(PlaybackTest, PastTheirBoundCheckpointsAreThinnedOut) {

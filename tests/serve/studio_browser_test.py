@@ -47,6 +47,28 @@ discs:
     color: "#17bebb"
 """
 PEG_LINE = SCENE.split("\n").index("  - id: peg") + 1
+# A disc at rest on the floor from the start: its contact is under it in every frame, at pixel
+# (240, 257) of the 480x270 preview (the fitted camera: 270 / 1.98 pixels a metre about the
+# walls' centre, (1.6, 0.9)).
+RESTING = """version: 1
+video: {size: [320, 180], fps: 30, duration: 2}
+walls:
+  - box: [[0, 0], [3.2, 1.8]]
+discs:
+  - {position: [1.6, 0.2], radius: 0.2, color: "#17bebb"}
+"""
+# Red pixels (the debug drawing's contact dots) around (x, y) in the preview.
+RED_NEAR_JS = """((x, y) => {
+    const img = document.getElementById('preview');
+    const c = document.createElement('canvas');
+    c.width = img.naturalWidth; c.height = img.naturalHeight;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const d = g.getImageData(x - 6, y - 6, 13, 13).data;
+    let red = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i] > 200 && d[i + 1] < 110 && d[i + 2] < 110) red++;
+    return red;
+})"""
 SIZE = "480x270"
 
 FRAME_JS = "document.getElementById('preview').dataset.frame"
@@ -163,7 +185,30 @@ def run(cdp, base, binary, work, stop_server, start_server):
     with open(os.path.join(work, "studio.png"), "wb") as f:
         f.write(base64.b64decode(shot["data"]))
 
-    # 6. The server goes away while the page asks for a frame, and comes back: the page says it
+    # 6. Debug drawing: ticking "contacts" draws the resting disc's contact, a red dot under it.
+    cdp.replace_text(RESTING)
+    teal_js = """(() => { const img = document.getElementById('preview');
+        if (!img.naturalWidth) return false;
+        const c = document.createElement('canvas'); c.width = img.naturalWidth;
+        c.height = img.naturalHeight; const g = c.getContext('2d'); g.drawImage(img, 0, 0);
+        const d = g.getImageData(240, 230, 1, 1).data;
+        return d[0] < 60 && d[1] > 150 && d[2] > 150; })()"""
+    bt.wait_for("the resting disc in the preview", lambda: cdp.eval(teal_js), 10)
+    plain = cdp.eval(PREVIEW_PIXELS_JS)
+    if cdp.eval(RED_NEAR_JS + "(240, 257)") != 0:
+        raise bt.Failure("red under the disc before any debug drawing was ticked")
+    cdp.eval("document.querySelector('#debug input[value=contacts]').click()")
+    red = bt.wait_for("a red contact dot under the disc", lambda: (
+        cdp.eval(PREVIEW_PIXELS_JS) or plain)["pixels"] != plain["pixels"] and cdp.eval(
+        RED_NEAR_JS + "(240, 257)"), 10)
+    cdp.eval("document.querySelector('#debug input[value=contacts]').click()")
+    bt.wait_for("the dot gone again", lambda: (cdp.eval(PREVIEW_PIXELS_JS) or {}).get(
+        "pixels") == plain["pixels"], 10)
+    cdp.replace_text(SCENE)
+    bt.wait_for("the studio scene again", lambda: (cdp.eval(PREVIEW_PIXELS_JS) or {}).get(
+        "pixels") not in (None, plain["pixels"]), 10)
+
+    # 7. The server goes away while the page asks for a frame, and comes back: the page says it
     # is reconnecting, asks again, and shows the frame.
     stop_server()
     cdp.eval("(() => { const s = document.getElementById('scrub'); s.value = 33;"
@@ -175,7 +220,7 @@ def run(cdp, base, binary, work, stop_server, start_server):
     bt.wait_for("'Connected again' in the status", lambda: "Connected again" in (cdp.eval(
         bt.STATUS_JS) or ""), 10)
 
-    # 7. The bytes of frame 20 are `discreel render --at`'s at this size. Reading them back
+    # 8. The bytes of frame 20 are `discreel render --at`'s at this size. Reading them back
     # needs connect-src blob:, which the page's CSP (rightly) leaves out: the test turns the CSP
     # off for this last step only, and the page comes back with its scene from localStorage.
     cdp.call("Page.setBypassCSP", enabled=True)
