@@ -6,6 +6,8 @@
 // $DISCREEL_BENCH_RESULTS when set (empty: write nothing), else the source tree's
 // bench/results (DISCREEL_BENCH_RESULTS_DIR, set by bench/CMakeLists.txt).
 // Benches may read the clock; the simulation never does.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -34,6 +36,15 @@ inline std::string csv_number(double value, int decimals) {
     char text[64];
     std::snprintf(text, sizeof text, "%.*f", decimals, value);
     return text;
+}
+
+// The p-quantile (0..1) of `values`, the nearest rank; 0 for none.
+inline double percentile(std::vector<double> values, double p) {
+    if (values.empty()) return 0;
+    std::sort(values.begin(), values.end());
+    const auto index =
+        static_cast<std::size_t>(std::lround(p * static_cast<double>(values.size() - 1)));
+    return values[std::min(index, values.size() - 1)];
 }
 
 inline std::string cpu_model() {

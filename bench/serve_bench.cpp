@@ -23,6 +23,8 @@
 
 namespace {
 
+using discreel::bench::percentile;
+
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
@@ -66,12 +68,6 @@ double render_still(httplib::Client& client, int n) {
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     return -1;
-}
-
-double percentile(std::vector<double> values, double p) {
-    std::sort(values.begin(), values.end());
-    const auto index = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1) + 0.5);
-    return values[std::min(index, values.size() - 1)];
 }
 
 struct Running {

@@ -32,16 +32,11 @@
 
 namespace {
 
+using discreel::bench::percentile;
+
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
-
-double percentile(std::vector<double> values, double p) {
-    if (values.empty()) return 0;
-    std::sort(values.begin(), values.end());
-    const auto index = static_cast<std::size_t>(std::lround(p * static_cast<double>(values.size() - 1)));
-    return values[std::min(index, values.size() - 1)];
-}
 
 struct Running {
     discreel::serve::Server server;
@@ -89,7 +84,8 @@ double checkpoint_bytes(const fs::path& path) {
 
 int main(int argc, char** argv) {
     const int edits = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-    const fs::path data = fs::temp_directory_path() / ("studio_bench_" + std::to_string(::getpid()));
+    const fs::path data =
+        fs::temp_directory_path() / ("studio_bench_" + std::to_string(::getpid()));
     fs::create_directories(data);
     discreel::serve::ServeDef def;
     def.port = 0;
@@ -169,15 +165,18 @@ int main(int argc, char** argv) {
                     "checkpoints %6.2f MiB\n",
                     name.c_str(), frames, percentile(own, 0.5), percentile(own, 1.0),
                     percentile(scrubs, 1.0), memory);
-        results.append({name, "edit_p50", discreel::bench::csv_number(percentile(own, 0.5), 1), "ms"});
+        results.append(
+            {name, "edit_p50", discreel::bench::csv_number(percentile(own, 0.5), 1), "ms"});
         results.append({name, "checkpoints", discreel::bench::csv_number(memory, 2), "MiB"});
     }
     for (const char* kind : {"edit", "scrub", "play"}) {
         const double p50 = percentile(ms[kind], 0.5), p99 = percentile(ms[kind], 0.99);
         std::printf("%-6s p50 %6.1f ms  p99 %6.1f ms  (%zu requests)\n", kind, p50, p99,
                     ms[kind].size());
-        results.append({"all", std::string(kind) + "_p50", discreel::bench::csv_number(p50, 1), "ms"});
-        results.append({"all", std::string(kind) + "_p99", discreel::bench::csv_number(p99, 1), "ms"});
+        for (const auto& [name, value] : {std::pair{"_p50", p50}, std::pair{"_p99", p99}}) {
+            results.append({"all", std::string(kind) + name,
+                            discreel::bench::csv_number(value, 1), "ms"});
+        }
     }
     std::error_code ignored;
     fs::remove_all(data, ignored);

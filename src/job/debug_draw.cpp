@@ -42,9 +42,10 @@ void add_boxes(const render::FrameScene& frame, double half, std::vector<render:
     for (const render::PolygonGeom& p : frame.polygons) {
         const double c = std::cos(p.angle), s = std::sin(p.angle);
         double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
-        for (int k = 0; k < p.count; ++k) {
-            const double vx = p.vertices[static_cast<std::size_t>(2 * k)];
-            const double vy = p.vertices[static_cast<std::size_t>(2 * k + 1)];
+        const auto count = static_cast<std::size_t>(std::max(p.count, 0));
+        for (std::size_t k = 0; k < count; ++k) {
+            const double vx = p.vertices[2 * k];
+            const double vy = p.vertices[2 * k + 1];
             const double x = p.x + c * vx - s * vy, y = p.y + s * vx + c * vy;
             x0 = std::min(x0, x);
             x1 = std::max(x1, x);

@@ -67,7 +67,8 @@ Expected<RenderSummary> render(const RenderDef& def) {
     const auto started = Clock::now();
     const scene::Scene& scene = def.plan.scene;
     const int count = scene.video.frame_count();
-    const FrameRange range{def.plan.frames.first, def.plan.frames.last < 0 ? count - 1 : def.plan.frames.last};
+    const FrameRange asked = def.plan.frames;
+    const FrameRange range{asked.first, asked.last < 0 ? count - 1 : asked.last};
     if (range.first < 0 || range.first > range.last || range.last >= count) {
         return Error{"frames " + std::to_string(range.first) + ".." + std::to_string(range.last) +
                      " are not in the clip, which has " + std::to_string(count) + " frames"};

@@ -248,7 +248,8 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
     std::vector<std::string> paths;
     if (def.plan.segment) {
         if (*def.plan.segment < 0 || *def.plan.segment >= count) {
-            return Error{"segment " + std::to_string(*def.plan.segment) + " is not in the clip, which has " +
+            return Error{"segment " + std::to_string(*def.plan.segment) +
+                         " is not in the clip, which has " +
                          std::to_string(count) + (count == 1 ? " segment" : " segments") +
                          " (0.." + std::to_string(count - 1) + ")"};
         }
@@ -303,7 +304,8 @@ Expected<RenderSummary> render_segments(const RenderDef& def, FrameRange range,
     std::thread sound_thread;
     if (sound) {
         const FrameRange heard =
-            def.plan.segment ? segment_frames(def.plan.scene.video, range, *def.plan.segment) : range;
+            def.plan.segment ? segment_frames(def.plan.scene.video, range, *def.plan.segment)
+                             : range;
         sound_thread = std::thread([&, heard] {   // `heard` by value: it ends with this block
             sounded = write_soundtrack(
                 def.plan.scene, heard,

@@ -76,7 +76,8 @@ namespace {
 // Stops a request that simulates past its time.
 std::function<bool()> deadline_after(double seconds) {
     const auto deadline =
-        Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+        Clock::now() +
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
     return [deadline] { return Clock::now() > deadline; };
 }
 
@@ -158,7 +159,8 @@ Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPla
     for (;;) {
         std::lock_guard lock(s->mutex);
         const int last = s->playback.frame_count() - 1;
-        if (s->playback.next_frame() > last || s->recorded_until >= s->playback.time_of_frame(last)) {
+        if (s->playback.next_frame() > last ||
+            s->recorded_until >= s->playback.time_of_frame(last)) {
             break;
         }
         const int to = std::min(last, s->playback.next_frame() + s->scene.video.fps - 1);

@@ -70,7 +70,8 @@ TEST_F(StudioGLTest, APreviewIsTheCliStillInAnyOrderOfFrames) {
             EXPECT_LE(steps, from_start * fps / 40);
         }
     }
-    auto at = post(client, "/v1/studio/frame", {{"scene", scene}, {"size", "320x180"}, {"at", 1.5}});
+    auto at = post(client, "/v1/studio/frame",
+                   {{"scene", scene}, {"size", "320x180"}, {"at", 1.5}});
     ASSERT_TRUE(at);
     ASSERT_EQ(at->status, 200) << at->body;
     EXPECT_EQ(at->body, cli(scene, {"--size", "320x180", "--at", "1.5"}));
@@ -135,7 +136,8 @@ TEST_F(StudioGLTest, APickedPixelNamesTheBodyDrawnThere) {
         "    velocity: [0.5, 0]\n"
         "    radius: 0.3\n"
         "    mass: 2\n";
-    auto hit = post(client, "/v1/studio/body", {{"scene", scene}, {"frame", 15}, {"pick", {175, 90}}});
+    auto hit = post(client, "/v1/studio/body",
+                    {{"scene", scene}, {"frame", 15}, {"pick", {175, 90}}});
     ASSERT_TRUE(hit);
     ASSERT_EQ(hit->status, 200) << hit->body;
     const json body = json::parse(hit->body)["body"];
@@ -148,7 +150,8 @@ TEST_F(StudioGLTest, APickedPixelNamesTheBodyDrawnThere) {
     EXPECT_NEAR(body["velocity"][0].get<double>(), 0.5, 1e-12);
     EXPECT_DOUBLE_EQ(json::parse(hit->body)["t"].get<double>(), 0.5);
 
-    auto miss = post(client, "/v1/studio/body", {{"scene", scene}, {"frame", 15}, {"pick", {40, 90}}});
+    auto miss = post(client, "/v1/studio/body",
+                     {{"scene", scene}, {"frame", 15}, {"pick", {40, 90}}});
     ASSERT_TRUE(miss);
     ASSERT_EQ(miss->status, 200) << miss->body;
     EXPECT_EQ(json::parse(miss->body)["body"], nullptr);
@@ -170,7 +173,8 @@ TEST_F(StudioGLTest, MistakesAreAnsweredAsTheRenderRoutesAnswerThem) {
     ASSERT_TRUE(bad);
     EXPECT_EQ(bad->status, 422);
     EXPECT_EQ(json::parse(bad->body)["errors"][0]["line"], 1) << bad->body;
-    auto output = post(client, "/v1/studio/frame", {{"scene", config("demo.yaml")}, {"output", "mp4"}});
+    auto output = post(client, "/v1/studio/frame",
+                       {{"scene", config("demo.yaml")}, {"output", "mp4"}});
     ASSERT_TRUE(output);
     EXPECT_EQ(output->status, 400);
     EXPECT_EQ(message(output), "field 'output': the studio answers PNG previews; leave it out");
@@ -178,7 +182,8 @@ TEST_F(StudioGLTest, MistakesAreAnsweredAsTheRenderRoutesAnswerThem) {
     ASSERT_TRUE(pick);
     EXPECT_EQ(pick->status, 400);
     EXPECT_EQ(message(pick), "field 'pick' must be [x, y], a pixel of the preview");
-    auto past = post(client, "/v1/studio/frame", {{"scene", config("demo.yaml")}, {"frame", 100000}});
+    auto past = post(client, "/v1/studio/frame",
+                     {{"scene", config("demo.yaml")}, {"frame", 100000}});
     ASSERT_TRUE(past);
     EXPECT_EQ(past->status, 422) << past->body;
     auto get = client.Get("/v1/studio/frame");
