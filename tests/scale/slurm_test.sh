@@ -42,8 +42,16 @@ stop_all() {
     for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
     kill -KILL "$pid" 2>/dev/null || true
   done
-  [[ -f $MUNGE_DIR/munged.pid ]] && kill "$(cat "$MUNGE_DIR/munged.pid")" 2>/dev/null || true
-  [[ -n $MUNGE_DIR ]] && rm -rf "$MUNGE_DIR"
+  # munged writes its seed file as it exits: the directory goes once it has.
+  if [[ -f $MUNGE_DIR/munged.pid ]]; then
+    pid=$(cat "$MUNGE_DIR/munged.pid")
+    kill "$pid" 2>/dev/null || true
+    for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    kill -KILL "$pid" 2>/dev/null || true
+  fi
+  if [[ -n $MUNGE_DIR ]]; then
+    rm -rf "$MUNGE_DIR" 2>/dev/null || { sleep 0.5; rm -rf "$MUNGE_DIR"; }
+  fi
 }
 trap stop_all EXIT
 

@@ -228,6 +228,9 @@ def run(cdp, base, binary, work, stop_server, start_server):
     bt.wait_for("the page to load again", lambda: cdp.eval(
         "document.readyState === 'complete' && document.getElementById('scene').value") ==
         SCENE, 15)
+    # The scrubber's range is the clip's once the first frame has said how long it is.
+    bt.wait_for("the scrubber's range", lambda: cdp.eval(
+        "Number(document.getElementById('scrub').max)") > 20, 15)
     cdp.eval("(() => { const s = document.getElementById('scrub'); s.value = 20;"
              " s.dispatchEvent(new Event('input')); })()")
     scrubbed = preview(cdp, 20, PREVIEW_BYTES_JS)
