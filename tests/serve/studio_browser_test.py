@@ -90,7 +90,9 @@ PREVIEW_PIXELS_JS = """(() => {
 PREVIEW_BYTES_JS = """(async () => {
     const img = document.getElementById('preview');
     if (!img.src || !img.complete || !img.naturalWidth) return null;
-    const bytes = new Uint8Array(await (await fetch(img.src)).arrayBuffer());
+    const src = img.src, frame = img.dataset.frame;
+    const bytes = new Uint8Array(await (await fetch(src)).arrayBuffer());
+    if (img.src !== src || img.dataset.frame !== frame) return null;   // replaced meanwhile
     let text = '';
     for (const b of bytes) text += String.fromCharCode(b);
     return {frame: img.dataset.frame, png: btoa(text), width: img.naturalWidth};
@@ -224,10 +226,12 @@ def run(cdp, base, binary, work, stop_server, start_server):
     # needs connect-src blob:, which the page's CSP (rightly) leaves out: the test turns the CSP
     # off for this last step only, and the page comes back with its scene from localStorage.
     cdp.call("Page.setBypassCSP", enabled=True)
+    cdp.eval("window.beforeReload = true")   # gone once the new document is there
     cdp.call("Page.reload", ignoreCache=True)
     bt.wait_for("the page to load again", lambda: cdp.eval(
-        "document.readyState === 'complete' && document.getElementById('scene').value") ==
-        SCENE, 15)
+        "!window.beforeReload && document.readyState === 'complete' && "
+        "document.getElementById('scene').value") == SCENE, 15)
+    preview(cdp, 0)
     # The scrubber's range is the clip's once the first frame has said how long it is.
     bt.wait_for("the scrubber's range", lambda: cdp.eval(
         "Number(document.getElementById('scrub').max)") > 20, 15)
@@ -241,7 +245,10 @@ def run(cdp, base, binary, work, stop_server, start_server):
                     "--size", SIZE, "-o", cli, "-q"], check=True, timeout=30)
     with open(cli, "rb") as f:
         if base64.b64decode(scrubbed["png"]) != f.read():
-            raise bt.Failure("the preview of frame 20 differs from `discreel render --at`")
+            with open(os.path.join(work, "preview.png"), "wb") as out:
+                out.write(base64.b64decode(scrubbed["png"]))
+            raise bt.Failure("the preview of frame 20 (preview.png) differs from "
+                             "`discreel render --at` (cli.png)")
     return ticks
 
 
