@@ -34,7 +34,7 @@ std::vector<encode::Rgb> scene_colours(const scene::Scene& scene) {
     return colours;
 }
 
-const Error cancelled{"cancelled; nothing was written"};
+const Error cancelled{cancelled_message};
 
 }  // namespace
 

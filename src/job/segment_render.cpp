@@ -39,7 +39,7 @@ int usable_cores() {
     return std::max(1U, std::thread::hardware_concurrency());
 }
 
-const Error cancelled{"cancelled; nothing was written"};
+const Error cancelled{cancelled_message};
 
 // MemAvailable from /proc/meminfo, bytes; nullopt where there is none.
 std::optional<double> available_memory() {

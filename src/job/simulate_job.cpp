@@ -38,7 +38,7 @@ Expected<SimulateSummary> simulate(const SimulateDef& def) {
             return {};
         });
     if (!played) return played.error();
-    if (def.should_stop && def.should_stop()) return Error{"cancelled; nothing was written"};
+    if (def.should_stop && def.should_stop()) return Error{cancelled_message};
     Status done = outputs->seal();
     if (done) done = commit_together(outputs->files());
     if (!done) return done.error();

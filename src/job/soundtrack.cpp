@@ -111,7 +111,7 @@ Expected<RenderSummary> render_soundtrack(const RenderDef& def, FrameRange range
         return done.error();
     }
     if (Status sealed = writer->seal(); !sealed) return sealed.error();
-    if (def.should_stop && def.should_stop()) return Error{"cancelled; nothing was written"};
+    if (def.should_stop && def.should_stop()) return Error{cancelled_message};
     if (Status committed = writer->file().commit(); !committed) return committed.error();
     return RenderSummary{.frames = range.last - range.first + 1,
                          .range = range,

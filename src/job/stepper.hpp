@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "discreel/expected.hpp"
+#include "discreel/job.hpp"
 #include "discreel/physics.hpp"
 #include "discreel/scene.hpp"
 #include "timeline.hpp"
@@ -60,7 +61,7 @@ public:
         return {};
     }
 
-    static constexpr const char* stopped_message = "cancelled; nothing was written";
+    static constexpr const char* stopped_message = cancelled_message;
 
     // Warnings since the last call: a body that left the box of walls it started in (once
     // per body), which the physics could not hold and must not lose without a word.

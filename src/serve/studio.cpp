@@ -84,18 +84,18 @@ std::function<bool()> deadline_after(double seconds) {
 }  // namespace
 
 Studio::Studio(StudioDef def) : def_(def) {}
+Studio::~Studio() = default;
 
 std::function<bool()> Studio::deadline() const { return deadline_after(def_.timeout); }
 
 // A request stopped by its deadline says so, in the studio's terms.
 Error Studio::too_long(const Error& error) const {
-    if (error.message != "cancelled; nothing was written") return error;
+    if (error.message != job::cancelled_message) return error;
     std::ostringstream text;
     text << "the preview took longer than the studio's " << def_.timeout
          << " s; play less of the clip, or render it (POST /v1/renders)";
     return Error{text.str()};
 }
-Studio::~Studio() = default;
 
 std::size_t Studio::sessions() const {
     std::lock_guard lock(mutex_);
@@ -103,14 +103,17 @@ std::size_t Studio::sessions() const {
 }
 
 std::shared_ptr<Studio::Session> Studio::session(const std::string& key, job::RenderPlan& plan) {
-    {
-        std::lock_guard lock(mutex_);
+    // The session of `key` moved to the front, if there is one; with mutex_ held.
+    const auto to_front = [&] {
         const auto found = std::find_if(sessions_.begin(), sessions_.end(),
                                         [&](const auto& entry) { return entry.first == key; });
-        if (found != sessions_.end()) {
-            sessions_.splice(sessions_.begin(), sessions_, found);
-            return sessions_.front().second;
-        }
+        if (found == sessions_.end()) return false;
+        sessions_.splice(sessions_.begin(), sessions_, found);
+        return true;
+    };
+    {
+        std::lock_guard lock(mutex_);
+        if (to_front()) return sessions_.front().second;
     }
     // Built (the world, its walls) and evicted (checkpoints, a GL context) outside the lock:
     // other requests go on meanwhile. A session in use stays alive through its shared_ptr.
@@ -119,13 +122,8 @@ std::shared_ptr<Studio::Session> Studio::session(const std::string& key, job::Re
     std::shared_ptr<Session> kept;
     {
         std::lock_guard lock(mutex_);
-        const auto found = std::find_if(sessions_.begin(), sessions_.end(),
-                                        [&](const auto& entry) { return entry.first == key; });
-        if (found != sessions_.end()) {   // another request made it meanwhile
-            sessions_.splice(sessions_.begin(), sessions_, found);
-        } else {
-            sessions_.emplace_front(key, std::move(made));
-        }
+        // Another request may have made it meanwhile.
+        if (!to_front()) sessions_.emplace_front(key, std::move(made));
         kept = sessions_.front().second;
         while (sessions_.size() > std::max<std::size_t>(1, def_.sessions)) {
             evicted.splice(evicted.end(), sessions_, std::prev(sessions_.end()));

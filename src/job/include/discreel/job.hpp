@@ -23,6 +23,9 @@
 
 namespace discreel::job {
 
+// The error of every job stopped by its caller (should_stop): a cancellation, a deadline.
+inline constexpr const char* cancelled_message = "cancelled; nothing was written";
+
 struct FrameRange {
     int first = 0;           // inclusive
     int last = -1;           // inclusive; negative: the clip's last frame
