@@ -5,6 +5,13 @@
 //           timeline, which the page asks for next (it plays the clip to its end once);
 //   scrub   then frames across the clip in a shuffled order (from the checkpoints);
 //   play    the frames one after another from the start;
+//   typing  then, as the page does while someone types: six texts, each one's frame at the
+//           middle of the clip (asked again 100 ms later when the studio answers 429) and then
+//           its timeline in the background, the next text 150 ms after the preview came;
+//           `typing` with the page's tab (a tab's newer text stops its older timelines),
+//           `typing_untabbed` without (every timeline plays its clip to the end); and the
+//           same three times over for rain lengthened to a minute, typed at 4 s
+//           (`typing_long`, `typing_long_untabbed`), where the timelines take seconds;
 // each from POST to the last byte of the PNG; p50 and p99 per kind over all scenes. Also the
 // memory a session's checkpoints hold once it has played its whole clip (malloc's count of
 // bytes in use with and without them). Appends to bench/results/studio_bench.csv.
@@ -126,6 +133,41 @@ int main(int argc, char** argv) {
         if (kind != nullptr) ms[kind].push_back(took);
         return fps;
     };
+    const auto type = [&](const std::string& text, int at, const char* tab, const char* kind,
+                          int& typed, const json& set = nullptr) {
+        std::vector<std::thread> timelines;
+        for (int e = 0; e < 6; ++e) {
+            json body{{"scene", text + "# typed " + std::to_string(++typed) + "\n"},
+                      {"size", "480x270"}};
+            if (tab != nullptr) body["tab"] = tab;
+            if (!set.is_null()) body["set"] = set;
+            json frame = body;
+            frame["frame"] = at;
+            const auto start = Clock::now();
+            for (int tries = 0;; ++tries) {
+                auto res = client.Post("/v1/studio/frame", frame.dump(), "application/json");
+                if (res && res->status == 429 && tries < 1200) {
+                    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+                    continue;
+                }
+                if (!res || res->status != 200) {
+                    std::fprintf(stderr, "studio_bench: typing: %s\n",
+                                 res ? res->body.c_str() : "no answer");
+                    std::exit(1);
+                }
+                break;
+            }
+            ms[kind].push_back(
+                std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+            timelines.emplace_back([port = running.server.port(), body] {
+                httplib::Client own("127.0.0.1", port);
+                own.set_read_timeout(120);
+                (void)own.Post("/v1/studio/timeline", body.dump(), "application/json");
+            });
+            std::this_thread::sleep_for(std::chrono::milliseconds(150));
+        }
+        for (std::thread& t : timelines) t.join();
+    };
     discreel::bench::ResultsFile results("studio_bench", {"scene", "measure", "value", "unit"});
     std::mt19937 shuffle(7);
     int edit_number = 0;
@@ -159,6 +201,8 @@ int main(int argc, char** argv) {
         const std::vector<double> scrubs(ms["scrub"].begin() + static_cast<long>(scrubs_before),
                                          ms["scrub"].end());
         for (int f = 0; f < std::min(frames, 2 * fps); ++f) ask(edited, f, "play");
+        type(text, frames / 2, "studio-bench", "typing", edit_number);
+        type(text, frames / 2, nullptr, "typing_untabbed", edit_number);
         const double memory = checkpoint_bytes(path) / (1 << 20);
         const std::string name = path.stem().string();
         std::printf("%-16s %4d frames  edit p50 %6.1f ms  max %6.1f ms  scrub max %6.1f ms  "
@@ -169,9 +213,16 @@ int main(int argc, char** argv) {
             {name, "edit_p50", discreel::bench::csv_number(percentile(own, 0.5), 1), "ms"});
         results.append({name, "checkpoints", discreel::bench::csv_number(memory, 2), "MiB"});
     }
-    for (const char* kind : {"edit", "scrub", "play"}) {
+    const std::string rain = read_text(fs::path(DISCREEL_SOURCE_DIR) / "configs" / "rain.yaml");
+    for (int round = 0; round < 3; ++round) {
+        const json minute = {{"video.duration", 60}};
+        type(rain, 240, "studio-bench", "typing_long", edit_number, minute);
+        type(rain, 240, nullptr, "typing_long_untabbed", edit_number, minute);
+    }
+    for (const char* kind : {"edit", "scrub", "play", "typing", "typing_untabbed", "typing_long",
+                             "typing_long_untabbed"}) {
         const double p50 = percentile(ms[kind], 0.5), p99 = percentile(ms[kind], 0.99);
-        std::printf("%-6s p50 %6.1f ms  p99 %6.1f ms  (%zu requests)\n", kind, p50, p99,
+        std::printf("%-20s p50 %6.1f ms  p99 %6.1f ms  (%zu requests)\n", kind, p50, p99,
                     ms[kind].size());
         for (const auto& [name, value] : {std::pair{"_p50", p50}, std::pair{"_p99", p99}}) {
             results.append({"all", std::string(kind) + name,

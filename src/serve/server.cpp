@@ -526,7 +526,25 @@ http::Response Server::Impl::post_studio(const http::Request& req, std::string_v
     } release{studio_slots};
     json body = json::parse(req.body, nullptr, false);
     std::optional<std::pair<int, int>> pick;
+    std::string tab;   // the page's name for itself: its newer scene stops its older timelines
     if (body.is_object()) {
+        if (const auto found = body.find("tab"); found != body.end()) {
+            const json& t = *found;
+            const auto plain = [](const std::string& text) {
+                return !text.empty() && text.size() <= 64 &&
+                       std::all_of(text.begin(), text.end(), [](char c) {
+                           return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' ||
+                                  c == '_';
+                       });
+            };
+            if (!t.is_string() || !plain(t.get<std::string>())) {
+                return refuse(400,
+                              "field 'tab' must be 1 to 64 letters, digits, '-' or '_', the "
+                              "page's name for itself");
+            }
+            tab = t.get<std::string>();
+            body.erase(found);
+        }
         if (body.contains("output")) {
             return refuse(400, "field 'output': the studio answers PNG previews; leave it out");
         }
@@ -562,6 +580,7 @@ http::Response Server::Impl::post_studio(const http::Request& req, std::string_v
     options.erase("frame");
     options.erase("at");
     const std::string key = sha256_hex(options.dump() + "\n" + request.scene);
+    if (!tab.empty()) studio->moved_on(tab, key);
     if (what == "frame") {
         auto frame = studio->frame(key, std::move(plan));
         if (!frame) return refuse(422, frame.error().message);
@@ -576,9 +595,12 @@ http::Response Server::Impl::post_studio(const http::Request& req, std::string_v
         return res;
     }
     auto answer = what == "timeline"
-                      ? studio->timeline(key, std::move(plan))
+                      ? studio->timeline(key, std::move(plan), tab)
                       : studio->body_at(key, std::move(plan), pick->first, pick->second);
-    if (!answer) return refuse(422, answer.error().message);
+    if (!answer) {
+        const bool superseded = answer.error().message == Studio::superseded_message;
+        return refuse(superseded ? 409 : 422, answer.error().message);
+    }
     return reply(200, *answer);
 }
 

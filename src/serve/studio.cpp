@@ -148,9 +148,34 @@ Expected<StudioFrame> Studio::frame(const std::string& key, job::RenderPlan plan
                        .steps = s->playback.steps_taken() - before};
 }
 
-Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPlan plan) {
+void Studio::moved_on(const std::string& tab, const std::string& key) {
+    std::lock_guard lock(mutex_);
+    for (const Playing& p : playing_) {
+        if (p.tab == tab && p.key != key) p.stop->store(true, std::memory_order_relaxed);
+    }
+}
+
+Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPlan plan,
+                                          const std::string& tab) {
     const auto s = session(key, plan);
-    const auto stop = deadline();
+    const auto superseded = std::make_shared<std::atomic<bool>>(false);
+    if (!tab.empty()) {
+        moved_on(tab, key);
+        std::lock_guard lock(mutex_);
+        playing_.push_back({tab, key, superseded});
+    }
+    struct Done {
+        Studio& studio;
+        const std::shared_ptr<std::atomic<bool>>& flag;
+        ~Done() {
+            std::lock_guard lock(studio.mutex_);
+            std::erase_if(studio.playing_, [&](const Playing& p) { return p.stop == flag; });
+        }
+    } done{*this, superseded};
+    const auto past_deadline = deadline();
+    const auto stop = [&] {
+        return superseded->load(std::memory_order_relaxed) || past_deadline();
+    };
     // Played to the end a second of frames at a time, the session free between them: a
     // preview asked for meanwhile waits for a second's physics at most. Observed, not drawn:
     // the look goes on with the physics, so later previews step on from there.
@@ -162,7 +187,10 @@ Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPla
             break;
         }
         const int to = std::min(last, s->playback.next_frame() + s->scene.video.fps - 1);
-        if (auto shown = s->show(to, false, stop); !shown) return too_long(shown.error());
+        if (auto shown = s->show(to, false, stop); !shown) {
+            if (superseded->load(std::memory_order_relaxed)) return Error{superseded_message};
+            return too_long(shown.error());
+        }
     }
     std::lock_guard lock(s->mutex);
     nlohmann::json events = nlohmann::json::array();

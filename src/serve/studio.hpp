@@ -5,6 +5,7 @@
 // and size) has a session: its playback with a checkpoint every second of frames, a warm
 // renderer and the contact events seen so far. Sessions are kept least recently used first,
 // at most `sessions` of them; nothing is written to disk.
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -50,8 +51,17 @@ public:
     // which the session keeps the scene when it is new. plan.frames.first is the frame.
     Expected<StudioFrame> frame(const std::string& key, job::RenderPlan plan);
     // The clip's contact events ({"frames", "fps", "events": [{"frame", "t", "a", "other",
-    // "wall", "impulse"}]}), playing the scene to its end once per session.
-    Expected<nlohmann::json> timeline(const std::string& key, job::RenderPlan plan);
+    // "wall", "impulse"}]}), playing the scene to its end once per session. A timeline asked
+    // for by a `tab` (the page's name for itself; empty for none) stops with
+    // superseded_message once that tab asks about another scene (moved_on): a page being
+    // typed into would otherwise keep the studio playing every text it showed to its end.
+    Expected<nlohmann::json> timeline(const std::string& key, job::RenderPlan plan,
+                                      const std::string& tab = {});
+    // `tab` asks about the scene `key`: its timelines of other scenes stop at their next step
+    // (their sessions keep what they played).
+    void moved_on(const std::string& tab, const std::string& key);
+    static constexpr const char* superseded_message =
+        "stopped: the tab that asked for this timeline went on to another scene";
     // The body drawn at pixel (x, y) of the frame, with its state there, or {"body": null}.
     Expected<nlohmann::json> body_at(const std::string& key, job::RenderPlan plan, int x, int y);
     std::size_t sessions() const;
@@ -66,6 +76,12 @@ private:
     StudioDef def_;
     mutable std::mutex mutex_;       // guards sessions_
     std::list<std::pair<std::string, std::shared_ptr<Session>>> sessions_;   // newest first
+    // The timelines running for a tab, guarded by mutex_ (one per studio request at most).
+    struct Playing {
+        std::string tab, key;
+        std::shared_ptr<std::atomic<bool>> stop;
+    };
+    std::vector<Playing> playing_;
 };
 
 }  // namespace discreel::serve

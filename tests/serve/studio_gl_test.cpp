@@ -4,8 +4,11 @@
 // A real server process on 127.0.0.1, stopped by pid; GL, as the server draws.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <future>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -120,6 +123,47 @@ TEST_F(StudioGLTest, TheTimelineHasTheContactsSimulateLists) {
     }
 }
 
+// A page being typed into asks for a timeline of each text it shows; once it shows another,
+// the timeline of the text before stops rather than play its clip to the end, taking one of
+// the studio's two places. Other tabs, and the same scene, leave it playing.
+TEST_F(StudioGLTest, ATabsTimelineStopsWhenTheTabGoesOnToAnotherScene) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    const int port = server.port();
+    // Half an hour of the demo: half a minute of physics, far longer than the requests below.
+    const json long_clip = {{"scene", config("demo.yaml")},
+                            {"size", "160x90"},
+                            {"set", {{"video.duration", 1800}}},
+                            {"tab", "page-a"}};
+    auto played = std::async(std::launch::async, [&] {
+        auto own = client_for(port);
+        own.set_read_timeout(120, 0);
+        auto answer = post(own, "/v1/studio/timeline", long_clip);
+        return answer ? std::pair{answer->status, answer->body} : std::pair{-1, std::string()};
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    auto client = client_for(server.port());
+    json same = long_clip;
+    same["frame"] = 3;
+    json other_tab = {{"scene", config("billiards.yaml")}, {"size", "160x90"}, {"tab", "page-b"}};
+    for (const json& request : {same, other_tab}) {
+        auto answer = post(client, "/v1/studio/frame", request);
+        ASSERT_TRUE(answer);
+        EXPECT_EQ(answer->status, 200) << answer->body;
+    }
+    ASSERT_EQ(played.wait_for(std::chrono::seconds(0)), std::future_status::timeout)
+        << "the timeline ended before page-a went on";
+    json moved = other_tab;
+    moved["tab"] = "page-a";
+    auto answer = post(client, "/v1/studio/frame", moved);
+    ASSERT_TRUE(answer);
+    EXPECT_EQ(answer->status, 200) << answer->body;
+    ASSERT_EQ(played.wait_for(std::chrono::seconds(30)), std::future_status::ready);
+    const auto [status, body] = played.get();
+    EXPECT_EQ(status, 409) << body;
+    EXPECT_EQ(json::parse(body)["error"]["message"],
+              "stopped: the tab that asked for this timeline went on to another scene");
+}
+
 TEST_F(StudioGLTest, APickedPixelNamesTheBodyDrawnThere) {
     ServeProcess server(bin, {"--data", dir / "data"}, log);
     auto client = client_for(server.port());
@@ -182,6 +226,12 @@ TEST_F(StudioGLTest, MistakesAreAnsweredAsTheRenderRoutesAnswerThem) {
     ASSERT_TRUE(pick);
     EXPECT_EQ(pick->status, 400);
     EXPECT_EQ(message(pick), "field 'pick' must be [x, y], a pixel of the preview");
+    auto tab = post(client, "/v1/studio/frame", {{"scene", config("demo.yaml")}, {"tab", "a b"}});
+    ASSERT_TRUE(tab);
+    EXPECT_EQ(tab->status, 400);
+    EXPECT_EQ(message(tab),
+              "field 'tab' must be 1 to 64 letters, digits, '-' or '_', the page's name for "
+              "itself");
     auto past = post(client, "/v1/studio/frame",
                      {{"scene", config("demo.yaml")}, {"frame", 100000}});
     ASSERT_TRUE(past);
