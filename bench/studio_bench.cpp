@@ -80,7 +80,8 @@ double checkpoint_bytes(const fs::path& path) {
         const double before = heap_bytes();
         discreel::job::Playback playback(loaded.scene,
                                          {.checkpoint_every = with ? loaded.scene.video.fps : 0,
-                                          .max_checkpoints = 1 << 20});
+                                          .max_checkpoints = 1 << 20,
+                                          .max_checkpoint_bytes = 0});
         if (!playback.show(playback.frame_count() - 1, false)) return 0;
         held[with] = heap_bytes() - before;
     }

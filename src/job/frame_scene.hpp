@@ -26,6 +26,9 @@ inline constexpr std::size_t max_trail_points = 4'000'000;
 class FrameSceneBuilder {
 public:
     explicit FrameSceneBuilder(const scene::Scene& scene);
+    // The bytes its trails hold (the ring is allocated whole at the start), which a copy of
+    // it (a checkpoint) holds too.
+    std::size_t trail_bytes() const { return trail_points_.capacity() * sizeof(Point); }
 
     // Frames must be shown in order, each once, starting at 0; a frame that is not drawn is
     // still observed, so that trails and the follow camera see it. Frame n is at t = n / fps.

@@ -514,16 +514,6 @@ http::Response Server::Impl::post_validate(const http::Request& req) {
 // A studio request: a still's request (scene, set, size, frame or at) and, for "body", the
 // pixel "pick": [x, y] of the preview. Answered from the scene's studio session.
 http::Response Server::Impl::post_studio(const http::Request& req, std::string_view what) {
-    // Two at once: the other blocking threads stay free for renders, validation and cancels.
-    if (!studio_slots.try_acquire()) {
-        http::Response res = refuse(429, "the studio is busy with other previews; try again");
-        res.set("Retry-After", "1");
-        return res;
-    }
-    struct Release {
-        std::counting_semaphore<studio_at_once>& slots;
-        ~Release() { slots.release(); }
-    } release{studio_slots};
     json body = json::parse(req.body, nullptr, false);
     std::optional<std::pair<int, int>> pick;
     std::string tab;   // the page's name for itself: its newer scene stops its older timelines
@@ -572,15 +562,26 @@ http::Response Server::Impl::post_studio(const http::Request& req, std::string_v
     if (request.callback || !request.extras.empty()) {
         return refuse(400, "the studio takes no 'callback' or 'outputs'");
     }
-    auto planned = plan(request);
-    if (auto* refused = std::get_if<Refusal>(&planned)) return reply(*refused);
-    job::RenderPlan& plan = std::get<PlannedJob>(planned).plan;
     // The session is the scene with its overrides and size, whatever the frame.
     json options = request.options;
     options.erase("frame");
     options.erase("at");
     const std::string key = sha256_hex(options.dump() + "\n" + request.scene);
+    // Before the wait for a place: the tab's older timelines may be what holds them.
     if (!tab.empty()) studio->moved_on(tab, key);
+    // Two at once: the other blocking threads stay free for renders, validation and cancels.
+    if (!studio_slots.try_acquire()) {
+        http::Response res = refuse(429, "the studio is busy with other previews; try again");
+        res.set("Retry-After", "1");
+        return res;
+    }
+    struct Release {
+        std::counting_semaphore<studio_at_once>& slots;
+        ~Release() { slots.release(); }
+    } release{studio_slots};
+    auto planned = plan(request);
+    if (auto* refused = std::get_if<Refusal>(&planned)) return reply(*refused);
+    job::RenderPlan& plan = std::get<PlannedJob>(planned).plan;
     if (what == "frame") {
         auto frame = studio->frame(key, std::move(plan));
         if (!frame) return refuse(422, frame.error().message);
@@ -598,8 +599,10 @@ http::Response Server::Impl::post_studio(const http::Request& req, std::string_v
                       ? studio->timeline(key, std::move(plan), tab)
                       : studio->body_at(key, std::move(plan), pick->first, pick->second);
     if (!answer) {
-        const bool superseded = answer.error().message == Studio::superseded_message;
-        return refuse(superseded ? 409 : 422, answer.error().message);
+        const std::string& message = answer.error().message;
+        const bool stopped =
+            message == Studio::superseded_message || message == Studio::dropped_message;
+        return refuse(stopped ? 409 : 422, message);
     }
     return reply(200, *answer);
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 #include "discreel/encode.hpp"
 #include "discreel/job.hpp"
@@ -13,24 +14,14 @@ namespace discreel::serve {
 
 using Clock = std::chrono::steady_clock;
 
-namespace {
-
-// About what a checkpoint of a world costs per body, walls included (studio_bench: 2.8 MiB for
-// galton's 605 discs and 31 walls), bytes.
-constexpr double checkpoint_bytes_per_body = 4600;
-
-}  // namespace
-
 struct Studio::Session {
     Session(scene::Scene s, double budget)
         : scene(std::move(s)),
           // A checkpoint a second: going back re-simulates at most a second of physics, while
           // the memory allows.
           playback(scene, {.checkpoint_every = scene.video.fps,
-                           .max_checkpoints = static_cast<int>(std::min(
-                               4096.0, budget / (checkpoint_bytes_per_body *
-                                                 static_cast<double>(scene.bodies.size() +
-                                                                     scene.walls.size() + 1))))}) {}
+                           .max_checkpoints = 4096,
+                           .max_checkpoint_bytes = budget}) {}
 
     // Shows `frame`, recording the contact events of frames never shown before.
     Expected<const render::FrameScene*> show(int frame, bool drawn,
@@ -41,7 +32,19 @@ struct Studio::Session {
             if (e.kind == physics::ContactEvent::Kind::contact) events.push_back(e);
         }
         recorded_until = std::max(recorded_until, playback.world().time());
+        recorded_steps = std::max(recorded_steps, playback.world().step_count());
         return shown;
+    }
+
+    // The first frame that shows physics step `step` or a later one (the clip's end past it).
+    int first_frame_from(std::int64_t step) const {
+        const int last = playback.frame_count() - 1;
+        const double fps = scene.video.fps, rate = scene.physics.rate;
+        int n = std::clamp(static_cast<int>(std::ceil(static_cast<double>(step) * fps / rate)),
+                           0, last);
+        while (n > 0 && playback.step_of_frame(n - 1) >= step) --n;
+        while (n < last && playback.step_of_frame(n) < step) ++n;
+        return n;
     }
 
     Expected<ImageView> draw(int frame, const std::function<bool()>& stop) {
@@ -64,12 +67,29 @@ struct Studio::Session {
     }
 
     std::mutex mutex;                 // one request at a time draws on it
+    std::atomic<int> waiting{0};      // previews waiting for the mutex: a timeline lets them in
+    std::atomic<bool> evicted{false};   // no longer kept: its timelines stop
     const scene::Scene scene;         // the playback keeps a reference to it
     job::Playback playback;
     std::optional<render::Renderer> renderer;
     std::vector<physics::ContactEvent> events;   // contacts, in order, of the frames shown
     double recorded_until = -1;       // seconds: events up to here are in `events`
+    std::int64_t recorded_steps = 0;  // physics steps the events cover
 };
+
+namespace {
+
+// A preview's turn on a session: counted as waiting until it holds the session's mutex.
+struct Turn {
+    explicit Turn(std::atomic<int>& waiting, std::mutex& mutex) : lock(mutex, std::defer_lock) {
+        ++waiting;
+        lock.lock();
+        --waiting;
+    }
+    std::unique_lock<std::mutex> lock;
+};
+
+}  // namespace
 
 namespace {
 
@@ -129,13 +149,14 @@ std::shared_ptr<Studio::Session> Studio::session(const std::string& key, job::Re
             evicted.splice(evicted.end(), sessions_, std::prev(sessions_.end()));
         }
     }
+    for (const auto& [evicted_key, old] : evicted) old->evicted = true;
     return kept;
 }
 
 Expected<StudioFrame> Studio::frame(const std::string& key, job::RenderPlan plan) {
     const int frame = plan.frames.first;
     const auto s = session(key, plan);
-    std::lock_guard lock(s->mutex);
+    const Turn turn(s->waiting, s->mutex);
     const std::int64_t before = s->playback.steps_taken();
     auto image = s->draw(frame, deadline());
     if (!image) return too_long(image.error());
@@ -148,11 +169,15 @@ Expected<StudioFrame> Studio::frame(const std::string& key, job::RenderPlan plan
                        .steps = s->playback.steps_taken() - before};
 }
 
-void Studio::moved_on(const std::string& tab, const std::string& key) {
-    std::lock_guard lock(mutex_);
+void Studio::stop_others(const std::string& tab, const std::string& key) {
     for (const Playing& p : playing_) {
         if (p.tab == tab && p.key != key) p.stop->store(true, std::memory_order_relaxed);
     }
+}
+
+void Studio::moved_on(const std::string& tab, const std::string& key) {
+    std::lock_guard lock(mutex_);
+    stop_others(tab, key);
 }
 
 Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPlan plan,
@@ -160,8 +185,8 @@ Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPla
     const auto s = session(key, plan);
     const auto superseded = std::make_shared<std::atomic<bool>>(false);
     if (!tab.empty()) {
-        moved_on(tab, key);
         std::lock_guard lock(mutex_);
+        stop_others(tab, key);
         playing_.push_back({tab, key, superseded});
     }
     struct Done {
@@ -173,38 +198,54 @@ Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPla
         }
     } done{*this, superseded};
     const auto past_deadline = deadline();
-    const auto stop = [&] {
-        return superseded->load(std::memory_order_relaxed) || past_deadline();
+    const auto moved_away = [&] {
+        return superseded->load(std::memory_order_relaxed) ||
+               s->evicted.load(std::memory_order_relaxed);
     };
+    const auto stop = [&] { return moved_away() || past_deadline(); };
     // Played to the end a second of frames at a time, the session free between them: a
-    // preview asked for meanwhile waits for a second's physics at most. Observed, not drawn:
-    // the look goes on with the physics, so later previews step on from there.
+    // preview waiting meanwhile goes first, so it waits for a second's physics at most.
+    // Observed, not drawn: the look goes on with the physics, so later previews step on from
+    // there. Each second goes on from what the timeline has recorded, not from where a
+    // preview left the playback (from the latest checkpoint before it).
+    const int last = s->playback.frame_count() - 1;
+    const int fps = s->scene.video.fps;
+    std::int64_t steps = 0;
     for (;;) {
-        std::lock_guard lock(s->mutex);
-        const int last = s->playback.frame_count() - 1;
-        if (s->playback.next_frame() > last ||
-            s->recorded_until >= s->playback.time_of_frame(last)) {
-            break;
+        while (s->waiting.load() > 0 && !stop()) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
         }
-        const int to = std::min(last, s->playback.next_frame() + s->scene.video.fps - 1);
-        if (auto shown = s->show(to, false, stop); !shown) {
-            if (superseded->load(std::memory_order_relaxed)) return Error{superseded_message};
+        std::lock_guard lock(s->mutex);
+        if (s->recorded_steps >= s->playback.step_of_frame(last)) break;
+        const int from = std::max(s->playback.next_frame(),
+                                  s->first_frame_from(s->recorded_steps + 1));
+        const int to = std::min(last, from + fps - 1);
+        const std::int64_t before = s->playback.steps_taken();
+        auto shown = s->show(to, false, stop);
+        steps += s->playback.steps_taken() - before;
+        if (!shown) {
+            if (moved_away()) {
+                return Error{superseded->load() ? superseded_message : dropped_message};
+            }
             return too_long(shown.error());
         }
     }
     std::lock_guard lock(s->mutex);
     nlohmann::json events = nlohmann::json::array();
-    const int fps = s->scene.video.fps;
+    const double rate = s->scene.physics.rate;
     for (const physics::ContactEvent& e : s->events) {
         const bool wall = e.other_kind == physics::ContactEvent::Other::wall;
-        events.push_back({{"frame", static_cast<int>(std::ceil(e.t * fps - 1e-9))},
+        const auto step = static_cast<std::int64_t>(std::llround(e.t * rate));
+        events.push_back({{"frame", s->first_frame_from(step)},
                           {"t", e.t},
                           {"a", s->scene.bodies[e.a].id},
                           {"other", wall ? "walls[" + std::to_string(e.other) + "]"
                                          : s->scene.bodies[e.other].id},
                           {"impulse", e.impulse}});
     }
-    return nlohmann::json{{"frames", s->playback.frame_count()}, {"fps", fps},
+    return nlohmann::json{{"frames", s->playback.frame_count()},
+                          {"fps", fps},
+                          {"steps", steps},
                           {"events", std::move(events)}};
 }
 
@@ -218,7 +259,7 @@ Expected<nlohmann::json> Studio::body_at(const std::string& key, job::RenderPlan
                      " frame"};
     }
     const auto s = session(key, plan);
-    std::lock_guard lock(s->mutex);
+    const Turn turn(s->waiting, s->mutex);
     auto view = s->show(frame, true, deadline());
     if (!view) return too_long(view.error());
     // The instance mask: exactly what the frame shows at that pixel, occlusion included.

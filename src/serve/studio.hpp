@@ -50,8 +50,9 @@ public:
     // `key` names the scene, its overrides and size (not the frame); `plan` is its plan, of
     // which the session keeps the scene when it is new. plan.frames.first is the frame.
     Expected<StudioFrame> frame(const std::string& key, job::RenderPlan plan);
-    // The clip's contact events ({"frames", "fps", "events": [{"frame", "t", "a", "other",
-    // "wall", "impulse"}]}), playing the scene to its end once per session. A timeline asked
+    // The clip's contact events ({"frames", "fps", "steps", "events": [{"frame", "t", "a",
+    // "other", "impulse"}]}), playing the scene to its end once per session; "steps" are the
+    // physics steps this request took. A timeline asked
     // for by a `tab` (the page's name for itself; empty for none) stops with
     // superseded_message once that tab asks about another scene (moved_on): a page being
     // typed into would otherwise keep the studio playing every text it showed to its end.
@@ -62,6 +63,9 @@ public:
     void moved_on(const std::string& tab, const std::string& key);
     static constexpr const char* superseded_message =
         "stopped: the tab that asked for this timeline went on to another scene";
+    // A timeline of a session dropped for newer ones (StudioDef::sessions) stops too.
+    static constexpr const char* dropped_message =
+        "stopped: the studio dropped this scene's session for newer scenes";
     // The body drawn at pixel (x, y) of the frame, with its state there, or {"body": null}.
     Expected<nlohmann::json> body_at(const std::string& key, job::RenderPlan plan, int x, int y);
     std::size_t sessions() const;
@@ -69,6 +73,8 @@ public:
 private:
     struct Session;
     std::shared_ptr<Session> session(const std::string& key, job::RenderPlan& plan);
+    // Stops `tab`'s timelines of scenes other than `key`; with mutex_ held.
+    void stop_others(const std::string& tab, const std::string& key);
     // A request's deadline, and the error of a request that ran past it.
     std::function<bool()> deadline() const;
     Error too_long(const Error& error) const;

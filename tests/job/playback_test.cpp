@@ -73,7 +73,9 @@ TEST(PlaybackTest, AFrameShownAgainAfterGoingBackIsTheFrameFromTheStart) {
         Playback fresh(scene);
         const Seen expected = seen(fresh, earlier, scene);
 
-        Playback scrubbed(scene, {.checkpoint_every = 20, .max_checkpoints = 1 << 20});
+        Playback scrubbed(scene, {.checkpoint_every = 20,
+                                  .max_checkpoints = 1 << 20,
+                                  .max_checkpoint_bytes = 0});
         (void)seen(scrubbed, later, scene);
         const Seen again = seen(scrubbed, earlier, scene);
         expect_same(expected, again);
@@ -84,7 +86,8 @@ TEST(PlaybackTest, AFrameShownAgainAfterGoingBackIsTheFrameFromTheStart) {
 
 TEST(PlaybackTest, GoingBackStepsOnFromTheNearestCheckpoint) {
     const scene::Scene scene = small(fs::path(DISCREEL_SOURCE_DIR) / "configs/pyramid.yaml");
-    Playback playback(scene, {.checkpoint_every = 10, .max_checkpoints = 1 << 20});
+    Playback playback(
+        scene, {.checkpoint_every = 10, .max_checkpoints = 1 << 20, .max_checkpoint_bytes = 0});
     ASSERT_TRUE(playback.show(100, true));
     const std::int64_t once = playback.steps_taken();
     EXPECT_EQ(once, playback.world().step_count());
@@ -107,7 +110,8 @@ TEST(PlaybackTest, GoingBackStepsOnFromTheNearestCheckpoint) {
 
 TEST(PlaybackTest, PastTheirBoundCheckpointsAreThinnedOut) {
     const scene::Scene scene = small(fs::path(DISCREEL_SOURCE_DIR) / "configs/demo.yaml");
-    Playback playback(scene, {.checkpoint_every = 10, .max_checkpoints = 4});
+    Playback playback(scene,
+                      {.checkpoint_every = 10, .max_checkpoints = 4, .max_checkpoint_bytes = 0});
     Playback fresh(scene);
     ASSERT_TRUE(playback.show(100, true));
     // 10, 20, 30, 40, 50: one too many, so 20 and 40 stay; then 60, 80, 100: one too many
@@ -118,6 +122,29 @@ TEST(PlaybackTest, PastTheirBoundCheckpointsAreThinnedOut) {
     const std::int64_t per_frame = scene.physics.rate / scene.video.fps;
     EXPECT_EQ(once + 39 * per_frame, playback.steps_taken());
     expect_same(seen(fresh, 79, scene), back);
+}
+
+// A bound in bytes counts what a checkpoint copies: the world, and the trails' ring, which
+// long trails make the larger part.
+TEST(PlaybackTest, ABoundInBytesCountsTheTrails) {
+    scene::Scene scene = small(fs::path(DISCREEL_SOURCE_DIR) / "configs/demo.yaml");
+    const double plain = Playback(scene).checkpoint_bytes();
+    scene.style.trails.enabled = true;
+    scene.style.trails.length = 10;   // seconds: 601 rows of every moving body
+    const double trailed = Playback(scene).checkpoint_bytes();
+    std::size_t moving = 0;
+    for (const scene::Body& b : scene.bodies) moving += b.is_static ? 0 : 1;
+    const double ring = 601.0 * static_cast<double>(moving) * 3 * sizeof(float);
+    EXPECT_GE(trailed - plain, ring);
+    EXPECT_LT(trailed - plain, 1.01 * ring);
+
+    Playback bounded(scene, {.checkpoint_every = 10,
+                             .max_checkpoints = 1 << 20,
+                             .max_checkpoint_bytes = 3.5 * trailed});
+    ASSERT_TRUE(bounded.show(100, false));
+    // Three fit: 10, 20, 30, 40 is one too many, so 20 and 40 stay; 60, then 80 is one too
+    // many again, so 40 and 80 stay.
+    EXPECT_EQ(2U, bounded.checkpoints());
 }
 
 TEST(PlaybackTest, WithoutCheckpointsFramesGoForwardOnly) {
@@ -174,7 +201,9 @@ TEST(PlaybackGLTest, AFrameDrawnAfterGoingBackHasTheSameBytes) {
         auto expected = renderer->draw(**view);
         ASSERT_TRUE(expected);
         const std::vector<std::uint8_t> bytes(expected->rgba.begin(), expected->rgba.end());
-        Playback scrubbed(scene, {.checkpoint_every = 25, .max_checkpoints = 1 << 20});
+        Playback scrubbed(scene, {.checkpoint_every = 25,
+                                  .max_checkpoints = 1 << 20,
+                                  .max_checkpoint_bytes = 0});
         ASSERT_TRUE(scrubbed.show(140, true));
         view = scrubbed.show(60, true);
         ASSERT_TRUE(view);

@@ -123,6 +123,32 @@ TEST(BroadPhasePairs, CrowdInOneBoxMatchesBruteForceWithCellsRowByRow) {
     }
 }
 
+TEST(BroadPhasePairs, BeadsAmongPegsMatchBruteForce) {
+    // A Galton board's layout: a lattice of pegs (fixed), as many beads falling among them,
+    // and a few held. Pegs share cells with pegs and beads: a peg must meet the beads of its
+    // own and the neighbouring cells, and never another peg.
+    Scene s;
+    testing::Rng rng(21);
+    for (int row = 0; row < 20; ++row) {
+        for (int col = 0; col < 30; ++col) {
+            s.add_disc({0.5 + 0.3 * col + 0.15 * (row % 2), 1.0 + 0.3 * row}, V2::Zero(), 0.08,
+                       Motion::fixed);
+        }
+    }
+    for (int k = 0; k < 600; ++k) {
+        const V2 x(rng.uniform(0.3, 9.5), rng.uniform(0.8, 7.0));
+        const V2 v(rng.uniform(-1, 1), rng.uniform(-4, 0));
+        s.add_disc(x, v, rng.uniform(0.05, 0.08), k % 50 == 0 ? Motion::held : Motion::dynamic);
+    }
+    s.add_walls({testing::box({0, 0}, {10, 8})});
+    BroadPhase broad;
+    std::vector<Contact> contacts;
+    expect_brute_force_pairs(s, broad, contacts, false);
+    std::size_t peg_bead = 0;
+    for (const Contact& c : contacts) peg_bead += c.a < 600 && c.b >= 600 && c.b < s.disc_count;
+    EXPECT_GT(peg_bead, 100u);
+}
+
 TEST(BroadPhasePairs, ClumpsFarApartMatchBruteForceWithHashedCells) {
     // 400 clumps of three to five discs, 10 km apart at most: far more cells than the table
     // has buckets, so they are hashed and many buckets hold cells of several clumps.

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <future>
 #include <sstream>
 #include <string>
@@ -84,43 +86,103 @@ TEST_F(StudioGLTest, TheTimelineHasTheContactsSimulateLists) {
     ServeProcess server(bin, {"--data", dir / "data"}, log);
     auto client = client_for(server.port());
     const std::string scene = config("billiards.yaml");
-    // Previews first, forward and back: the timeline goes on from the session's playback,
-    // and the frames played twice do not list their contacts twice.
-    for (const int frame : {100, 7}) {
-        auto shown = post(client, "/v1/studio/frame",
-                          {{"scene", scene}, {"size", "160x90"}, {"frame", frame}});
-        ASSERT_TRUE(shown);
-        ASSERT_EQ(shown->status, 200);
-    }
-    auto answer = post(client, "/v1/studio/timeline", {{"scene", scene}, {"size", "160x90"}});
-    ASSERT_TRUE(answer);
-    ASSERT_EQ(answer->status, 200) << answer->body;
-    const json timeline = json::parse(answer->body);
-
     testing::write_file(dir / "s.yaml", scene);
-    const auto run = run_command({bin, "simulate", dir / "s.yaml", "--events", dir / "e.csv"});
-    ASSERT_EQ(run.exit_code, 0) << run.err;
-    std::istringstream csv(read_file(dir / "e.csv"));
-    std::string line;
-    std::getline(csv, line);   // t,a,b,impulse,kind
-    std::vector<std::pair<double, std::string>> contacts;
-    while (std::getline(csv, line)) {
-        if (line.size() < 8 || line.substr(line.size() - 8) != ",contact") continue;
-        contacts.emplace_back(std::stod(line), line.substr(line.find(',') + 1));
+    // The scene's 60 fps, and 25, at which its 960 Hz steps do not fall evenly on frames.
+    for (const int fps : {60, 25}) {
+        SCOPED_TRACE(fps);
+        const json set = {{"video.fps", fps}, {"video.duration", 20}};
+        const json request = {{"scene", scene}, {"size", "160x90"}, {"set", set}};
+        // Previews first, forward and back: the timeline goes on from the session's
+        // playback, and the frames played twice do not list their contacts twice.
+        for (const int frame : {100, 7}) {
+            json preview = request;
+            preview["frame"] = frame;
+            auto shown = post(client, "/v1/studio/frame", preview);
+            ASSERT_TRUE(shown);
+            ASSERT_EQ(shown->status, 200) << shown->body;
+        }
+        // More previews, back and forth, while it plays: it goes on from what it recorded,
+        // so each costs it at most a second of steps again (from the checkpoint before).
+        auto played = std::async(std::launch::async, [&] {
+            auto own = client_for(server.port());
+            auto answer = post(own, "/v1/studio/timeline", request);
+            return answer ? std::pair{answer->status, answer->body}
+                          : std::pair{-1, std::string()};
+        });
+        for (const int frame : {7, 15 * fps, 7, 6 * fps, 7}) {
+            json preview = request;
+            preview["frame"] = frame;
+            auto shown = post(client, "/v1/studio/frame", preview);
+            ASSERT_TRUE(shown);
+            ASSERT_EQ(shown->status, 200) << shown->body;
+        }
+        const auto [status, body] = played.get();
+        ASSERT_EQ(status, 200) << body;
+        const json timeline = json::parse(body);
+        constexpr int rate = 960;
+        EXPECT_LE(timeline["steps"].get<int>(), 20 * rate + 6 * rate);
+
+        const auto run = run_command({bin, "simulate", dir / "s.yaml", "--set",
+                                      "video.duration=20", "--events", dir / "e.csv"});
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        std::istringstream csv(read_file(dir / "e.csv"));
+        std::string line;
+        std::getline(csv, line);   // t,a,b,impulse,kind
+        std::vector<std::pair<double, std::string>> contacts;
+        while (std::getline(csv, line)) {
+            if (line.size() < 8 || line.substr(line.size() - 8) != ",contact") continue;
+            contacts.emplace_back(std::stod(line), line.substr(line.find(',') + 1));
+        }
+        ASSERT_FALSE(contacts.empty());
+        const json& events = timeline["events"];
+        ASSERT_EQ(events.size(), contacts.size());
+        // Frame n shows step round(n rate / fps) (docs/scene-format.md, "Frames").
+        const auto step_of_frame = [&](std::int64_t n) {
+            return (2 * n * rate + fps) / (2 * fps);
+        };
+        for (std::size_t k = 0; k < contacts.size(); ++k) {
+            EXPECT_NEAR(events[k]["t"].get<double>(), contacts[k].first, 1e-6) << k;
+            EXPECT_EQ(contacts[k].second.rfind(events[k]["a"].get<std::string>() + ",", 0), 0U)
+                << contacts[k].second;
+            // The first frame that shows it.
+            const std::int64_t frame = events[k]["frame"];
+            const auto step = std::llround(contacts[k].first * rate);
+            EXPECT_GE(step_of_frame(frame), step) << k;
+            if (frame > 0) {
+                EXPECT_LT(step_of_frame(frame - 1), step) << k;
+            }
+        }
     }
-    ASSERT_FALSE(contacts.empty());
-    const json& events = timeline["events"];
-    ASSERT_EQ(events.size(), contacts.size());
-    const int fps = timeline["fps"];
-    for (std::size_t k = 0; k < contacts.size(); ++k) {
-        EXPECT_NEAR(events[k]["t"].get<double>(), contacts[k].first, 1e-6) << k;
-        EXPECT_EQ(contacts[k].second.rfind(events[k]["a"].get<std::string>() + ",", 0), 0U)
-            << contacts[k].second;
-        // The first frame that shows it.
-        const int frame = events[k]["frame"];
-        EXPECT_GE(frame * 1.0 / fps, contacts[k].first - 1e-9);
-        EXPECT_LT((frame - 1) * 1.0 / fps, contacts[k].first);
+}
+
+// Scrubbing back while the timeline plays: the timeline goes on from what it has recorded
+// (from the checkpoint before it), not from where the preview left the playback.
+TEST_F(StudioGLTest, APreviewWhileTheTimelinePlaysCostsItAtMostASecondAgain) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    const int port = server.port();
+    // Two minutes of the demo at 480 Hz: a second or more of physics.
+    const json request = {{"scene", config("demo.yaml")},
+                          {"size", "160x90"},
+                          {"set", {{"video.duration", 120}}}};
+    auto played = std::async(std::launch::async, [&] {
+        auto own = client_for(port);
+        own.set_read_timeout(120, 0);
+        auto answer = post(own, "/v1/studio/timeline", request);
+        return answer ? std::pair{answer->status, answer->body} : std::pair{-1, std::string()};
+    });
+    auto client = client_for(port);
+    for (const int frame : {3, 5}) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        json preview = request;
+        preview["frame"] = frame;
+        auto shown = post(client, "/v1/studio/frame", preview);
+        ASSERT_TRUE(shown);
+        ASSERT_EQ(shown->status, 200) << shown->body;
     }
+    const auto [status, body] = played.get();
+    ASSERT_EQ(status, 200) << body;
+    constexpr std::int64_t rate = 480;
+    EXPECT_LE(json::parse(body)["steps"].get<std::int64_t>(), (120 + 2) * rate);
 }
 
 // A page being typed into asks for a timeline of each text it shows; once it shows another,
@@ -162,6 +224,71 @@ TEST_F(StudioGLTest, ATabsTimelineStopsWhenTheTabGoesOnToAnotherScene) {
     EXPECT_EQ(status, 409) << body;
     EXPECT_EQ(json::parse(body)["error"]["message"],
               "stopped: the tab that asked for this timeline went on to another scene");
+}
+
+// Both of the studio's places taken by timelines: a tab's new text, even when it finds no
+// place (429), stops that tab's timeline, which is what held one.
+TEST_F(StudioGLTest, ABusyStudioStillStopsTheTabsOlderTimeline) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    const int port = server.port();
+    const auto timeline = [&](const char* tab, const char* size) {
+        return std::async(std::launch::async, [=] {
+            auto own = client_for(port);
+            own.set_read_timeout(120, 0);
+            auto answer = post(own, "/v1/studio/timeline",
+                               {{"scene", config("demo.yaml")},
+                                {"size", size},
+                                {"set", {{"video.duration", 1800}}},
+                                {"tab", tab}});
+            return answer ? answer->status : -1;
+        });
+    };
+    auto a = timeline("page-a", "160x90");
+    auto b = timeline("page-b", "192x108");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    auto client = client_for(port);
+    const auto new_text = [&](const char* tab) {
+        auto answer = post(client, "/v1/studio/frame",
+                           {{"scene", config("billiards.yaml")}, {"size", "160x90"}, {"tab", tab}});
+        return answer ? answer->status : -1;
+    };
+    // Refused, or let in if the stopped timeline gave its place up first.
+    const int first = new_text("page-a");
+    EXPECT_TRUE(first == 429 || first == 200) << first;
+    ASSERT_EQ(a.wait_for(std::chrono::seconds(30)), std::future_status::ready);
+    EXPECT_EQ(a.get(), 409);
+    EXPECT_EQ(new_text("page-a"), 200);
+    EXPECT_EQ(new_text("page-b"), 200);
+    ASSERT_EQ(b.wait_for(std::chrono::seconds(30)), std::future_status::ready);
+    EXPECT_EQ(b.get(), 409);
+}
+
+// The studio keeps four sessions: one dropped for newer scenes stops its timeline.
+TEST_F(StudioGLTest, ATimelineOfADroppedSessionStops) {
+    ServeProcess server(bin, {"--data", dir / "data"}, log);
+    const int port = server.port();
+    const json long_clip = {{"scene", config("demo.yaml")},
+                            {"size", "160x90"},
+                            {"set", {{"video.duration", 1800}}}};
+    auto played = std::async(std::launch::async, [&] {
+        auto own = client_for(port);
+        own.set_read_timeout(120, 0);
+        auto answer = post(own, "/v1/studio/timeline", long_clip);
+        return answer ? std::pair{answer->status, answer->body} : std::pair{-1, std::string()};
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    auto client = client_for(port);
+    for (const char* size : {"96x54", "128x72", "192x108", "224x126"}) {
+        auto answer = post(client, "/v1/studio/frame",
+                           {{"scene", config("billiards.yaml")}, {"size", size}, {"frame", 0}});
+        ASSERT_TRUE(answer);
+        EXPECT_EQ(answer->status, 200) << answer->body;
+    }
+    ASSERT_EQ(played.wait_for(std::chrono::seconds(30)), std::future_status::ready);
+    const auto [status, body] = played.get();
+    EXPECT_EQ(status, 409) << body;
+    EXPECT_EQ(json::parse(body)["error"]["message"],
+              "stopped: the studio dropped this scene's session for newer scenes");
 }
 
 TEST_F(StudioGLTest, APickedPixelNamesTheBodyDrawnThere) {

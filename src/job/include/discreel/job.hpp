@@ -41,6 +41,9 @@ struct PlaybackDef {
     // often (going back then costs up to twice as many frames). 0: none at all, and going back
     // plays from t = 0.
     int max_checkpoints = 1 << 20;
+    // And at most as many as fit in this many bytes, each estimated by checkpoint_bytes();
+    // 0: no bound but max_checkpoints.
+    double max_checkpoint_bytes = 0;
 };
 
 // A frame as Playback::play hands it over.
@@ -102,8 +105,12 @@ public:
     const physics::World& world() const;
     int frame_count() const;                  // round(duration * fps)
     double time_of_frame(int frame) const;    // seconds
+    std::int64_t step_of_frame(int frame) const;   // the physics step whose state it shows
     int next_frame() const;                   // the first frame not shown yet
     std::size_t checkpoints() const;          // how many are kept
+    // What one checkpoint holds, estimated: the world's copy (about 4.6 kB a body, walls
+    // included) and the look's trails, bytes.
+    double checkpoint_bytes() const;
     std::int64_t steps_taken() const;         // physics steps, counting those taken again
 
 private:
