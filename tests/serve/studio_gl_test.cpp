@@ -36,6 +36,42 @@ std::string config(const std::string& name) {
     return read_file(std::string(DISCREEL_SOURCE_DIR) + "/configs/" + name);
 }
 
+// POST /v1/studio/timeline on a thread and a connection of its own: the answer's status and
+// body (-1 and nothing without an answer).
+std::future<std::pair<int, std::string>> play_timeline(int port, json request) {
+    return std::async(std::launch::async, [port, request = std::move(request)] {
+        auto own = client_for(port);
+        own.set_read_timeout(120, 0);
+        auto answer = post(own, "/v1/studio/timeline", request);
+        return answer ? std::pair{answer->status, answer->body} : std::pair{-1, std::string()};
+    });
+}
+
+// Half an hour of the demo at `size`: half a minute of physics or more, far longer than a
+// test's requests while its timeline plays.
+json long_demo(const char* size = "160x90") {
+    return {{"scene", config("demo.yaml")},
+            {"size", size},
+            {"set", {{"video.duration", 1800}}}};
+}
+
+// The timeline ends within 30 s, stopped: 409 with `message`.
+void expect_stopped(std::future<std::pair<int, std::string>>& played,
+                    const std::string& message) {
+    ASSERT_EQ(played.wait_for(std::chrono::seconds(30)), std::future_status::ready);
+    const auto [status, body] = played.get();
+    EXPECT_EQ(status, 409) << body;
+    EXPECT_EQ(json::parse(body)["error"]["message"], message);
+}
+
+// Frame `frame` of the request's scene previewed: 200.
+void expect_preview(httplib::Client& client, json request, int frame) {
+    request["frame"] = frame;
+    auto shown = post(client, "/v1/studio/frame", request);
+    ASSERT_TRUE(shown);
+    ASSERT_EQ(shown->status, 200) << shown->body;
+}
+
 class StudioGLTest : public ::testing::Test {
 protected:
     TempDir dir;
@@ -94,27 +130,12 @@ TEST_F(StudioGLTest, TheTimelineHasTheContactsSimulateLists) {
         const json request = {{"scene", scene}, {"size", "160x90"}, {"set", set}};
         // Previews first, forward and back: the timeline goes on from the session's
         // playback, and the frames played twice do not list their contacts twice.
-        for (const int frame : {100, 7}) {
-            json preview = request;
-            preview["frame"] = frame;
-            auto shown = post(client, "/v1/studio/frame", preview);
-            ASSERT_TRUE(shown);
-            ASSERT_EQ(shown->status, 200) << shown->body;
-        }
+        for (const int frame : {100, 7}) expect_preview(client, request, frame);
         // More previews, back and forth, while it plays: it goes on from what it recorded,
         // so each costs it at most a second of steps again (from the checkpoint before).
-        auto played = std::async(std::launch::async, [&] {
-            auto own = client_for(server.port());
-            auto answer = post(own, "/v1/studio/timeline", request);
-            return answer ? std::pair{answer->status, answer->body}
-                          : std::pair{-1, std::string()};
-        });
+        auto played = play_timeline(server.port(), request);
         for (const int frame : {7, 15 * fps, 7, 6 * fps, 7}) {
-            json preview = request;
-            preview["frame"] = frame;
-            auto shown = post(client, "/v1/studio/frame", preview);
-            ASSERT_TRUE(shown);
-            ASSERT_EQ(shown->status, 200) << shown->body;
+            expect_preview(client, request, frame);
         }
         const auto [status, body] = played.get();
         ASSERT_EQ(status, 200) << body;
@@ -164,20 +185,11 @@ TEST_F(StudioGLTest, APreviewWhileTheTimelinePlaysCostsItAtMostASecondAgain) {
     const json request = {{"scene", config("demo.yaml")},
                           {"size", "160x90"},
                           {"set", {{"video.duration", 120}}}};
-    auto played = std::async(std::launch::async, [&] {
-        auto own = client_for(port);
-        own.set_read_timeout(120, 0);
-        auto answer = post(own, "/v1/studio/timeline", request);
-        return answer ? std::pair{answer->status, answer->body} : std::pair{-1, std::string()};
-    });
+    auto played = play_timeline(port, request);
     auto client = client_for(port);
     for (const int frame : {3, 5}) {
         std::this_thread::sleep_for(std::chrono::milliseconds(300));
-        json preview = request;
-        preview["frame"] = frame;
-        auto shown = post(client, "/v1/studio/frame", preview);
-        ASSERT_TRUE(shown);
-        ASSERT_EQ(shown->status, 200) << shown->body;
+        expect_preview(client, request, frame);
     }
     const auto [status, body] = played.get();
     ASSERT_EQ(status, 200) << body;
@@ -191,17 +203,9 @@ TEST_F(StudioGLTest, APreviewWhileTheTimelinePlaysCostsItAtMostASecondAgain) {
 TEST_F(StudioGLTest, ATabsTimelineStopsWhenTheTabGoesOnToAnotherScene) {
     ServeProcess server(bin, {"--data", dir / "data"}, log);
     const int port = server.port();
-    // Half an hour of the demo: half a minute of physics, far longer than the requests below.
-    const json long_clip = {{"scene", config("demo.yaml")},
-                            {"size", "160x90"},
-                            {"set", {{"video.duration", 1800}}},
-                            {"tab", "page-a"}};
-    auto played = std::async(std::launch::async, [&] {
-        auto own = client_for(port);
-        own.set_read_timeout(120, 0);
-        auto answer = post(own, "/v1/studio/timeline", long_clip);
-        return answer ? std::pair{answer->status, answer->body} : std::pair{-1, std::string()};
-    });
+    json long_clip = long_demo();
+    long_clip["tab"] = "page-a";
+    auto played = play_timeline(port, long_clip);
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     auto client = client_for(server.port());
     json same = long_clip;
@@ -219,11 +223,7 @@ TEST_F(StudioGLTest, ATabsTimelineStopsWhenTheTabGoesOnToAnotherScene) {
     auto answer = post(client, "/v1/studio/frame", moved);
     ASSERT_TRUE(answer);
     EXPECT_EQ(answer->status, 200) << answer->body;
-    ASSERT_EQ(played.wait_for(std::chrono::seconds(30)), std::future_status::ready);
-    const auto [status, body] = played.get();
-    EXPECT_EQ(status, 409) << body;
-    EXPECT_EQ(json::parse(body)["error"]["message"],
-              "stopped: the tab that asked for this timeline went on to another scene");
+    expect_stopped(played, "stopped: the tab that asked for this timeline went on to another scene");
 }
 
 // Both of the studio's places taken by timelines: a tab's new text, even when it finds no
@@ -232,16 +232,9 @@ TEST_F(StudioGLTest, ABusyStudioStillStopsTheTabsOlderTimeline) {
     ServeProcess server(bin, {"--data", dir / "data"}, log);
     const int port = server.port();
     const auto timeline = [&](const char* tab, const char* size) {
-        return std::async(std::launch::async, [=] {
-            auto own = client_for(port);
-            own.set_read_timeout(120, 0);
-            auto answer = post(own, "/v1/studio/timeline",
-                               {{"scene", config("demo.yaml")},
-                                {"size", size},
-                                {"set", {{"video.duration", 1800}}},
-                                {"tab", tab}});
-            return answer ? answer->status : -1;
-        });
+        json request = long_demo(size);
+        request["tab"] = tab;
+        return play_timeline(port, request);
     };
     auto a = timeline("page-a", "160x90");
     auto b = timeline("page-b", "192x108");
@@ -255,27 +248,19 @@ TEST_F(StudioGLTest, ABusyStudioStillStopsTheTabsOlderTimeline) {
     // Refused, or let in if the stopped timeline gave its place up first.
     const int first = new_text("page-a");
     EXPECT_TRUE(first == 429 || first == 200) << first;
-    ASSERT_EQ(a.wait_for(std::chrono::seconds(30)), std::future_status::ready);
-    EXPECT_EQ(a.get(), 409);
+    const std::string moved_on =
+        "stopped: the tab that asked for this timeline went on to another scene";
+    expect_stopped(a, moved_on);
     EXPECT_EQ(new_text("page-a"), 200);
     EXPECT_EQ(new_text("page-b"), 200);
-    ASSERT_EQ(b.wait_for(std::chrono::seconds(30)), std::future_status::ready);
-    EXPECT_EQ(b.get(), 409);
+    expect_stopped(b, moved_on);
 }
 
 // The studio keeps four sessions: one dropped for newer scenes stops its timeline.
 TEST_F(StudioGLTest, ATimelineOfADroppedSessionStops) {
     ServeProcess server(bin, {"--data", dir / "data"}, log);
     const int port = server.port();
-    const json long_clip = {{"scene", config("demo.yaml")},
-                            {"size", "160x90"},
-                            {"set", {{"video.duration", 1800}}}};
-    auto played = std::async(std::launch::async, [&] {
-        auto own = client_for(port);
-        own.set_read_timeout(120, 0);
-        auto answer = post(own, "/v1/studio/timeline", long_clip);
-        return answer ? std::pair{answer->status, answer->body} : std::pair{-1, std::string()};
-    });
+    auto played = play_timeline(port, long_demo());
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     auto client = client_for(port);
     for (const char* size : {"96x54", "128x72", "192x108", "224x126"}) {
@@ -284,11 +269,7 @@ TEST_F(StudioGLTest, ATimelineOfADroppedSessionStops) {
         ASSERT_TRUE(answer);
         EXPECT_EQ(answer->status, 200) << answer->body;
     }
-    ASSERT_EQ(played.wait_for(std::chrono::seconds(30)), std::future_status::ready);
-    const auto [status, body] = played.get();
-    EXPECT_EQ(status, 409) << body;
-    EXPECT_EQ(json::parse(body)["error"]["message"],
-              "stopped: the studio dropped this scene's session for newer scenes");
+    expect_stopped(played, "stopped: the studio dropped this scene's session for newer scenes");
 }
 
 TEST_F(StudioGLTest, APickedPixelNamesTheBodyDrawnThere) {
