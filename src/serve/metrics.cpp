@@ -23,7 +23,8 @@ void Metrics::answered(int status) {
     ++responses_[status];
 }
 
-std::string Metrics::text(std::size_t queued, std::size_t running, int workers) const {
+std::string Metrics::text(std::size_t queued, std::size_t running, int workers,
+                          std::size_t studio_timelines) const {
     std::ostringstream out;
     const auto metric = [&](const char* name, const char* type, const char* help) {
         out << "# HELP " << name << ' ' << help << "\n# TYPE " << name << ' ' << type << '\n';
@@ -42,6 +43,8 @@ std::string Metrics::text(std::size_t queued, std::size_t running, int workers) 
     out << "discreel_jobs_running " << running << '\n';
     metric("discreel_workers", "gauge", "Render workers.");
     out << "discreel_workers " << workers << '\n';
+    metric("discreel_studio_timelines", "gauge", "Studio timelines being played.");
+    out << "discreel_studio_timelines " << studio_timelines << '\n';
     metric("discreel_output_bytes_served_total", "counter", "Bytes of outputs sent to clients.");
     out << "discreel_output_bytes_served_total " << bytes_served_.load() << '\n';
     metric("discreel_jobs_swept_total", "counter",

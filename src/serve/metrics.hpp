@@ -23,7 +23,8 @@ public:
     }
 
     // The gauges come from the job table at the time of the scrape.
-    std::string text(std::size_t queued, std::size_t running, int workers) const;
+    std::string text(std::size_t queued, std::size_t running, int workers,
+                     std::size_t studio_timelines) const;
 
 private:
     // Render time buckets, seconds: from a small still (tens of ms) to long clips.

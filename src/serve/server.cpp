@@ -399,7 +399,8 @@ http::Response Server::Impl::route(http::Request& req) {
         if (!get) return only("GET, HEAD");
         http::Response res;
         res.set("Content-Type", "text/plain; version=0.0.4; charset=utf-8");
-        res.body = metrics.text(jobs->queued(), jobs->running(), def.workers);
+        res.body = metrics.text(jobs->queued(), jobs->running(), def.workers,
+                                studio->timelines_playing());
         return res;
     }
     if (path == "/v1/renders") {
@@ -567,8 +568,9 @@ http::Response Server::Impl::post_studio(const http::Request& req, std::string_v
     options.erase("frame");
     options.erase("at");
     const std::string key = sha256_hex(options.dump() + "\n" + request.scene);
-    // Before the wait for a place: the tab's older timelines may be what holds them.
-    if (!tab.empty()) studio->moved_on(tab, key);
+    // Before the wait for a place: the tab's older timelines may be what holds them. (A pick
+    // is of the preview shown, which may be of the text before the one the tab shows next.)
+    if (!tab.empty() && what != "body") studio->moved_on(tab, key);
     // Two at once: the other blocking threads stay free for renders, validation and cancels.
     if (!studio_slots.try_acquire()) {
         http::Response res = refuse(429, "the studio is busy with other previews; try again");

@@ -184,10 +184,13 @@ Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPla
                                           const std::string& tab) {
     const auto s = session(key, plan);
     const auto superseded = std::make_shared<std::atomic<bool>>(false);
-    if (!tab.empty()) {
+    {
         std::lock_guard lock(mutex_);
-        stop_others(tab, key);
-        playing_.push_back({tab, key, superseded});
+        if (!tab.empty()) {
+            stop_others(tab, key);
+            playing_.push_back({tab, key, superseded});
+        }
+        ++timelines_;
     }
     struct Done {
         Studio& studio;
@@ -195,14 +198,20 @@ Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPla
         ~Done() {
             std::lock_guard lock(studio.mutex_);
             std::erase_if(studio.playing_, [&](const Playing& p) { return p.stop == flag; });
+            --studio.timelines_;
         }
     } done{*this, superseded};
-    const auto past_deadline = deadline();
     const auto moved_away = [&] {
         return superseded->load(std::memory_order_relaxed) ||
                s->evicted.load(std::memory_order_relaxed);
     };
-    const auto stop = [&] { return moved_away() || past_deadline(); };
+    // The studio's time limit counts the timeline's own physics, not its waits for previews.
+    const std::chrono::duration<double> budget(def_.timeout);
+    Clock::duration spent{};
+    Clock::time_point slice_start = Clock::now();
+    const auto stop = [&] {
+        return moved_away() || spent + (Clock::now() - slice_start) > budget;
+    };
     // Played to the end a second of frames at a time, the session free between them: a
     // preview waiting meanwhile goes first, so it waits for a second's physics at most.
     // Observed, not drawn: the look goes on with the physics, so later previews step on from
@@ -212,16 +221,18 @@ Expected<nlohmann::json> Studio::timeline(const std::string& key, job::RenderPla
     const int fps = s->scene.video.fps;
     std::int64_t steps = 0;
     for (;;) {
-        while (s->waiting.load() > 0 && !stop()) {
+        while (s->waiting.load() > 0 && !moved_away()) {
             std::this_thread::sleep_for(std::chrono::milliseconds(1));
         }
         std::lock_guard lock(s->mutex);
+        slice_start = Clock::now();
         if (s->recorded_steps >= s->playback.step_of_frame(last)) break;
         const int from = std::max(s->playback.next_frame(),
                                   s->first_frame_from(s->recorded_steps + 1));
         const int to = std::min(last, from + fps - 1);
         const std::int64_t before = s->playback.steps_taken();
         auto shown = s->show(to, false, stop);
+        spent += Clock::now() - slice_start;
         steps += s->playback.steps_taken() - before;
         if (!shown) {
             if (moved_away()) {

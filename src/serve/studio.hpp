@@ -69,6 +69,7 @@ public:
     // The body drawn at pixel (x, y) of the frame, with its state there, or {"body": null}.
     Expected<nlohmann::json> body_at(const std::string& key, job::RenderPlan plan, int x, int y);
     std::size_t sessions() const;
+    std::size_t timelines_playing() const { return timelines_.load(); }
 
 private:
     struct Session;
@@ -88,6 +89,7 @@ private:
         std::shared_ptr<std::atomic<bool>> stop;
     };
     std::vector<Playing> playing_;
+    std::atomic<std::size_t> timelines_{0};   // timeline requests being answered
 };
 
 }  // namespace discreel::serve
