@@ -89,10 +89,6 @@ struct Turn {
     std::unique_lock<std::mutex> lock;
 };
 
-}  // namespace
-
-namespace {
-
 // Stops a request that simulates past its time.
 std::function<bool()> deadline_after(double seconds) {
     const auto deadline =
